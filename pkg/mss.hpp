@@ -1,0 +1,12 @@
+// yade-mss public API: the table of contents.
+#pragma once
+
+#include "mss/edt.hpp"      // exact Euclidean distance transform (eq. 8)
+#include "mss/generate.hpp" // the generator (sections 3.3-3.5)
+#include "mss/grid.hpp"     // voxel grids
+#include "mss/maxima.hpp"   // local maxima and sub-voxel refinement (eq. 11-24)
+#include "mss/mesh.hpp"     // triangle meshes and their files
+#include "mss/npy.hpp"      // .npy voxel volumes
+#include "mss/score.hpp"    // scoring sphere sets (eq. 7, 27)
+#include "mss/spheres.hpp"  // sphere sets and their files
+#include "mss/voxelize.hpp" // voxelisation (section 2.2)

@@ -1,0 +1,121 @@
+#include "mss/edt.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace mss {
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr int kBlock = 16; // lines processed together so that strided passes read whole cache lines
+
+/// 1-D squared distance transform of sampled function f (length n) into d, FH 2012 algorithm 1:
+/// d(q) = min_p (q - p)^2 + f(p). Entries f = inf are not parabolas. v, z are scratch of n and n + 1.
+void envelope1d(const float* f, float* d, int n, int* v, float* z) {
+    int k = -1;
+    for (int q = 0; q < n; ++q) {
+        if (f[q] == kInf) continue;
+        const float fq = f[q] + static_cast<float>(q) * static_cast<float>(q);
+        float s = -kInf;
+        while (k >= 0) {
+            const int p = v[k];
+            // intersection of the parabolas rooted at p and q (FH eq. in section 3)
+            s = (fq - (f[p] + static_cast<float>(p) * static_cast<float>(p))) / (2.0f * static_cast<float>(q - p));
+            if (s > z[k]) break;
+            --k;
+        }
+        ++k;
+        v[k] = q;
+        z[k] = k == 0 ? -kInf : s;
+        z[k + 1] = kInf;
+    }
+    if (k < 0) {
+        std::fill(d, d + n, kInf);
+        return;
+    }
+    int j = 0;
+    for (int q = 0; q < n; ++q) {
+        while (z[j + 1] < static_cast<float>(q)) ++j;
+        const float dq = static_cast<float>(q - v[j]);
+        d[q] = dq * dq + f[v[j]];
+    }
+}
+
+/// Runs envelope1d on the lines of a strided pass: lines start at base + b (b < count, consecutive x), step
+/// `stride` between samples, n samples each.
+void strided(float* data, std::size_t base, int count, std::size_t stride, int n, std::vector<float>& buf,
+             std::vector<float>& out, std::vector<int>& v, std::vector<float>& z) {
+    for (int q = 0; q < n; ++q) {
+        const float* src = data + base + static_cast<std::size_t>(q) * stride;
+        for (int b = 0; b < count; ++b) buf[static_cast<std::size_t>(b) * n + q] = src[b];
+    }
+    for (int b = 0; b < count; ++b)
+        envelope1d(buf.data() + static_cast<std::size_t>(b) * n, out.data() + static_cast<std::size_t>(b) * n, n,
+                   v.data(), z.data());
+    for (int q = 0; q < n; ++q) {
+        float* dst = data + base + static_cast<std::size_t>(q) * stride;
+        for (int b = 0; b < count; ++b) dst[b] = out[static_cast<std::size_t>(b) * n + q];
+    }
+}
+
+} // namespace
+
+ScalarGrid distanceTransform(const VoxelGrid& solid) {
+    ScalarGrid out;
+    distanceTransform(solid, out);
+    return out;
+}
+
+void distanceTransform(const VoxelGrid& solid, ScalarGrid& out) {
+    const int nx = solid.nx(), ny = solid.ny(), nz = solid.nz();
+    if (solid.data.size() != solid.spec.size() || solid.data.empty())
+        throw std::invalid_argument("distanceTransform: the volume is empty");
+    out.spec = solid.spec;
+    out.data.resize(solid.data.size());
+    float* d = out.data.data();
+    const std::uint8_t* s = solid.data.data();
+    bool anyBackground = false;
+
+    // Pass 1, along x: squared distance to the nearest background voxel in the row (two scans).
+#pragma omp parallel for schedule(static) reduction(|| : anyBackground)
+    for (int row = 0; row < ny * nz; ++row) {
+        const std::size_t o = static_cast<std::size_t>(row) * nx;
+        int last = -1;
+        for (int i = 0; i < nx; ++i) {
+            if (!s[o + i]) last = i;
+            d[o + i] = last < 0 ? kInf : static_cast<float>(i - last);
+        }
+        if (last >= 0) anyBackground = true;
+        last = -1;
+        for (int i = nx - 1; i >= 0; --i) {
+            if (!s[o + i]) last = i;
+            if (last >= 0) d[o + i] = std::min(d[o + i], static_cast<float>(last - i));
+            d[o + i] = d[o + i] * d[o + i];
+        }
+    }
+    if (!anyBackground)
+        throw std::invalid_argument("distanceTransform: the volume has no background voxel; pad it first");
+
+    const std::size_t sy = static_cast<std::size_t>(nx), sz = static_cast<std::size_t>(nx) * ny;
+    // Pass 2, along y, and pass 3, along z: lower envelope of parabolas, blocks of kBlock x-adjacent lines.
+#pragma omp parallel
+    {
+        const int n = std::max(ny, nz);
+        std::vector<float> buf(static_cast<std::size_t>(kBlock) * n), res(buf.size()), z(n + 1);
+        std::vector<int> v(n);
+#pragma omp for schedule(static)
+        for (int k = 0; k < nz; ++k)
+            for (int i0 = 0; i0 < nx; i0 += kBlock)
+                strided(d, k * sz + i0, std::min(kBlock, nx - i0), sy, ny, buf, res, v, z);
+#pragma omp for schedule(static)
+        for (int j = 0; j < ny; ++j)
+            for (int i0 = 0; i0 < nx; i0 += kBlock)
+                strided(d, j * sy + i0, std::min(kBlock, nx - i0), sz, nz, buf, res, v, z);
+#pragma omp for schedule(static)
+        for (long long q = 0; q < static_cast<long long>(out.data.size()); ++q) d[q] = std::sqrt(d[q]);
+    }
+}
+
+} // namespace mss

@@ -1,0 +1,38 @@
+#include "mss/grid.hpp"
+
+#include <numeric>
+#include <sstream>
+
+namespace mss {
+
+std::size_t countSolid(const VoxelGrid& g) {
+    std::size_t n = 0;
+    for (std::uint8_t v : g.data) n += (v != 0);
+    return n;
+}
+
+void checkGridSize(const char* where, const std::array<long long, 3>& dims, std::size_t bytesPerVoxel,
+                   std::size_t memoryLimit) {
+    for (long long d : dims) {
+        if (d <= 0) {
+            std::ostringstream os;
+            os << where << ": grid dimensions must be positive, got " << dims[0] << "x" << dims[1] << "x" << dims[2];
+            throw std::invalid_argument(os.str());
+        }
+    }
+    const long double voxels = static_cast<long double>(dims[0]) * dims[1] * dims[2];
+    const long double bytes = voxels * bytesPerVoxel;
+    if (voxels > 2147483647.0L || bytes > static_cast<long double>(memoryLimit)) {
+        std::ostringstream os;
+        os.precision(3);
+        os << where << ": a grid of " << dims[0] << "x" << dims[1] << "x" << dims[2] << " voxels would need "
+           << static_cast<double>(bytes / (1024.0L * 1024.0L * 1024.0L)) << " GiB, over the limit of "
+           << static_cast<double>(memoryLimit) / (1024.0 * 1024.0 * 1024.0)
+           << " GiB; choose a coarser resolution (about "
+           << static_cast<double>(std::cbrt(static_cast<double>(memoryLimit) / bytesPerVoxel / voxels))
+           << " times the voxel count along each edge would fit)";
+        throw std::invalid_argument(os.str());
+    }
+}
+
+} // namespace mss

@@ -1,0 +1,51 @@
+// Triangle meshes: in memory, from files, and what can be said about them.
+#pragma once
+
+#include "mss/grid.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace mss {
+
+/// A triangle mesh in memory: vertex positions (world units) and triangles as vertex index triples.
+/// Triangles are expected counter-clockwise seen from outside (outward normals); inverted meshes are handled.
+struct TriangleMesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<int, 3>> triangles;
+};
+
+/// What a mesh is: counts, topology, volume and extent.
+struct MeshInfo {
+    std::size_t vertices = 0;
+    std::size_t triangles = 0;
+    std::size_t degenerateTriangles = 0; ///< zero area
+    std::size_t boundaryEdges = 0;       ///< edges used by one triangle
+    std::size_t nonManifoldEdges = 0;    ///< edges used by more than two triangles
+    std::size_t inconsistentEdges = 0;   ///< edges whose two triangles traverse them in the same direction
+    bool closed = false;                 ///< no boundary and no non-manifold edge
+    bool consistentlyOriented = false;   ///< every interior edge traversed once each way
+    double signedVolume = 0.0;           ///< divergence theorem; negative for an inside-out closed mesh
+    Vec3 lower = Vec3::Zero();           ///< bounding box
+    Vec3 upper = Vec3::Zero();
+};
+
+/// Checks a mesh for use (at least one triangle, indices in range, finite coordinates);
+/// throws std::invalid_argument naming @p where and the problem.
+void validateMesh(const TriangleMesh& mesh, const std::string& where);
+
+/// Topology, volume and bounding box. O(T log T).
+MeshInfo analyzeMesh(const TriangleMesh& mesh);
+
+/// Reads a mesh file by extension: .stl (ASCII or binary; our own reader, for speed and for errors that name
+/// the line or the size mismatch), .obj, .off, .ply (through CGAL's readers).
+/// Polygons with more than three corners are split into triangle fans. Identical vertices are merged.
+/// @throws std::invalid_argument naming the file and the problem (missing, unreadable, unknown extension,
+///         malformed, no triangles, non-finite coordinates).
+TriangleMesh readMesh(const std::string& path);
+
+/// Lower-cased extension of @p path including the dot (".stl"), or "" if none.
+std::string fileExtension(const std::string& path);
+
+} // namespace mss

@@ -1,0 +1,30 @@
+// Scoring any sphere set against a target on a grid of its own (MSS paper section 4.1).
+#pragma once
+
+#include "mss/grid.hpp"
+#include "mss/mesh.hpp"
+#include "mss/spheres.hpp"
+
+namespace mss {
+
+/// How well a sphere set matches a target, on one scoring grid.
+struct Score {
+    double dice = 0.0;        ///< Dice mismatch, eq. 27
+    double eta = 0.0;         ///< relative mismatch, eq. 7
+    double volumeRatio = 0.0; ///< |S~| / |S|
+    double coverage = 0.0;    ///< |S ∩ S~| / |S|
+    double outside = 0.0;     ///< |S~ \ S| / |S~|: fraction of the spheres' volume outside the target
+    std::size_t targetVoxels = 0, sphereVoxels = 0;
+    GridSpec grid;
+};
+
+/// Scores spheres against a mesh on a grid of @p resolution voxels along the mesh's shortest bounding-box edge,
+/// covering the mesh and the spheres, shifted by @p offset voxels along each axis from the centred placement so
+/// that a result is not scored on the very voxel centres it was fitted to. @p supersample as in voxelizeMesh.
+Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int resolution = 100,
+                   double offset = 0.37, int supersample = 1);
+
+/// Scores spheres against a binary volume on the volume's own grid (extended to hold the spheres).
+Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres);
+
+} // namespace mss

@@ -1,0 +1,111 @@
+#include "mss/spheres.hpp"
+#include "mss/mesh.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+namespace mss {
+
+void validateSpheres(const SphereSet& s, const std::string& where) {
+    if (s.centers.size() != s.radii.size())
+        throw std::invalid_argument(where + ": " + std::to_string(s.centers.size()) + " centres but " +
+                                    std::to_string(s.radii.size()) + " radii");
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (!s.centers[i].allFinite())
+            throw std::invalid_argument(where + ": sphere " + std::to_string(i) + " has a non-finite centre");
+        if (!(s.radii[i] > 0.0) || !std::isfinite(s.radii[i])) {
+            std::ostringstream os;
+            os << where << ": sphere " << i << " has radius " << s.radii[i] << " (must be > 0 and finite)";
+            throw std::invalid_argument(os.str());
+        }
+    }
+}
+
+void writeSpheres(const SphereSet& s, const std::string& path) {
+    validateSpheres(s, "writeSpheres");
+    const std::string ext = fileExtension(path);
+    if (ext != ".csv" && ext != ".txt" && ext != ".vtk")
+        throw std::invalid_argument("writeSpheres: " + path + ": unknown extension '" + ext +
+                                    "' (expected .csv, .txt or .vtk)");
+    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp);
+        if (!out) throw std::invalid_argument("writeSpheres: " + path + ": cannot write (directory missing or not writable)");
+        out << std::setprecision(17);
+        if (ext == ".csv") {
+            out << "x,y,z,r\n";
+            for (std::size_t i = 0; i < s.size(); ++i)
+                out << s.centers[i].x() << ',' << s.centers[i].y() << ',' << s.centers[i].z() << ',' << s.radii[i]
+                    << '\n';
+        } else if (ext == ".txt") {
+            out << "# x y z r clumpId (yade-mss; read with ymport.textClumps)\n";
+            for (std::size_t i = 0; i < s.size(); ++i)
+                out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << ' ' << s.radii[i]
+                    << " 0\n";
+        } else {
+            out << "# vtk DataFile Version 3.0\nyade-mss spheres\nASCII\nDATASET POLYDATA\nPOINTS " << s.size()
+                << " double\n";
+            for (std::size_t i = 0; i < s.size(); ++i)
+                out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << '\n';
+            out << "VERTICES " << s.size() << ' ' << 2 * s.size() << '\n';
+            for (std::size_t i = 0; i < s.size(); ++i) out << "1 " << i << '\n';
+            out << "POINT_DATA " << s.size() << "\nSCALARS radius double 1\nLOOKUP_TABLE default\n";
+            for (std::size_t i = 0; i < s.size(); ++i) out << s.radii[i] << '\n';
+        }
+        out.flush();
+        if (!out) {
+            std::remove(tmp.c_str());
+            throw std::invalid_argument("writeSpheres: " + path + ": write failed");
+        }
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw std::invalid_argument("writeSpheres: " + path + ": cannot write (rename failed)");
+    }
+}
+
+SphereSet readSpheres(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::invalid_argument("readSpheres: " + path + ": cannot open file");
+    SphereSet s;
+    std::string line;
+    std::size_t lineNo = 0;
+    while (std::getline(in, line)) {
+        ++lineNo;
+        const auto hash = line.find('#');
+        if (hash != std::string::npos) line.resize(hash);
+        for (char& c : line)
+            if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+        std::istringstream ls(line);
+        std::string first;
+        if (!(ls >> first)) continue;
+        // a header line (x,y,z,r) is allowed before any data
+        if (s.size() == 0 && !(std::isdigit(static_cast<unsigned char>(first[0])) || first[0] == '-' ||
+                               first[0] == '+' || first[0] == '.'))
+            continue;
+        std::istringstream all(line);
+        double v[4];
+        for (double& x : v) {
+            std::string tok;
+            if (!(all >> tok))
+                throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
+                                            ": expected x y z r");
+            char* end = nullptr;
+            x = std::strtod(tok.c_str(), &end);
+            if (end == tok.c_str() || *end != '\0')
+                throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
+                                            ": '" + tok + "' is not a number");
+        }
+        s.add(Vec3(v[0], v[1], v[2]), v[3]);
+    }
+    if (s.size() == 0) throw std::invalid_argument("readSpheres: " + path + ": no spheres in file");
+    validateSpheres(s, "readSpheres: " + path);
+    return s;
+}
+
+} // namespace mss

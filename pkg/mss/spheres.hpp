@@ -1,0 +1,37 @@
+// Sphere sets: the output of MSS and the input of scoring, with their file formats.
+#pragma once
+
+#include "mss/grid.hpp"
+
+#include <string>
+#include <vector>
+
+namespace mss {
+
+/// A set of spheres in world units; centres[i] and radii[i] describe sphere i.
+struct SphereSet {
+    std::vector<Vec3> centers;
+    std::vector<double> radii;
+
+    std::size_t size() const { return radii.size(); }
+    void add(const Vec3& c, double r) {
+        centers.push_back(c);
+        radii.push_back(r);
+    }
+};
+
+/// Checks sizes agree, coordinates are finite and radii positive; throws std::invalid_argument naming @p where.
+void validateSpheres(const SphereSet& s, const std::string& where);
+
+/// Writes spheres by extension: .csv ("x,y,z,r" header and rows), .txt (YADE text clump "x y z r clumpId", the
+/// format of ymport.textClumps), .vtk (legacy VTK polydata, points with a "radius" scalar, for ParaView's glyphs).
+/// Full precision (17 significant digits). Written to a temporary file and renamed, so an interrupted run never
+/// leaves a half-written file. @throws std::invalid_argument on an unknown extension or unwritable path.
+void writeSpheres(const SphereSet& s, const std::string& path);
+
+/// Reads spheres from CSV (x,y,z,r with optional header; CLUMP's output), or a YADE text clump file
+/// (whitespace-separated x y z r [clumpId], '#' comments). Extra columns are ignored.
+/// @throws std::invalid_argument naming the file and line of the problem.
+SphereSet readSpheres(const std::string& path);
+
+} // namespace mss

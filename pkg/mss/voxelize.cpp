@@ -1,0 +1,268 @@
+#include "mss/voxelize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace mss {
+
+GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res, const char* where) {
+    const std::string w = where;
+    if (!lower.allFinite() || !upper.allFinite()) throw std::invalid_argument(w + ": bounding box is not finite");
+    const bool hasSize = res.voxelSize != 0.0, hasRes = res.resolution != 0;
+    if (hasSize == hasRes) {
+        std::ostringstream os;
+        os << w << ": give exactly one of a voxel size > 0 and a resolution >= 1, got voxel size " << res.voxelSize
+           << " and resolution " << res.resolution;
+        throw std::invalid_argument(os.str());
+    }
+    if (hasSize && !(res.voxelSize > 0.0 && std::isfinite(res.voxelSize))) {
+        std::ostringstream os;
+        os << w << ": voxel size must be > 0 and finite, got " << res.voxelSize;
+        throw std::invalid_argument(os.str());
+    }
+    if (hasRes && res.resolution < 1)
+        throw std::invalid_argument(w + ": resolution must be >= 1 voxel along the shortest edge, got " +
+                                    std::to_string(res.resolution));
+    if (res.padding < 0) throw std::invalid_argument(w + ": padding must be >= 0");
+    const Vec3 extent = upper - lower;
+    const double shortest = extent.minCoeff();
+    if (!(shortest > 0.0)) {
+        std::ostringstream os;
+        os << w << ": the solid is flat (bounding box " << extent.x() << " x " << extent.y() << " x " << extent.z()
+           << "); it has no volume to fill";
+        throw std::invalid_argument(os.str());
+    }
+    GridSpec g;
+    g.h = hasSize ? res.voxelSize : shortest / res.resolution;
+    if (!(g.h > 0.0) || !std::isfinite(g.h)) throw std::invalid_argument(w + ": voxel size underflows");
+    std::array<long long, 3> dims{};
+    for (int a = 0; a < 3; ++a) {
+        const double cells = std::ceil(extent[a] / g.h - 1e-9);
+        if (!(cells < 4e9)) {
+            std::ostringstream os;
+            os << w << ": voxel size " << g.h << " is absurdly small for an extent of " << extent[a];
+            throw std::invalid_argument(os.str());
+        }
+        dims[a] = std::max(1LL, static_cast<long long>(cells)) + 2LL * res.padding;
+    }
+    checkGridSize(where, dims, kBytesPerVoxelGenerate, res.memoryLimit);
+    for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(dims[a]);
+    const Vec3 center = 0.5 * (lower + upper);
+    g.origin = center - 0.5 * g.h * Vec3(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1);
+    return g;
+}
+
+namespace {
+
+struct Hit {
+    std::uint32_t column;
+    float x; // crossing position along x, voxel units
+    int sign;
+};
+
+/// Edge function of sample p against edge a->b in the (y, z) plane, with Simulation of Simplicity:
+/// p is taken as p + (eps, eps^2), so an exact zero is resolved the same way by every triangle sharing the
+/// edge (antisymmetric in a, b) and at shared vertices. Computed from the lexicographically smaller end so
+/// that the value is exactly antisymmetric in floating point.
+inline double edgeFunction(double ay, double az, double by, double bz, double py, double pz) {
+    bool swapped = (ay > by) || (ay == by && az > bz);
+    if (swapped) {
+        std::swap(ay, by);
+        std::swap(az, bz);
+    }
+    double w = (by - ay) * (pz - az) - (bz - az) * (py - ay);
+    if (w == 0.0) {
+        // d/d eps of w for p + (eps, eps^2): -(bz - az), then (by - ay)
+        w = (bz != az) ? -(bz - az) : (by - ay);
+    }
+    return swapped ? -w : w;
+}
+
+} // namespace
+
+VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample) {
+    validateMesh(mesh, "voxelizeMesh");
+    if (supersample < 1 || supersample > 8)
+        throw std::invalid_argument("voxelizeMesh: supersample must be 1..8, got " + std::to_string(supersample));
+    if (!(grid.h > 0.0) || grid.size() == 0) throw std::invalid_argument("voxelizeMesh: empty grid");
+    const MeshInfo info = analyzeMesh(mesh);
+    const bool parity = !info.consistentlyOriented;
+    const int s = supersample;
+    const int NY = grid.dims[1] * s, NZ = grid.dims[2] * s;
+    const std::size_t nColumns = static_cast<std::size_t>(NY) * NZ;
+    // sub-sample coordinate of sub-index J: (J + 0.5) / s - 0.5 (voxel units); inverse below
+    auto subCoord = [s](long long J) { return (J + 0.5) / s - 0.5; };
+
+    std::vector<Vec3> v(mesh.vertices.size());
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = grid.toVoxel(mesh.vertices[i]);
+
+    std::vector<Hit> hits;
+    hits.reserve(nColumns * 2 + 1024);
+    for (const auto& t : mesh.triangles) {
+        const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+        const double det = (b.y() - a.y()) * (c.z() - a.z()) - (b.z() - a.z()) * (c.y() - a.y());
+        if (det == 0.0) continue; // parallel to the rays: never crossed
+        const double ylo = std::min({a.y(), b.y(), c.y()}), yhi = std::max({a.y(), b.y(), c.y()});
+        const double zlo = std::min({a.z(), b.z(), c.z()}), zhi = std::max({a.z(), b.z(), c.z()});
+        const long long J0 = std::max(0LL, static_cast<long long>(std::ceil((ylo + 0.5) * s - 0.5)));
+        const long long J1 = std::min<long long>(NY - 1, static_cast<long long>(std::floor((yhi + 0.5) * s - 0.5)));
+        const long long K0 = std::max(0LL, static_cast<long long>(std::ceil((zlo + 0.5) * s - 0.5)));
+        const long long K1 = std::min<long long>(NZ - 1, static_cast<long long>(std::floor((zhi + 0.5) * s - 0.5)));
+        const int sign = det > 0 ? -1 : 1; // outward normal along -x: the ray enters
+        for (long long K = K0; K <= K1; ++K) {
+            const double pz = subCoord(K);
+            for (long long J = J0; J <= J1; ++J) {
+                const double py = subCoord(J);
+                // barycentric weights (up to the common factor det) from the edges opposite each corner
+                double wa = edgeFunction(b.y(), b.z(), c.y(), c.z(), py, pz);
+                double wb = edgeFunction(c.y(), c.z(), a.y(), a.z(), py, pz);
+                double wc = edgeFunction(a.y(), a.z(), b.y(), b.z(), py, pz);
+                const bool inside = det > 0 ? (wa > 0 && wb > 0 && wc > 0) : (wa < 0 && wb < 0 && wc < 0);
+                if (!inside) continue;
+                const double x = (wa * a.x() + wb * b.x() + wc * c.x()) / (wa + wb + wc);
+                hits.push_back({static_cast<std::uint32_t>(J + static_cast<long long>(NY) * K),
+                                static_cast<float>(x), sign});
+            }
+        }
+    }
+    // counting sort by column
+    std::vector<std::uint32_t> start(nColumns + 1, 0);
+    for (const Hit& h : hits) ++start[h.column + 1];
+    for (std::size_t c = 0; c < nColumns; ++c) start[c + 1] += start[c];
+    std::vector<Hit> sorted(hits.size());
+    {
+        std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+        for (const Hit& h : hits) sorted[fill[h.column]++] = h;
+    }
+    hits.clear();
+    hits.shrink_to_fit();
+
+    VoxelGrid out(grid, 0);
+    const int nx = grid.dims[0], ny = grid.dims[1], nz = grid.dims[2];
+    const int threshold = s * s * s / 2; // solid when more than half of the samples are inside (eq. 5)
+#pragma omp parallel
+    {
+        std::vector<std::uint16_t> count(static_cast<std::size_t>(nx) * ny);
+#pragma omp for schedule(dynamic, 1)
+        for (int k = 0; k < nz; ++k) {
+            std::fill(count.begin(), count.end(), 0);
+            for (int cz = 0; cz < s; ++cz) {
+                const long long K = static_cast<long long>(k) * s + cz;
+                for (int j = 0; j < ny; ++j) {
+                    for (int cy = 0; cy < s; ++cy) {
+                        const std::size_t col = static_cast<std::size_t>(j * s + cy) + static_cast<std::size_t>(NY) * K;
+                        Hit* b = sorted.data() + start[col];
+                        Hit* e = sorted.data() + start[col + 1];
+                        if (b == e) continue;
+                        std::sort(b, e, [](const Hit& p, const Hit& q) {
+                            return p.x < q.x || (p.x == q.x && p.sign < q.sign);
+                        });
+                        int winding = 0;
+                        for (Hit* h = b; h != e; ++h) {
+                            const int before = winding;
+                            winding = parity ? (winding ^ 1) : winding + h->sign;
+                            if (before != 0 || winding == 0 || h + 1 == e) continue;
+                            // entering an inside run at h: find where it ends
+                            Hit* q = h + 1;
+                            int w2 = winding;
+                            for (; q != e; ++q) {
+                                w2 = parity ? (w2 ^ 1) : w2 + q->sign;
+                                if (w2 == 0) break;
+                            }
+                            if (q == e) break; // unclosed run (open mesh): ignore the rest
+                            // samples X with x0 <= (X + 0.5)/s - 0.5 <= x1
+                            const double x0 = h->x, x1 = q->x;
+                            long long X0 = static_cast<long long>(std::ceil((x0 + 0.5) * s - 0.5));
+                            long long X1 = static_cast<long long>(std::floor((x1 + 0.5) * s - 0.5));
+                            X0 = std::max(0LL, X0);
+                            X1 = std::min<long long>(static_cast<long long>(nx) * s - 1, X1);
+                            std::uint16_t* row = count.data() + static_cast<std::size_t>(j) * nx;
+                            for (long long X = X0; X <= X1; ++X) ++row[X / s];
+                            winding = 0;
+                            h = q;
+                        }
+                    }
+                }
+            }
+            std::uint8_t* slice = out.data.data() + static_cast<std::size_t>(k) * nx * ny;
+            for (std::size_t i = 0; i < count.size(); ++i) slice[i] = count[i] > threshold ? 1 : 0;
+        }
+    }
+    return out;
+}
+
+VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supersample) {
+    validateMesh(mesh, "voxelizeMesh");
+    const MeshInfo info = analyzeMesh(mesh);
+    return voxelizeMesh(mesh, gridForBox(info.lower, info.upper, res, "voxelizeMesh"), supersample);
+}
+
+VoxelGrid voxelizeSpheres(const SphereSet& spheres, const GridSpec& grid) {
+    validateSpheres(spheres, "voxelizeSpheres");
+    VoxelGrid out(grid, 0);
+    const int nx = grid.dims[0], ny = grid.dims[1], nz = grid.dims[2];
+    std::vector<Vec3> c(spheres.size());
+    std::vector<double> r(spheres.size());
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        c[i] = grid.toVoxel(spheres.centers[i]);
+        r[i] = spheres.radii[i] / grid.h;
+    }
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int k = 0; k < nz; ++k) {
+        for (std::size_t s = 0; s < c.size(); ++s) {
+            const double dz = k - c[s].z();
+            const double rz2 = r[s] * r[s] - dz * dz;
+            if (rz2 < 0) continue;
+            const double ry = std::sqrt(rz2);
+            const int j0 = std::max(0, static_cast<int>(std::ceil(c[s].y() - ry)));
+            const int j1 = std::min(ny - 1, static_cast<int>(std::floor(c[s].y() + ry)));
+            for (int j = j0; j <= j1; ++j) {
+                const double dy = j - c[s].y();
+                const double rx2 = rz2 - dy * dy;
+                if (rx2 < 0) continue;
+                const double rx = std::sqrt(rx2);
+                const int i0 = std::max(0, static_cast<int>(std::ceil(c[s].x() - rx)));
+                const int i1 = std::min(nx - 1, static_cast<int>(std::floor(c[s].x() + rx)));
+                if (i0 > i1) continue;
+                std::uint8_t* row = &out(0, j, k);
+                std::fill(row + i0, row + i1 + 1, std::uint8_t(1));
+            }
+        }
+    }
+    return out;
+}
+
+VoxelGrid padVoxels(const VoxelGrid& volume, int padding) {
+    if (padding < 0) throw std::invalid_argument("padVoxels: padding must be >= 0");
+    if (volume.data.size() != volume.spec.size() || volume.spec.size() == 0)
+        throw std::invalid_argument("padVoxels: the volume is empty");
+    if (!(volume.spec.h > 0.0) || !std::isfinite(volume.spec.h))
+        throw std::invalid_argument("padVoxels: voxel size must be > 0 and finite");
+    if (!volume.spec.origin.allFinite()) throw std::invalid_argument("padVoxels: origin is not finite");
+    std::array<int, 3> lo{volume.nx(), volume.ny(), volume.nz()}, hi{-1, -1, -1};
+    for (int k = 0; k < volume.nz(); ++k)
+        for (int j = 0; j < volume.ny(); ++j)
+            for (int i = 0; i < volume.nx(); ++i) {
+                if (!volume(i, j, k)) continue;
+                lo = {std::min(lo[0], i), std::min(lo[1], j), std::min(lo[2], k)};
+                hi = {std::max(hi[0], i), std::max(hi[1], j), std::max(hi[2], k)};
+            }
+    if (hi[0] < 0) throw std::invalid_argument("padVoxels: the volume has no solid voxel");
+    GridSpec g;
+    g.h = volume.spec.h;
+    std::array<long long, 3> dims{};
+    for (int a = 0; a < 3; ++a) dims[a] = hi[a] - lo[a] + 1 + 2LL * padding;
+    checkGridSize("padVoxels", dims, 1, std::size_t(1) << 40);
+    for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(dims[a]);
+    g.origin = volume.spec.toWorld(Vec3(lo[0] - padding, lo[1] - padding, lo[2] - padding));
+    VoxelGrid out(g, 0);
+    for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i)
+                out(i - lo[0] + padding, j - lo[1] + padding, k - lo[2] + padding) = volume(i, j, k) ? 1 : 0;
+    return out;
+}
+
+} // namespace mss

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# End-to-end tests of the mss command line: real files written and read back, errors with non-zero exit.
+# usage: test_cli.sh MSS_BINARY DATA_DIR
+set -u
+MSS=$1
+DATA=$2
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+pass=0
+fail=0
+check() { # name, condition-command...
+  local name=$1
+  shift
+  if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
+}
+expect_error() { # name, fragment, command...
+  local name=$1 fragment=$2
+  shift 2
+  local out rc
+  out=$("$@" 2>&1)
+  rc=$?
+  if [ $rc -ne 0 ] && grep -q -- "$fragment" <<<"$out"; then pass=$((pass + 1)); else
+    fail=$((fail + 1)); echo "FAILED: $name (rc=$rc, output: $out)"; fi
+}
+
+# generate: the three output formats, with the requested number of spheres
+"$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 6 --resolution 40 -o "$TMP/e.csv" > "$TMP/gen.log"
+check "csv has header and 6 rows" [ "$(wc -l < "$TMP/e.csv")" -eq 7 ]
+check "generate prints dice" grep -q '^dice' "$TMP/gen.log"
+"$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 6 --resolution 40 -o "$TMP/e.txt" > /dev/null
+check "yade text has 6 clump rows of 5 columns" [ "$(grep -v '^#' "$TMP/e.txt" | awk 'NF==5' | wc -l)" -eq 6 ]
+"$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 6 --resolution 40 -o "$TMP/e.vtk" > /dev/null
+check "vtk has 6 points" grep -q 'POINTS 6 double' "$TMP/e.vtk"
+"$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --eta 0.1 --resolution 40 --method paper -o "$TMP/p.csv" > "$TMP/p.log"
+check "paper mode meets eta or stops" grep -q '^eta' "$TMP/p.log"
+
+# compare: scores our own output; a perfect-ish fit has small dice
+"$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.txt" --resolution 50 > "$TMP/cmp.log"
+dice=$(awk '/^dice/{print $2}' "$TMP/cmp.log")
+check "compare dice < 0.1 for 6 spheres ($dice)" awk -v d="$dice" 'BEGIN{exit !(d > 0 && d < 0.1)}'
+# a deliberately bad sphere set scores badly
+printf 'x,y,z,r\n5,5,5,0.5\n' > "$TMP/bad.csv"
+"$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/bad.csv" --resolution 30 > "$TMP/cmp2.log"
+check "a sphere outside the grain scores outside = 1" grep -qE '^outside +1$' "$TMP/cmp2.log"
+
+# info
+"$MSS" info "$DATA/human_femur.stl" > "$TMP/info.log"
+check "info reports 13752 triangles" grep -qE '^triangles +13752' "$TMP/info.log"
+check "info reports closed" grep -qE '^closed +yes' "$TMP/info.log"
+
+# errors: clear message, non-zero exit, no output file left behind
+expect_error "missing input" "cannot open" "$MSS" generate "$TMP/nope.stl" --spheres 3 -o "$TMP/x.csv"
+expect_error "unknown extension" "unknown mesh extension" "$MSS" info "$TMP/x.abc"
+: > "$TMP/empty.stl"
+expect_error "empty file" "empty" "$MSS" info "$TMP/empty.stl"
+expect_error "zero spheres" "--spheres must be >= 1" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 0 -o "$TMP/x.csv"
+expect_error "no criterion" "termination criterion" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" -o "$TMP/x.csv"
+expect_error "resolution 0" "resolution must be >= 1" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 0 -o "$TMP/x.csv"
+expect_error "absurd resolution" "would need" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 200000 -o "$TMP/x.csv"
+expect_error "bad output extension" "unknown output extension" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 -o "$TMP/x.doc"
+expect_error "unwritable output" "cannot write" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 -o /nonexistent-dir/x.csv
+expect_error "unknown option" "unknown option" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --sphere 3 -o "$TMP/x.csv"
+expect_error "bad number" "not an integer" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres abc -o "$TMP/x.csv"
+check "no file left by failed runs" [ ! -e "$TMP/x.csv" ]
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

@@ -1,0 +1,201 @@
+#include "mss/mesh.hpp"
+#include "mss/npy.hpp"
+#include "mss/spheres.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <unistd.h>
+
+using namespace mss;
+
+namespace {
+const std::string kData = MSS_TEST_DATA;
+
+std::string tempPath(const std::string& name) {
+    return ::testing::TempDir() + "/mss_io_" + std::to_string(::getpid()) + "_" + name;
+}
+
+void writeText(const std::string& path, const std::string& text) {
+    std::ofstream(path, std::ios::binary) << text;
+}
+
+void expectError(const std::function<void()>& f, const std::string& fragment) {
+    try {
+        f();
+        FAIL() << "no exception, expected one mentioning '" << fragment << "'";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+}
+
+void writeNpy(const std::string& path, const std::string& descr, const std::string& shape,
+              const std::vector<char>& data, bool fortran = false) {
+    std::string header = "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") +
+                         ", 'shape': (" + shape + "), }";
+    while ((10 + header.size() + 1) % 64) header += ' ';
+    header += '\n';
+    std::ofstream out(path, std::ios::binary);
+    out.write("\x93NUMPY\x01\x00", 8);
+    const unsigned short len = static_cast<unsigned short>(header.size());
+    out.put(char(len & 0xff));
+    out.put(char(len >> 8));
+    out << header;
+    out.write(data.data(), std::streamsize(data.size()));
+}
+} // namespace
+
+TEST(MeshIo, AsciiAndBinaryStlAgree) {
+    const TriangleMesh femur = readMesh(kData + "/human_femur.stl"); // ASCII
+    const MeshInfo info = analyzeMesh(femur);
+    EXPECT_EQ(info.triangles, 13752u);
+    EXPECT_TRUE(info.closed);
+    EXPECT_NEAR(info.signedVolume, 125621.0, 1.0); // data/README.md
+    // write it as binary STL and read it back
+    const std::string bin = tempPath("femur_bin.stl");
+    {
+        std::ofstream out(bin, std::ios::binary);
+        char header[80] = "binary";
+        out.write(header, 80);
+        const std::uint32_t n = std::uint32_t(femur.triangles.size());
+        out.write(reinterpret_cast<const char*>(&n), 4);
+        for (const auto& t : femur.triangles) {
+            float rec[12] = {0, 0, 0};
+            for (int c = 0; c < 3; ++c)
+                for (int a = 0; a < 3; ++a) rec[3 + 3 * c + a] = float(femur.vertices[t[c]][a]);
+            out.write(reinterpret_cast<const char*>(rec), 48);
+            out.write("\0\0", 2);
+        }
+    }
+    const MeshInfo binInfo = analyzeMesh(readMesh(bin));
+    EXPECT_EQ(binInfo.triangles, info.triangles);
+    EXPECT_EQ(binInfo.vertices, info.vertices); // corners merged back into shared vertices
+    EXPECT_NEAR(binInfo.signedVolume, info.signedVolume, 1e-4 * info.signedVolume);
+    std::remove(bin.c_str());
+}
+
+TEST(MeshIo, ObjOffPlyThroughCgal) {
+    const std::string obj = tempPath("tet.obj"), off = tempPath("tet.off"), ply = tempPath("tet.ply");
+    writeText(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+    writeText(off, "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    writeText(ply, "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                   "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    for (const auto& p : {obj, off, ply}) {
+        const MeshInfo i = analyzeMesh(readMesh(p));
+        EXPECT_EQ(i.triangles, 4u) << p;
+        EXPECT_TRUE(i.closed) << p;
+        EXPECT_NEAR(i.signedVolume, 1.0 / 6.0, 1e-12) << p;
+        std::remove(p.c_str());
+    }
+}
+
+TEST(MeshIo, BadFilesGetClearErrors) {
+    const std::string p = tempPath("bad.stl");
+    writeText(p, "");
+    expectError([&] { readMesh(p); }, "empty");
+    std::string bin(84 + 50 * 3, '\0');
+    bin[80] = 5; // says 5 triangles, has 3
+    writeText(p, bin);
+    expectError([&] { readMesh(p); }, "says 5 triangles");
+    writeText(p, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 zz\n");
+    expectError([&] { readMesh(p); }, "line 5");
+    writeText(p, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\nendloop\nendfacet\n");
+    expectError([&] { readMesh(p); }, "non-finite");
+    std::remove(p.c_str());
+    expectError([&] { readMesh(tempPath("missing.stl")); }, "cannot open");
+    expectError([&] { readMesh(tempPath("x.xyz")); }, "unknown mesh extension");
+}
+
+TEST(SpheresIo, RoundTripAtFullPrecision) {
+    SphereSet s;
+    s.add(Vec3(0.1, -2.0 / 3.0, 1e-7), 0.123456789012345678);
+    s.add(Vec3(1e5, 2, 3), 4.5);
+    for (const std::string ext : {".csv", ".txt"}) {
+        const std::string p = tempPath("s" + ext);
+        writeSpheres(s, p);
+        const SphereSet r = readSpheres(p);
+        ASSERT_EQ(r.size(), 2u);
+        EXPECT_EQ(r.centers[0], s.centers[0]) << ext;
+        EXPECT_EQ(r.radii[0], s.radii[0]) << ext;
+        std::remove(p.c_str());
+    }
+    const std::string vtk = tempPath("s.vtk");
+    writeSpheres(s, vtk);
+    std::ifstream in(vtk);
+    std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(all.find("POINTS 2 double"), std::string::npos);
+    EXPECT_NE(all.find("SCALARS radius double"), std::string::npos);
+    std::remove(vtk.c_str());
+}
+
+TEST(SpheresIo, ReadsClumpCsvAndYadeText) {
+    const std::string csv = tempPath("clump.csv"), txt = tempPath("yade.txt");
+    writeText(csv, "x,y,z,r\n1,2,3,0.5\n-1,-2,-3,0.25\n");
+    writeText(txt, "# comment\n1 2 3 0.5 0\n4 5 6 0.75 0\n");
+    EXPECT_EQ(readSpheres(csv).size(), 2u);
+    EXPECT_EQ(readSpheres(txt).radii[1], 0.75);
+    writeText(csv, "x,y,z,r\n1,2,3,-0.5\n");
+    expectError([&] { readSpheres(csv); }, "radius");
+    writeText(csv, "1,2,3,abc\n");
+    expectError([&] { readSpheres(csv); }, "line 1");
+    writeText(csv, "x,y,z,r\n");
+    expectError([&] { readSpheres(csv); }, "no spheres");
+    std::remove(csv.c_str());
+    std::remove(txt.c_str());
+}
+
+TEST(SpheresIo, UnwritablePathIsAnError) {
+    SphereSet s;
+    s.add(Vec3(0, 0, 0), 1);
+    expectError([&] { writeSpheres(s, "/nonexistent-dir/x.csv"); }, "cannot write");
+    expectError([&] { writeSpheres(s, tempPath("x.doc")); }, "unknown extension");
+}
+
+TEST(Npy, ReadsCOrderAndFortranOrderAndLabels) {
+    const std::string p = tempPath("v.npy");
+    // shape (2, 3, 4): a[i, j, k] = i * 100 + j * 10 + k, so only a[1, 2, 3] == 123
+    std::vector<char> c(24 * 2);
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 4; ++k) {
+                const std::int16_t v = std::int16_t(i * 100 + j * 10 + k);
+                std::memcpy(&c[2 * (k + 4 * (j + 3 * i))], &v, 2);
+            }
+    writeNpy(p, "<i2", "2, 3, 4", c);
+    const VoxelGrid v = readNpy(p, 0.5, Vec3(1, 1, 1), 123);
+    EXPECT_EQ(v.nx(), 2);
+    EXPECT_EQ(v.nz(), 4);
+    EXPECT_EQ(countSolid(v), 1u);
+    EXPECT_EQ(v(1, 2, 3), 1);
+    EXPECT_EQ(v.spec.h, 0.5);
+    std::vector<char> f(24 * 2);
+    for (int i = 0; i < 2; ++i)
+        for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 4; ++k) {
+                const std::int16_t val = std::int16_t(i * 100 + j * 10 + k);
+                std::memcpy(&f[2 * (i + 2 * (j + 3 * k))], &val, 2);
+            }
+    writeNpy(p, "<i2", "2, 3, 4", f, true);
+    EXPECT_EQ(readNpy(p, 1.0, Vec3::Zero(), 123)(1, 2, 3), 1);
+    std::remove(p.c_str());
+}
+
+TEST(Npy, BadArraysGetClearErrors) {
+    const std::string p = tempPath("bad.npy");
+    writeNpy(p, "<f4", "2, 2, 2", std::vector<char>(32));
+    expectError([&] { readNpy(p); }, "not boolean or integer");
+    writeNpy(p, "|b1", "4, 4", std::vector<char>(16, 1));
+    expectError([&] { readNpy(p); }, "3-D");
+    writeNpy(p, "|b1", "4, 0, 4", {});
+    expectError([&] { readNpy(p); }, "empty");
+    writeNpy(p, "|b1", "4, 4, 4", std::vector<char>(10, 1));
+    expectError([&] { readNpy(p); }, "truncated");
+    writeNpy(p, "|b1", "2, 2, 2", std::vector<char>(8, 0));
+    expectError([&] { readNpy(p); }, "no solid voxel");
+    writeText(p, "not numpy at all");
+    expectError([&] { readNpy(p); }, "magic");
+    std::remove(p.c_str());
+}
