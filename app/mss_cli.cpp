@@ -51,19 +51,34 @@ struct Args {
     bool has(const std::string& k) const { return opts.count(k) != 0; }
 };
 
-const std::map<std::string, bool> kOptions = {
-    {"--spheres", true},     {"--eta", true},          {"--dice", true},       {"--rmin", true},
-    {"--voxel-size", true},  {"--resolution", true},   {"--supersample", true}, {"--method", true},
-    {"--delta-min", true},   {"--no-symmetry", false}, {"--max-iterations", true}, {"--threads", true},
-    {"--memory-limit", true}, {"-o", true},            {"--output", true},     {"--npy-voxel-size", true},
-    {"--origin", true},      {"--label", true},        {"--offset", true},     {"--help", false},
-    {"-h", false}};
+const std::map<std::string, bool> kOptions = {{"--spheres", true},
+                                              {"--eta", true},
+                                              {"--dice", true},
+                                              {"--rmin", true},
+                                              {"--voxel-size", true},
+                                              {"--resolution", true},
+                                              {"--supersample", true},
+                                              {"--method", true},
+                                              {"--delta-min", true},
+                                              {"--no-symmetry", false},
+                                              {"--max-iterations", true},
+                                              {"--threads", true},
+                                              {"--memory-limit", true},
+                                              {"-o", true},
+                                              {"--output", true},
+                                              {"--npy-voxel-size", true},
+                                              {"--origin", true},
+                                              {"--label", true},
+                                              {"--offset", true},
+                                              {"--help", false},
+                                              {"-h", false}};
 
 Args parse(int argc, char** argv, int from) {
     Args a;
     for (int i = from; i < argc; ++i) {
         std::string s = argv[i];
-        if (s.size() > 1 && s[0] == '-' && !(s.size() > 1 && (std::isdigit(static_cast<unsigned char>(s[1])) || s[1] == '.'))) {
+        if (s.size() > 1 && s[0] == '-' &&
+            !(s.size() > 1 && (std::isdigit(static_cast<unsigned char>(s[1])) || s[1] == '.'))) {
             auto it = kOptions.find(s);
             if (it == kOptions.end()) throw std::invalid_argument("unknown option '" + s + "'");
             if (it->second) {
@@ -84,7 +99,8 @@ double number(const Args& a, const std::string& key, double fallback) {
     if (it == a.opts.end()) return fallback;
     char* end = nullptr;
     const double v = std::strtod(it->second.c_str(), &end);
-    if (end == it->second.c_str() || *end != '\0') throw std::invalid_argument(key + ": '" + it->second + "' is not a number");
+    if (end == it->second.c_str() || *end != '\0')
+        throw std::invalid_argument(key + ": '" + it->second + "' is not a number");
     return v;
 }
 
@@ -110,7 +126,9 @@ mss::Vec3 vec3(const Args& a, const std::string& key) {
     return v;
 }
 
-bool isVoxelFile(const std::string& path) { return mss::fileExtension(path) == ".npy"; }
+bool isVoxelFile(const std::string& path) {
+    return mss::fileExtension(path) == ".npy";
+}
 
 mss::VoxelGrid readVoxels(const Args& a, const std::string& path) {
     return mss::readNpy(path, number(a, "--npy-voxel-size", 1.0), vec3(a, "--origin"),
@@ -122,10 +140,13 @@ mss::Resolution resolution(const Args& a) {
     r.memoryLimit = static_cast<std::size_t>(number(a, "--memory-limit", 8.0) * 1073741824.0);
     if (a.has("--voxel-size") && a.has("--resolution"))
         throw std::invalid_argument("give either --voxel-size or --resolution, not both");
-    if (a.has("--voxel-size")) r.voxelSize = number(a, "--voxel-size", 0.0);
-    else r.resolution = integer(a, "--resolution", 100);
+    if (a.has("--voxel-size"))
+        r.voxelSize = number(a, "--voxel-size", 0.0);
+    else
+        r.resolution = integer(a, "--resolution", 100);
     if (a.has("--resolution") && r.resolution < 1)
-        throw std::invalid_argument("--resolution must be >= 1 voxel along the shortest edge, got " + a.opts.at("--resolution"));
+        throw std::invalid_argument("--resolution must be >= 1 voxel along the shortest edge, got " +
+                                    a.opts.at("--resolution"));
     if (a.has("--voxel-size") && !(r.voxelSize > 0)) throw std::invalid_argument("--voxel-size must be > 0");
     return r;
 }
@@ -139,9 +160,9 @@ void printMetrics(const mss::Result& r) {
     std::cout << "eta         " << m.eta << "   (relative mismatch, eq. 7, generation grid)\n";
     std::cout << "dice        " << m.dice << "   (Dice mismatch, eq. 27, generation grid)\n";
     std::cout << "iterations  " << m.iterations << "   symmetry planes kept " << m.symmetryPlanes << "\n";
-    std::cout << std::setprecision(3) << "seconds     read " << m.secondsRead << "  voxelize " << m.secondsVoxelize
-              << "  edt " << m.secondsEdt << "  select " << m.secondsSelect << "  refine " << m.secondsRefine
-              << "  total " << m.secondsTotal << "\n";
+    std::cout << std::setprecision(3) << "seconds     read " << m.secondsRead << "  voxelize "
+              << m.secondsVoxelize << "  edt " << m.secondsEdt << "  select " << m.secondsSelect
+              << "  refine " << m.secondsRefine << "  total " << m.secondsTotal << "\n";
 }
 
 int cmdGenerate(const Args& a) {
@@ -151,11 +172,13 @@ int cmdGenerate(const Args& a) {
     {
         const std::string ext = mss::fileExtension(out);
         if (ext != ".csv" && ext != ".txt" && ext != ".vtk")
-            throw std::invalid_argument(out + ": unknown output extension '" + ext + "' (expected .csv, .txt or .vtk)");
+            throw std::invalid_argument(out + ": unknown output extension '" + ext +
+                                        "' (expected .csv, .txt or .vtk)");
     }
     mss::GenerateOptions o;
     o.nSpheres = integer(a, "--spheres", 0);
-    if (a.has("--spheres") && o.nSpheres < 1) throw std::invalid_argument("--spheres must be >= 1, got " + a.opts.at("--spheres"));
+    if (a.has("--spheres") && o.nSpheres < 1)
+        throw std::invalid_argument("--spheres must be >= 1, got " + a.opts.at("--spheres"));
     o.eta = number(a, "--eta", 0.0);
     o.dice = number(a, "--dice", 0.0);
     o.rMin = number(a, "--rmin", 0.0);
@@ -164,9 +187,12 @@ int cmdGenerate(const Args& a) {
     o.threads = integer(a, "--threads", 0);
     o.keepSymmetry = !a.has("--no-symmetry");
     const std::string method = a.has("--method") ? a.opts.at("--method") : "optimized";
-    if (method == "optimized") o.method = mss::Method::Optimized;
-    else if (method == "paper") o.method = mss::Method::Paper;
-    else throw std::invalid_argument("--method must be optimized or paper, got '" + method + "'");
+    if (method == "optimized")
+        o.method = mss::Method::Optimized;
+    else if (method == "paper")
+        o.method = mss::Method::Paper;
+    else
+        throw std::invalid_argument("--method must be optimized or paper, got '" + method + "'");
     mss::validateOptions(o);
     const auto t0 = std::chrono::steady_clock::now();
     mss::Result r;

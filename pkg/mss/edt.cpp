@@ -1,8 +1,10 @@
 #include "mss/edt.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace mss {
 
@@ -22,7 +24,8 @@ void envelope1d(const float* f, float* d, int n, int* v, float* z) {
         while (k >= 0) {
             const int p = v[k];
             // intersection of the parabolas rooted at p and q (FH eq. in section 3)
-            s = (fq - (f[p] + static_cast<float>(p) * static_cast<float>(p))) / (2.0f * static_cast<float>(q - p));
+            s = (fq - (f[p] + static_cast<float>(p) * static_cast<float>(p))) /
+                (2.0f * static_cast<float>(q - p));
             if (s > z[k]) break;
             --k;
         }
@@ -46,17 +49,20 @@ void envelope1d(const float* f, float* d, int n, int* v, float* z) {
 /// Runs envelope1d on the lines of a strided pass: lines start at base + b (b < count, consecutive x), step
 /// `stride` between samples, n samples each.
 void strided(float* data, std::size_t base, int count, std::size_t stride, int n, std::vector<float>& buf,
-             std::vector<float>& out, std::vector<int>& v, std::vector<float>& z) {
+             std::vector<float>& out, std::vector<int>& v, std::vector<float>& z, bool takeRoot) {
     for (int q = 0; q < n; ++q) {
         const float* src = data + base + static_cast<std::size_t>(q) * stride;
         for (int b = 0; b < count; ++b) buf[static_cast<std::size_t>(b) * n + q] = src[b];
     }
     for (int b = 0; b < count; ++b)
-        envelope1d(buf.data() + static_cast<std::size_t>(b) * n, out.data() + static_cast<std::size_t>(b) * n, n,
-                   v.data(), z.data());
+        envelope1d(buf.data() + static_cast<std::size_t>(b) * n, out.data() + static_cast<std::size_t>(b) * n,
+                   n, v.data(), z.data());
     for (int q = 0; q < n; ++q) {
         float* dst = data + base + static_cast<std::size_t>(q) * stride;
-        for (int b = 0; b < count; ++b) dst[b] = out[static_cast<std::size_t>(b) * n + q];
+        if (takeRoot)
+            for (int b = 0; b < count; ++b) dst[b] = std::sqrt(out[static_cast<std::size_t>(b) * n + q]);
+        else
+            for (int b = 0; b < count; ++b) dst[b] = out[static_cast<std::size_t>(b) * n + q];
     }
 }
 
@@ -108,13 +114,11 @@ void distanceTransform(const VoxelGrid& solid, ScalarGrid& out) {
 #pragma omp for schedule(static)
         for (int k = 0; k < nz; ++k)
             for (int i0 = 0; i0 < nx; i0 += kBlock)
-                strided(d, k * sz + i0, std::min(kBlock, nx - i0), sy, ny, buf, res, v, z);
+                strided(d, k * sz + i0, std::min(kBlock, nx - i0), sy, ny, buf, res, v, z, false);
 #pragma omp for schedule(static)
         for (int j = 0; j < ny; ++j)
             for (int i0 = 0; i0 < nx; i0 += kBlock)
-                strided(d, j * sy + i0, std::min(kBlock, nx - i0), sz, nz, buf, res, v, z);
-#pragma omp for schedule(static)
-        for (long long q = 0; q < static_cast<long long>(out.data.size()); ++q) d[q] = std::sqrt(d[q]);
+                strided(d, j * sy + i0, std::min(kBlock, nx - i0), sz, nz, buf, res, v, z, true);
     }
 }
 

@@ -4,9 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
+#include <cstring>
 #include <queue>
 #include <set>
 #include <sstream>
@@ -21,7 +22,19 @@ namespace mss {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+/// floor and ceil to int without a libm call (x86-64 baseline has no rounding instruction); |x| < 2^31.
+inline int floorInt(double x) {
+    const int i = static_cast<int>(x);
+    return i - (static_cast<double>(i) > x);
+}
+inline int ceilInt(double x) {
+    const int i = static_cast<int>(x);
+    return i + (static_cast<double>(i) < x);
+}
 
 /// A sphere in continuous voxel coordinates of the generation grid.
 struct Ball {
@@ -29,11 +42,11 @@ struct Ball {
     double r;
 };
 
-/// Coverage of the target by a union of balls, with the exact change of the mismatch |S Δ S~| (eq. 2 on voxels)
-/// that adding balls would make. Per voxel: the number of balls covering it; per x-row the prefix sum of
-/// g = (S ? 1 : -1) over the uncovered voxels. The gain of a ball is then a sum over its (y, z) columns of O(1)
-/// interval sums: O(r^2) for radius r in voxels. Adding or removing a ball rebuilds the prefix of a row from
-/// its first voxel whose coverage flips.
+/// Coverage of the target by a union of balls, with the exact change of the mismatch |S Δ S~| (eq. 2 on
+/// voxels) that adding balls would make. Per voxel: the number of balls covering it; per x-row the prefix sum
+/// of g = (S ? 1 : -1) over the uncovered voxels. The gain of a ball is then a sum over its (y, z) columns of
+/// O(1) interval sums: O(r^2) for radius r in voxels. Adding or removing a ball rebuilds the prefix of a row
+/// from its first voxel whose coverage flips.
 class Coverage {
 public:
     explicit Coverage(const VoxelGrid& target)
@@ -63,15 +76,52 @@ public:
             for (const Ball& b : balls) total += gain(b);
             return total;
         }
-        // Overlapping images: per row of the union's bounding box, merge the balls' intervals (at most 8).
         const auto& d = S_.spec.dims;
+        // Images that differ only in x (mirror plane normal to x) share their rows: one root per row.
+        bool sameRows = true;
+        for (const Ball& b : balls)
+            sameRows =
+                sameRows && b.r == balls[0].r && b.c.y() == balls[0].c.y() && b.c.z() == balls[0].c.z();
+        if (sameRows && balls.size() == 2) {
+            const double xa = std::min(balls[0].c.x(), balls[1].c.x()),
+                         xb = std::max(balls[0].c.x(), balls[1].c.x());
+            const Ball& b = balls[0];
+            const double r2 = b.r * b.r;
+            long long total = 0;
+            const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
+                      k1 = std::min(d[2] - 1, floorInt(b.c.z() + b.r));
+            for (int k = k0; k <= k1; ++k) {
+                const double dz = k - b.c.z();
+                const double rz2 = r2 - dz * dz;
+                if (rz2 < 0) continue;
+                const double ry = std::sqrt(rz2);
+                const int j0 = std::max(0, ceilInt(b.c.y() - ry)),
+                          j1 = std::min(d[1] - 1, floorInt(b.c.y() + ry));
+                for (int j = j0; j <= j1; ++j) {
+                    const double dy = j - b.c.y();
+                    const double rx2 = rz2 - dy * dy;
+                    if (rx2 < 0) continue;
+                    const double rx = std::sqrt(rx2);
+                    const int a0 = std::max(0, ceilInt(xa - rx)), a1 = std::min(d[0] - 1, floorInt(xa + rx));
+                    const int b0 = std::max(0, ceilInt(xb - rx)), b1 = std::min(d[0] - 1, floorInt(xb + rx));
+                    const std::size_t row = S_.spec.index(0, j, k);
+                    const bool hasA = a0 <= a1, hasB = b0 <= b1;
+                    if (hasA && hasB && b0 <= a1 + 1)
+                        total += sum(row, a0, std::max(a1, b1));
+                    else
+                        total += (hasA ? sum(row, a0, a1) : 0) + (hasB ? sum(row, b0, b1) : 0);
+                }
+            }
+            return total;
+        }
+        // Overlapping images: per row of the union's bounding box, merge the balls' intervals (at most 8).
         Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
         for (const Ball& b : balls) {
             lo = lo.cwiseMin(b.c - Vec3::Constant(b.r));
             hi = hi.cwiseMax(b.c + Vec3::Constant(b.r));
         }
-        const int k0 = std::max(0, int(std::ceil(lo.z()))), k1 = std::min(d[2] - 1, int(std::floor(hi.z())));
-        const int j0 = std::max(0, int(std::ceil(lo.y()))), j1 = std::min(d[1] - 1, int(std::floor(hi.y())));
+        const int k0 = std::max(0, ceilInt((lo.z()))), k1 = std::min(d[2] - 1, floorInt((hi.z())));
+        const int j0 = std::max(0, ceilInt((lo.y()))), j1 = std::min(d[1] - 1, floorInt((hi.y())));
         long long total = 0;
         std::array<std::pair<int, int>, 8> iv;
         for (int k = k0; k <= k1; ++k)
@@ -82,7 +132,8 @@ public:
                     const double rx2 = b.r * b.r - dz * dz - dy * dy;
                     if (rx2 < 0) continue;
                     const double rx = std::sqrt(rx2);
-                    const int i0 = std::max(0, int(std::ceil(b.c.x() - rx))), i1 = std::min(d[0] - 1, int(std::floor(b.c.x() + rx)));
+                    const int i0 = std::max(0, ceilInt((b.c.x() - rx))),
+                              i1 = std::min(d[0] - 1, floorInt((b.c.x() + rx)));
                     if (i0 > i1) continue;
                     int p = n++;
                     for (; p > 0 && iv[p - 1].first > i0; --p) iv[p] = iv[p - 1];
@@ -127,36 +178,54 @@ private:
     template <class F> void forColumns(const Ball& b, F&& f) const {
         const auto& d = S_.spec.dims;
         const double r2 = b.r * b.r;
-        const int k0 = std::max(0, int(std::ceil(b.c.z() - b.r))), k1 = std::min(d[2] - 1, int(std::floor(b.c.z() + b.r)));
+        const int k0 = std::max(0, ceilInt((b.c.z() - b.r))),
+                  k1 = std::min(d[2] - 1, floorInt((b.c.z() + b.r)));
         for (int k = k0; k <= k1; ++k) {
             const double dz = k - b.c.z();
             const double rz2 = r2 - dz * dz;
             if (rz2 < 0) continue;
             const double ry = std::sqrt(rz2);
-            const int j0 = std::max(0, int(std::ceil(b.c.y() - ry))), j1 = std::min(d[1] - 1, int(std::floor(b.c.y() + ry)));
+            const int j0 = std::max(0, ceilInt((b.c.y() - ry))),
+                      j1 = std::min(d[1] - 1, floorInt((b.c.y() + ry)));
             for (int j = j0; j <= j1; ++j) {
                 const double dy = j - b.c.y();
                 const double rx2 = rz2 - dy * dy;
                 if (rx2 < 0) continue;
                 const double rx = std::sqrt(rx2);
-                const int i0 = std::max(0, int(std::ceil(b.c.x() - rx))), i1 = std::min(d[0] - 1, int(std::floor(b.c.x() + rx)));
+                const int i0 = std::max(0, ceilInt((b.c.x() - rx))),
+                          i1 = std::min(d[0] - 1, floorInt((b.c.x() + rx)));
                 if (i0 <= i1) f(S_.spec.index(0, j, k), i0, i1);
             }
         }
     }
     void change(const Ball& b, int delta) {
         forColumns(b, [&](std::size_t row, int i0, int i1) {
-            int first = -1;
-            for (int i = i0; i <= i1; ++i) {
-                std::uint16_t& c = cover_[row + i];
-                const bool flips = delta > 0 ? c == 0 : c == 1;
-                c = static_cast<std::uint16_t>(c + delta);
-                if (!flips) continue;
-                if (first < 0) first = i;
-                mismatch_ -= delta * (S_.data[row + i] ? 1 : -1);
-                covered_ += delta;
+            std::uint16_t* c = cover_.data() + row;
+            const std::uint8_t* s = S_.data.data() + row;
+            const std::uint16_t flipAt = delta > 0 ? 0 : 1; // coverage before a flip
+            int flips = 0, inside = 0;
+            for (int i = i0; i <= i1; ++i) { // vectorised
+                const bool flip = c[i] == flipAt;
+                flips += flip;
+                inside += flip & (s[i] != 0);
             }
-            if (first >= 0) rebuildRow(row, first);
+            for (int i = i0; i <= i1; ++i) c[i] = static_cast<std::uint16_t>(c[i] + delta);
+            if (flips == 0) return; // no voxel changes between covered and uncovered: prefix unchanged
+            int first = i0;
+            while (c[first] != flipAt + delta) ++first;
+            // from the first flip: prefix recomputed to the end of the ball's interval, then shifted
+            std::int32_t* p = prefix_.data() + row;
+            std::int32_t acc = first > 0 ? p[first - 1] : 0;
+            const std::int32_t old = p[i1];
+            for (int i = first; i <= i1; ++i) {
+                acc += c[i] == 0 ? (s[i] ? 1 : -1) : 0;
+                p[i] = acc;
+            }
+            const std::int32_t shift = acc - old;
+            for (int i = i1 + 1; i < nx_; ++i) p[i] += shift;
+            // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
+            mismatch_ -= delta * (2LL * inside - flips);
+            covered_ += static_cast<std::size_t>(static_cast<long long>(delta) * flips);
         });
     }
 
@@ -169,21 +238,25 @@ private:
 };
 
 /// Mirror planes through the grid centre, normal to x, y or z, under which the volume is invariant up to a
-/// tolerance (a voxelised mesh of a symmetric grain can differ in a few voxels where the surface passes exactly
-/// through voxel centres).
+/// tolerance (a voxelised mesh of a symmetric grain can differ in a few voxels where the surface passes
+/// exactly through voxel centres).
 std::array<bool, 3> mirrorAxes(const VoxelGrid& S, std::size_t solid) {
     std::array<bool, 3> sym{false, false, false};
-    const auto& d = S.spec.dims;
+    const int nx = S.nx(), ny = S.ny(), nz = S.nz();
+    const std::size_t limit = std::size_t(1e-3 * double(solid));
+    auto rowDiff = [&](const std::uint8_t* a, const std::uint8_t* b, bool reversed) {
+        std::size_t n = 0;
+        if (!reversed && std::memcmp(a, b, std::size_t(nx)) == 0) return n;
+        for (int i = 0; i < nx; ++i) n += a[i] != b[reversed ? nx - 1 - i : i];
+        return n;
+    };
     for (int a = 0; a < 3; ++a) {
         std::size_t diff = 0;
-        const std::size_t limit = std::size_t(1e-3 * double(solid));
-        for (int k = 0; k < d[2] && diff <= limit; ++k)
-            for (int j = 0; j < d[1]; ++j)
-                for (int i = 0; i < d[0]; ++i) {
-                    std::array<int, 3> m{i, j, k};
-                    m[a] = d[a] - 1 - m[a];
-                    diff += S(i, j, k) != S(m[0], m[1], m[2]);
-                }
+        for (int k = 0; k < nz && diff <= limit; ++k)
+            for (int j = 0; j < ny; ++j) {
+                const int jm = a == 1 ? ny - 1 - j : j, km = a == 2 ? nz - 1 - k : k;
+                diff += rowDiff(&S(0, j, k), &S(0, jm, km), a == 0);
+            }
         sym[a] = diff <= limit;
     }
     return sym;
@@ -203,8 +276,8 @@ public:
         for (int a = 0; a < 3; ++a) mid_[a] = 0.5 * (g.dims[a] - 1);
     }
     int planes() const { return int(axes_[0]) + int(axes_[1]) + int(axes_[2]); }
-    /// Snaps coordinates within half a voxel of a plane onto it (on a grid of even size the voxels next to the
-    /// plane are half a voxel off it); those stay on it.
+    /// Snaps coordinates within half a voxel of a plane onto it (on a grid of even size the voxels next to
+    /// the plane are half a voxel off it); those stay on it.
     Orbit make(const Vec3& c, double r) const {
         Orbit o{c, r};
         for (int a = 0; a < 3; ++a) {
@@ -242,7 +315,7 @@ private:
 };
 
 struct Targets {
-    int budget;     // max spheres, or INT_MAX
+    int budget; // max spheres, or INT_MAX
     double eta, dice;
     bool met(const Coverage& c) const {
         return (eta > 0 && c.eta() <= eta) || (dice > 0 && c.dice() <= dice);
@@ -258,13 +331,16 @@ std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Genera
     std::vector<Ball> balls;
     auto accept = [&](std::vector<Maximum>& cands) {
         // largest first (a budget takes the largest values), ties in voxel order: deterministic
-        std::stable_sort(cands.begin(), cands.end(), [](const Maximum& a, const Maximum& b) { return a.value > b.value; });
+        std::stable_sort(cands.begin(), cands.end(),
+                         [](const Maximum& a, const Maximum& b) { return a.value > b.value; });
         std::size_t added = 0;
         for (const Maximum& c : cands) {
             if (balls.size() >= budget) break;
-            if (c.voxelValue < rMinVox) continue; // section 3.5: minimal radius (voxelValue holds the radius here)
+            if (c.voxelValue < rMinVox)
+                continue; // section 3.5: minimal radius (voxelValue holds the radius here)
             bool near = false;
-            for (const Ball& b : balls) near = near || (b.c - c.position).norm() < opt.deltaMin; // δmin, section 3.4
+            for (const Ball& b : balls)
+                near = near || (b.c - c.position).norm() < opt.deltaMin; // δmin, section 3.4
             if (near) continue;
             balls.push_back({c.position, c.voxelValue});
             ++added;
@@ -288,7 +364,7 @@ std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Genera
         const VoxelGrid St = voxelizeSpheres(world, S.spec); // step i
         const Mismatch mm = mismatch(S, St);
         if ((t.eta > 0 && mm.eta <= t.eta) || (t.dice > 0 && mm.dice <= t.dice)) break;
-        distanceTransform(St, Et); // step ii
+        distanceTransform(St, Et);                 // step ii
         for (std::size_t q = 0; q < S.size(); ++q) // step iii, eq. 25, on the target's voxels
             Estar.data[q] = S.data[q] ? 2.0f * E.data[q] - Et.data[q] : 0.0f;
         cands.clear();
@@ -303,13 +379,20 @@ std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Genera
 }
 
 /// Optimised selection: see the comment at generate() below.
-std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, Metrics& m,
-                               double& secondsRefine) {
+std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
+                               Metrics& m, double& secondsRefine) {
     const double h = S.spec.h;
     const double rMinVox = std::max(0.5, opt.rMin / h);
+    const auto tStart = Clock::now();
+    auto debug = [&](const char* what) {
+        if (std::getenv("MSS_DEBUG")) std::fprintf(stderr, "%8.4f %s\n", secondsSince(tStart), what);
+    };
     Coverage cov(S);
-    const Symmetry sym(S.spec, opt.keepSymmetry ? mirrorAxes(S, cov.solid()) : std::array<bool, 3>{false, false, false});
+    debug("coverage");
+    const Symmetry sym(S.spec, opt.keepSymmetry ? mirrorAxes(S, cov.solid())
+                                                : std::array<bool, 3>{false, false, false});
     m.symmetryPlanes = sym.planes();
+    debug("symmetry");
     const Targets t{opt.nSpheres > 0 ? opt.nSpheres : INT32_MAX, opt.eta, opt.dice};
 
     // Candidates: MSS's sub-voxel maxima of E (eq. 23-24) and the medial ridge of E, where no face neighbour
@@ -320,7 +403,8 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         if (r < rMinVox) return;
         const Orbit o = sym.make(c, r);
         const Vec3 key = sym.canonical(o.c) * 8.0;
-        if (!seen.insert({std::llround(key.x()), std::llround(key.y()), std::llround(key.z())}).second) return;
+        if (!seen.insert({std::llround(key.x()), std::llround(key.y()), std::llround(key.z())}).second)
+            return;
         cands.push_back(o);
     };
     // A ball of radius E reaches the centre of the nearest background voxel; the surface lies about half a
@@ -330,6 +414,7 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         const Maximum mx = refineMaximum(E, v);
         addCandidate(mx.position, mx.value - 0.5 + kRadiusSlack);
     }
+    debug("maxima");
     const auto& d = S.spec.dims;
     std::vector<std::array<int, 3>> ridge;
     for (int k = 1; k < d[2] - 1; ++k)
@@ -338,7 +423,8 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                 const float e = E(i, j, k);
                 if (e < 1.0f) continue;
                 const float up = std::max({E(i - 1, j, k), E(i + 1, j, k), E(i, j - 1, k), E(i, j + 1, k),
-                                           E(i, j, k - 1), E(i, j, k + 1)}) - e;
+                                           E(i, j, k - 1), E(i, j, k + 1)}) -
+                                 e;
                 if (up < 0.5f) ridge.push_back({i, j, k});
             }
     constexpr std::size_t kMaxRidge = 10000;
@@ -348,28 +434,31 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         addCandidate(Vec3(v[0], v[1], v[2]), E(v[0], v[1], v[2]) - 0.5 + kRadiusSlack);
     }
 
+    debug("candidates");
     // Lazy greedy: a max-heap of (mismatch removed per sphere, candidate), re-evaluated when stale.
     std::vector<Orbit> chosen;
     std::vector<char> used(cands.size(), 0);
     std::size_t evaluations = 0;
-    bool allowBreak = true;
+    // Heap keys: first an upper bound (a ball fully inside), then the last evaluated gain per sphere, kept
+    // between greedy rounds so that a later round starts from good estimates.
+    std::vector<double> key(cands.size());
+    for (std::size_t q = 0; q < cands.size(); ++q) key[q] = 4.18879 * std::pow(cands[q].r, 3) + 10.0;
+    // With mirror planes, orbits are placed whole first; spheres alone only fill what whole orbits cannot.
+    bool allowBreak = sym.planes() == 0;
     std::size_t placed = 0;
     auto greedy = [&]() {
         using Entry = std::pair<double, long long>; // (key, -index): ties go to the lower index
         std::priority_queue<Entry> heap;
         std::vector<std::size_t> stamp(cands.size(), SIZE_MAX);
-        for (std::size_t q = 0; q < cands.size(); ++q) {
-            if (used[q]) continue;
-            const double r = cands[q].r;
-            heap.push({4.18879 * r * r * r + 10.0, -static_cast<long long>(q)}); // upper bound: a ball fully inside
-        }
+        for (std::size_t q = 0; q < cands.size(); ++q)
+            if (!used[q]) heap.push({key[q], -static_cast<long long>(q)});
         // Stale entries are re-evaluated in batches of kBatch, in parallel; the batch size does not depend on
         // the thread count, so neither does the result.
         constexpr int kBatch = 8;
         std::vector<long long> batch;
         std::vector<double> gains;
         while (!heap.empty() && placed < std::size_t(t.budget) && !t.met(cov)) {
-            const auto [key, negIdx] = heap.top();
+            const auto [topKey, negIdx] = heap.top();
             const std::size_t q = static_cast<std::size_t>(-negIdx);
             if (sym.images(cands[q]).size() > std::size_t(t.budget) - placed && !cands[q].broken) {
                 if (!allowBreak) { // strict: an orbit that does not fit is not placed
@@ -381,7 +470,7 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
             }
             if (stamp[q] == placed) { // fresh: the best there is
                 heap.pop();
-                if (key <= 0.0) break; // nothing left that lowers the mismatch
+                if (topKey <= 0.0) break; // nothing left that lowers the mismatch
                 for (const Ball& b : sym.images(cands[q])) cov.add(b);
                 placed += sym.images(cands[q]).size();
                 chosen.push_back(cands[q]);
@@ -408,30 +497,51 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
             evaluations += batch.size();
             for (std::size_t e = 0; e < batch.size(); ++e) {
                 stamp[std::size_t(-batch[e])] = placed;
+                key[std::size_t(-batch[e])] = gains[e];
                 heap.push({gains[e], batch[e]});
             }
         }
     };
 
-    // Local refinement: move each orbit's centre and radius while that lowers the mismatch (coordinate descent
-    // on the exact voxel objective, steps from one voxel down to 1/8).
+    // Local refinement: move each orbit's centre and radius while that lowers the mismatch (coordinate
+    // descent on the exact voxel objective, steps from one voxel down to 1/8). An orbit is revisited in a
+    // later sweep only if it or an orbit overlapping it moved in the last one.
+    auto overlaps = [&](const Orbit& a, const Orbit& b) {
+        for (const Ball& x : sym.images(a))
+            for (const Ball& y : sym.images(b))
+                if ((x.c - y.c).norm() <= x.r + y.r + 1.0) return true;
+        return false;
+    };
+    static const bool kSkip = !std::getenv("MSS_NOSKIP");
     auto refine = [&]() {
+        std::vector<char> moved(chosen.size(), 1);
         for (int sweep = 0; sweep < 3; ++sweep) {
             bool improved = false;
-            for (Orbit& o : chosen) {
+            std::vector<char> movedNow(chosen.size(), 0);
+            for (std::size_t oi = 0; oi < chosen.size(); ++oi) {
+                Orbit& o = chosen[oi];
+                if (sweep > 0 && kSkip) {
+                    bool stale = true;
+                    for (std::size_t oj = 0; oj < chosen.size() && stale; ++oj)
+                        if (moved[oj] && (oj == oi || overlaps(o, chosen[oj]))) stale = false;
+                    if (stale) continue;
+                }
                 for (const Ball& b : sym.images(o)) cov.remove(b);
                 long long best = cov.gain(sym.images(o));
                 const long long start = best;
                 for (double step : {0.5, 0.25}) {
                     for (int rep = 0; rep < 6; ++rep) {
-                        // the moves: centre +- step along each free axis, radius +- step; evaluated in parallel
+                        // the moves: centre +- step along each free axis, radius +- step; evaluated in
+                        // parallel
                         std::vector<Orbit> trials;
                         for (int a = 0; a < 4; ++a) {
                             if (a < 3 && o.onPlane[a]) continue;
                             for (double sgn : {-1.0, 1.0}) {
                                 Orbit trial = o;
-                                if (a < 3) trial.c[a] += sgn * step;
-                                else trial.r += sgn * step;
+                                if (a < 3)
+                                    trial.c[a] += sgn * step;
+                                else
+                                    trial.r += sgn * step;
                                 if (trial.r < rMinVox) continue;
                                 if (a < 3 && (trial.c[a] < 1.0 || trial.c[a] > d[a] - 2.0)) continue;
                                 trials.push_back(trial);
@@ -451,8 +561,10 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                     }
                 }
                 for (const Ball& b : sym.images(o)) cov.add(b);
+                movedNow[oi] = best > start;
                 improved = improved || best > start;
             }
+            moved.swap(movedNow);
             if (!improved) break;
         }
     };
@@ -485,34 +597,31 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         const bool pruned = prune();
         if (pruned) refine();
         secondsRefine += secondsSince(t1);
-        if (placed == before && !pruned) break;           // nothing new: converged
-        if (placed >= std::size_t(t.budget) || t.met(cov)) { ++m.iterations; break; }
-    }
-    // Symmetry repair: a budget that leaves one sphere over after the orbits (say 10 = 1 on the centre + 4 pairs
-    // + 1 alone) breaks the symmetry. Try trading a sphere on all planes and a lone sphere for a whole orbit;
-    // keep the trade when the mismatch is at most 5% worse, since users value a symmetric clump.
-    for (int attempt = 0; attempt < 4 && sym.planes() > 0; ++attempt) {
-        std::ptrdiff_t lone = -1, centre = -1;
-        for (std::size_t q = 0; q < chosen.size(); ++q) {
-            if (chosen[q].broken && lone < 0) lone = std::ptrdiff_t(q);
-            if (!chosen[q].broken && sym.images(chosen[q]).size() == 1 && centre < 0) centre = std::ptrdiff_t(q);
+        if (placed == before && !pruned) break; // nothing new: converged
+        if (placed >= std::size_t(t.budget) || t.met(cov)) {
+            ++m.iterations;
+            break;
         }
-        if (lone < 0 || centre < 0) break;
+    }
+    debug("main loop");
+    // Symmetry repair: whole orbits can leave the budget short by one (say 10 = 1 sphere on all planes + 4
+    // pairs + 1 free). Try trading a sphere that lies on all planes for a whole orbit; keep the trade when it
+    // fills more of the budget with at most 5% more mismatch. Then fill what is left with spheres alone.
+    for (int attempt = 0; attempt < 4 && sym.planes() > 0 && placed < std::size_t(t.budget) && !t.met(cov);
+         ++attempt) {
+        std::ptrdiff_t centre = -1;
+        for (std::size_t q = 0; q < chosen.size(); ++q)
+            if (sym.images(chosen[q]).size() == 1) centre = std::ptrdiff_t(q);
+        if (centre < 0) break;
         const std::vector<Orbit> saved = chosen;
         const std::size_t savedPlaced = placed;
         const long long before = cov.mismatch();
-        for (std::ptrdiff_t q : {std::max(lone, centre), std::min(lone, centre)}) {
-            for (const Ball& b : sym.images(chosen[std::size_t(q)])) cov.remove(b);
-            placed -= sym.images(chosen[std::size_t(q)]).size();
-            chosen.erase(chosen.begin() + q);
-        }
-        for (Orbit& c : cands) c.broken = false;
-        allowBreak = false;
+        for (const Ball& b : sym.images(chosen[std::size_t(centre)])) cov.remove(b);
+        placed -= 1;
+        chosen.erase(chosen.begin() + centre);
         greedy();
         refine();
-        allowBreak = true;
-        const bool whole = std::none_of(chosen.begin(), chosen.end(), [](const Orbit& o) { return o.broken; });
-        if (whole && placed == savedPlaced && double(cov.mismatch()) <= 1.05 * double(before)) continue;
+        if (placed > savedPlaced && double(cov.mismatch()) <= 1.05 * double(before)) continue;
         for (const Orbit& o : chosen)
             for (const Ball& b : sym.images(o)) cov.remove(b);
         chosen = saved;
@@ -521,9 +630,17 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
             for (const Ball& b : sym.images(o)) cov.add(b);
         break;
     }
+    if (!allowBreak && placed < std::size_t(t.budget) && !t.met(cov)) {
+        allowBreak = true;
+        const std::size_t before = placed;
+        greedy();
+        if (placed > before) refine();
+    }
 
+    debug("repair");
     if (std::getenv("MSS_DEBUG"))
-        std::fprintf(stderr, "candidates %zu ridge %zu evaluations %zu\n", cands.size(), ridge.size(), evaluations);
+        std::fprintf(stderr, "candidates %zu ridge %zu evaluations %zu\n", cands.size(), ridge.size(),
+                     evaluations);
     std::vector<Ball> out;
     for (const Orbit& o : chosen)
         for (const Ball& b : sym.images(o)) out.push_back(b);
@@ -539,7 +656,8 @@ Result generateOnGrid(const VoxelGrid& S, const GenerateOptions& opt, Metrics m,
     auto t0 = Clock::now();
     const ScalarGrid E = distanceTransform(S); // eq. 8
     m.secondsEdt = secondsSince(t0);
-    if (countSolid(S) == 0) throw std::invalid_argument("generate: the voxelised solid is empty (resolution too coarse?)");
+    if (countSolid(S) == 0)
+        throw std::invalid_argument("generate: the voxelised solid is empty (resolution too coarse?)");
     std::vector<Ball> balls;
     double secondsRefine = 0.0;
     t0 = Clock::now();
@@ -580,7 +698,8 @@ void validateOptions(const GenerateOptions& o) {
     if (!(o.deltaMin >= 0.0) || !std::isfinite(o.deltaMin)) bad("deltaMin must be >= 0", o.deltaMin);
     if (o.threads < 0) bad("threads must be >= 0", o.threads);
     if (o.nSpheres == 0 && o.eta == 0.0 && o.dice == 0.0 && o.rMin == 0.0)
-        throw std::invalid_argument("generate: give at least one termination criterion (sphere count, eta, dice or rMin)");
+        throw std::invalid_argument(
+            "generate: give at least one termination criterion (sphere count, eta, dice or rMin)");
 }
 
 Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx) {
@@ -593,20 +712,21 @@ Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx) {
         m.both += a && b;
     }
     const std::size_t diff = m.target + m.approx - 2 * m.both;
-    m.eta = m.target ? double(diff) / double(m.target) : 0.0;                         // eq. 7
+    m.eta = m.target ? double(diff) / double(m.target) : 0.0;                          // eq. 7
     m.dice = (m.target + m.approx) ? double(diff) / double(m.target + m.approx) : 0.0; // eq. 27
     return m;
 }
 
 // Departures from the paper in Method::Optimized, and why:
-// - Under a sphere budget MSS takes maxima by value, and a discretised ridge (an elongated grain) gives dozens
+// - Under a sphere budget MSS takes maxima by value, and a discretised ridge (an elongated grain) gives
+// dozens
 //   of near-equal maxima next to each other: the budget goes to near-duplicates. Instead each candidate is
 //   scored by the exact mismatch it removes given the spheres already placed (a greedy set cover with a
 //   penalty for covering background), lazily re-evaluated.
 // - The candidates are MSS's maxima of E plus a sampling of the medial ridge of E (every voxel where E has no
-//   face neighbour more than half a voxel higher, thinned to at most 40,000), since the maxima alone are often
-//   fewer than the budget and poorly placed for it. E* = 2E - Ẽ (eq. 25) is not needed: the exact gain already
-//   measures what a candidate adds beyond the current union.
+//   face neighbour more than half a voxel higher, thinned to at most 40,000), since the maxima alone are
+//   often fewer than the budget and poorly placed for it. E* = 2E - Ẽ (eq. 25) is not needed: the exact gain
+//   already measures what a candidate adds beyond the current union.
 // - Centres and radii are then tuned by coordinate descent on the voxel mismatch; radii may exceed E by the
 //   discretisation the paper accepts (section 3.5). A strict no-protrusion option is separate (clipping).
 // - Mirror planes of the voxelised grain through the grid centre are detected; candidates are placed with
@@ -628,8 +748,9 @@ Result generate(const TriangleMesh& mesh, const Resolution& resolution, const Ge
     const VoxelGrid S = voxelizeMesh(mesh, resolution, supersample);
     m.secondsVoxelize = secondsSince(t0);
     if (countSolid(S) == 0)
-        throw std::invalid_argument("generate: the mesh voxelises to no solid voxel (open mesh or too coarse a "
-                                    "resolution?)");
+        throw std::invalid_argument(
+            "generate: the mesh voxelises to no solid voxel (open mesh or too coarse a "
+            "resolution?)");
     return generateOnGrid(S, options, m, start);
 }
 

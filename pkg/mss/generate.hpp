@@ -12,12 +12,14 @@ namespace mss {
 
 /// How spheres are chosen.
 enum class Method {
-    /// Default. MSS's candidates (sub-voxel maxima of E) plus a denser sampling of the medial ridge of E, chosen
+    /// Default. MSS's candidates (sub-voxel maxima of E) plus a denser sampling of the medial ridge of E,
+    /// chosen
     /// greedily by the mismatch each removes, then centres and radii tuned to lower the mismatch; mirror
     /// symmetries of the grain are detected and kept. See generate.cpp for where and why this departs from
     /// the paper.
     Optimized,
-    /// The paper's procedure as published: maxima of E, then maxima of E* = 2E - Ẽ (eq. 25) per iteration, with
+    /// The paper's procedure as published: maxima of E, then maxima of E* = 2E - Ẽ (eq. 25) per iteration,
+    /// with
     /// the minimal distance rule; under a sphere budget the largest values go first.
     Paper,
 };
@@ -25,12 +27,12 @@ enum class Method {
 /// Termination criteria (section 3.5), alone or combined; generation stops at the first one met.
 /// At least one of nSpheres, eta, dice, rMin must be given.
 struct GenerateOptions {
-    int nSpheres = 0;         ///< at most this many spheres (problem (i), eq. 2); 0 = no limit
-    double eta = 0.0;         ///< stop once the relative mismatch eq. 7 is <= eta (problem (ii), eq. 4); 0 = none
-    double dice = 0.0;        ///< stop once the Dice mismatch eq. 27 is <= dice; 0 = none
-    double rMin = 0.0;        ///< no sphere smaller than this radius, world units; 0 = none
-    int maxIterations = 100;  ///< cap on iterations (paper mode) or greedy rounds of refinement (optimized)
-    double deltaMin = 1.0;    ///< minimal distance between sphere centres, voxels (paper section 3.4, δmin)
+    int nSpheres = 0;  ///< at most this many spheres (problem (i), eq. 2); 0 = no limit
+    double eta = 0.0;  ///< stop once the relative mismatch eq. 7 is <= eta (problem (ii), eq. 4); 0 = none
+    double dice = 0.0; ///< stop once the Dice mismatch eq. 27 is <= dice; 0 = none
+    double rMin = 0.0; ///< no sphere smaller than this radius, world units; 0 = none
+    int maxIterations = 100; ///< cap on iterations (paper mode) or greedy rounds of refinement (optimized)
+    double deltaMin = 1.0;   ///< minimal distance between sphere centres, voxels (paper section 3.4, δmin)
     Method method = Method::Optimized;
     bool keepSymmetry = true; ///< optimized: detect mirror planes of the voxelised grain and keep them
     int threads = 0;          ///< OpenMP threads; 0 = the default. The result does not depend on it.
@@ -45,8 +47,8 @@ struct Metrics {
     std::size_t solidVoxels = 0;  ///< sum of S
     std::size_t sphereVoxels = 0; ///< sum of S~
     int symmetryPlanes = 0;       ///< mirror planes detected and kept (optimized mode)
-    double secondsRead = 0.0, secondsVoxelize = 0.0, secondsEdt = 0.0, secondsSelect = 0.0, secondsRefine = 0.0,
-           secondsTotal = 0.0;
+    double secondsRead = 0.0, secondsVoxelize = 0.0, secondsEdt = 0.0, secondsSelect = 0.0,
+           secondsRefine = 0.0, secondsTotal = 0.0;
 };
 
 /// The result: spheres in world units, the metrics, and the grid used.

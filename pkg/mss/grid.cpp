@@ -16,7 +16,8 @@ void checkGridSize(const char* where, const std::array<long long, 3>& dims, std:
     for (long long d : dims) {
         if (d <= 0) {
             std::ostringstream os;
-            os << where << ": grid dimensions must be positive, got " << dims[0] << "x" << dims[1] << "x" << dims[2];
+            os << where << ": grid dimensions must be positive, got " << dims[0] << "x" << dims[1] << "x"
+               << dims[2];
             throw std::invalid_argument(os.str());
         }
     }

@@ -20,8 +20,8 @@ using Vec3 = Eigen::Vector3d;
 ///
 /// Memory order is x fastest, then y, then z: the linear index of voxel (i, j, k) is i + nx * (j + ny * k).
 /// Voxel (i, j, k) has its centre at origin + h * (i, j, k) in world units; it covers the cube of edge h
-/// around that centre. This is the voxel-centred lattice of MSS paper section 3.3 (eq. 23: r = h * (i, j, k)),
-/// shifted by the world origin.
+/// around that centre. This is the voxel-centred lattice of MSS paper section 3.3 (eq. 23: r = h * (i, j,
+/// k)), shifted by the world origin.
 struct GridSpec {
     std::array<int, 3> dims{0, 0, 0}; ///< voxel counts nx, ny, nz
     double h = 1.0;                   ///< voxel edge length, world units
@@ -34,17 +34,20 @@ struct GridSpec {
     std::size_t index(int i, int j, int k) const {
         return static_cast<std::size_t>(i) +
                static_cast<std::size_t>(dims[0]) *
-                   (static_cast<std::size_t>(j) + static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(k));
+                   (static_cast<std::size_t>(j) +
+                    static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(k));
     }
     bool contains(int i, int j, int k) const {
         return i >= 0 && j >= 0 && k >= 0 && i < dims[0] && j < dims[1] && k < dims[2];
     }
-    /// World position -> continuous voxel coordinates (voxel centres are integers). The one place index maths lives.
+    /// World position -> continuous voxel coordinates (voxel centres are integers). The one place index maths
+    /// lives.
     Vec3 toVoxel(const Vec3& world) const { return (world - origin) / h; }
     /// Continuous voxel coordinates -> world position.
     Vec3 toWorld(const Vec3& voxel) const { return origin + h * voxel; }
     Vec3 voxelCenter(int i, int j, int k) const { return toWorld(Vec3(i, j, k)); }
-    /// Index of the voxel whose cube contains the world point (may lie outside the grid; check with contains()).
+    /// Index of the voxel whose cube contains the world point (may lie outside the grid; check with
+    /// contains()).
     std::array<int, 3> voxelOf(const Vec3& world) const {
         Vec3 v = toVoxel(world);
         return {static_cast<int>(std::floor(v.x() + 0.5)), static_cast<int>(std::floor(v.y() + 0.5)),
@@ -52,9 +55,7 @@ struct GridSpec {
     }
     /// World position of the lower corner of the grid's first voxel and the upper corner of its last.
     Vec3 lowerCorner() const { return origin - Vec3::Constant(0.5 * h); }
-    Vec3 upperCorner() const {
-        return origin + h * Vec3(dims[0] - 0.5, dims[1] - 0.5, dims[2] - 0.5);
-    }
+    Vec3 upperCorner() const { return origin + h * Vec3(dims[0] - 0.5, dims[1] - 0.5, dims[2] - 0.5); }
 };
 
 /// A grid that owns its values (x fastest, see GridSpec).
@@ -84,7 +85,8 @@ std::size_t countSolid(const VoxelGrid& g);
 /// Bytes a grid of @p voxels voxels needs during generation (all working arrays), for the memory guard.
 constexpr std::size_t kBytesPerVoxelGenerate = 14;
 
-/// Throws std::invalid_argument when a grid of @p dims would be unreasonable (empty, over 2^31 voxels, or over
+/// Throws std::invalid_argument when a grid of @p dims would be unreasonable (empty, over 2^31 voxels, or
+/// over
 /// @p memoryLimit bytes at @p bytesPerVoxel), naming @p where and the memory it would need.
 void checkGridSize(const char* where, const std::array<long long, 3>& dims, std::size_t bytesPerVoxel,
                    std::size_t memoryLimit);

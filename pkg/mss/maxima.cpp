@@ -54,12 +54,12 @@ std::pair<double, double> refineAxis(const double e[5]) {
         lb = ((ep1 - e0) - (ep2 - ep1)) / denb; // eq. 18
         Eb = e0 + lb * (e0 - em1);              // eq. 19
     }
-    // Eq. 22 takes pair a whenever Êa > E. The paper argues one of Êa, Êb equals E (true for an ideal tent: the
-    // pair whose chord straddles the apex meets the other side at the voxel itself); on a sampled distance field
-    // the straddling chord is rounded and its Ê exceeds E slightly, so eq. 22 as printed picks the wrong pair.
-    // The pair of true side lines meets at the apex, above the straddling pair: take the larger Ê. This is the
-    // paper's own choice for an ideal tent and recovers a ball's centre to a tenth of a voxel where eq. 22 as
-    // printed misses by half a voxel (tests/cpp/test_maxima.cpp).
+    // Eq. 22 takes pair a whenever Êa > E. The paper argues one of Êa, Êb equals E (true for an ideal tent:
+    // the pair whose chord straddles the apex meets the other side at the voxel itself); on a sampled
+    // distance field the straddling chord is rounded and its Ê exceeds E slightly, so eq. 22 as printed picks
+    // the wrong pair. The pair of true side lines meets at the apex, above the straddling pair: take the
+    // larger Ê. This is the paper's own choice for an ideal tent and recovers a ball's centre to a tenth of a
+    // voxel where eq. 22 as printed misses by half a voxel (tests/cpp/test_maxima.cpp).
     double l = 0.0, E = e0;
     if (Ea > e0 && Ea >= Eb) {
         l = la;
@@ -90,7 +90,7 @@ Maximum refineMaximum(const ScalarGrid& field, const std::array<int, 3>& v) {
             e[d + 2] = field.spec.contains(p[0], p[1], p[2]) ? field(p[0], p[1], p[2]) : 0.0;
         }
         const auto [shift, value] = refineAxis(e);
-        m.position[a] = v[a] + shift; // eq. 12 / 17
+        m.position[a] = v[a] + shift;       // eq. 12 / 17
         m.value = std::max(m.value, value); // eq. 24
     }
     return m;

@@ -5,15 +5,15 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstring>
-#include <cmath>
-#include <fstream>
 #include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
 #include <iterator>
-#include <string_view>
-#include <unordered_map>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
+#include <unordered_map>
 
 namespace mss {
 
@@ -30,7 +30,8 @@ class VertexMerger {
 public:
     explicit VertexMerger(TriangleMesh& m) : mesh_(m) {}
     int operator()(const Vec3& p) {
-        auto [it, inserted] = index_.emplace(Key{p.x(), p.y(), p.z()}, static_cast<int>(mesh_.vertices.size()));
+        auto [it, inserted] =
+            index_.emplace(Key{p.x(), p.y(), p.z()}, static_cast<int>(mesh_.vertices.size()));
         if (inserted) mesh_.vertices.push_back(p);
         return it->second;
     }
@@ -74,7 +75,8 @@ TriangleMesh readBinaryStl(const std::string& path, const std::vector<char>& buf
             float xyz[3];
             std::memcpy(xyz, rec + 12 * c, 12);
             p[c] = Vec3(xyz[0], xyz[1], xyz[2]);
-            if (!p[c].allFinite()) fail(path, "triangle " + std::to_string(t) + " has a non-finite coordinate");
+            if (!p[c].allFinite())
+                fail(path, "triangle " + std::to_string(t) + " has a non-finite coordinate");
         }
         addTriangle(mesh, merge, p);
     }
@@ -97,7 +99,9 @@ TriangleMesh readAsciiStl(const std::string& path, const std::vector<char>& buf)
         while (p < end && !std::isspace(static_cast<unsigned char>(*p))) ++p;
         return std::string_view(b, static_cast<std::size_t>(p - b));
     };
-    auto bad = [&](const std::string& what) { fail(path, "ASCII STL line " + std::to_string(line) + ": " + what); };
+    auto bad = [&](const std::string& what) {
+        fail(path, "ASCII STL line " + std::to_string(line) + ": " + what);
+    };
     auto number = [&]() {
         const std::string_view w = word();
         double v = 0.0;
@@ -147,8 +151,8 @@ TriangleMesh readAsciiStl(const std::string& path, const std::vector<char>& buf)
     return mesh;
 }
 
-/// Reads an STL file, ASCII or binary. A file is binary when its size matches the triangle count in its header
-/// (a binary header may itself start with "solid"); else it must be ASCII text.
+/// Reads an STL file, ASCII or binary. A file is binary when its size matches the triangle count in its
+/// header (a binary header may itself start with "solid"); else it must be ASCII text.
 TriangleMesh readStl(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     std::vector<char> buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -163,15 +167,17 @@ TriangleMesh readStl(const std::string& path) {
             return readBinaryStl(path, buf);
         }
         if (!startsSolid)
-            fail(path, "binary STL header says " + std::to_string(n) + " triangles (" + std::to_string(expected) +
-                           " bytes) but the file has " + std::to_string(size) + " bytes");
+            fail(path, "binary STL header says " + std::to_string(n) + " triangles (" +
+                           std::to_string(expected) + " bytes) but the file has " + std::to_string(size) +
+                           " bytes");
     } else if (!startsSolid) {
         fail(path, "file too short for binary STL (" + std::to_string(size) + " bytes, need at least 84)");
     }
     for (std::size_t i = 0; i < std::min<std::size_t>(size, 1 << 16); ++i) {
         const unsigned char c = static_cast<unsigned char>(buf[i]);
         if (!(std::isprint(c) || std::isspace(c)))
-            fail(path, "neither binary STL (size does not match its triangle count) nor ASCII STL (binary bytes)");
+            fail(path,
+                 "neither binary STL (size does not match its triangle count) nor ASCII STL (binary bytes)");
     }
     return readAsciiStl(path, buf);
 }
@@ -191,7 +197,8 @@ void validateMesh(const TriangleMesh& mesh, const std::string& where) {
     if (mesh.triangles.empty()) throw std::invalid_argument(where + ": mesh has no triangles");
     for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
         if (!mesh.vertices[v].allFinite())
-            throw std::invalid_argument(where + ": vertex " + std::to_string(v) + " has a non-finite coordinate");
+            throw std::invalid_argument(where + ": vertex " + std::to_string(v) +
+                                        " has a non-finite coordinate");
     }
     const long long nv = static_cast<long long>(mesh.vertices.size());
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
@@ -223,10 +230,12 @@ MeshInfo analyzeMesh(const TriangleMesh& mesh) {
     for (const auto& t : mesh.triangles) {
         const Vec3 a = mesh.vertices[t[0]] - c, b = mesh.vertices[t[1]] - c, d = mesh.vertices[t[2]] - c;
         const Vec3 n = (b - a).cross(d - a);
-        if (n.squaredNorm() == 0.0 || t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) ++info.degenerateTriangles;
+        if (n.squaredNorm() == 0.0 || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+            ++info.degenerateTriangles;
         vol6 += a.dot(b.cross(d));
         for (int e = 0; e < 3; ++e) {
-            std::uint32_t u = static_cast<std::uint32_t>(t[e]), w = static_cast<std::uint32_t>(t[(e + 1) % 3]);
+            std::uint32_t u = static_cast<std::uint32_t>(t[e]),
+                          w = static_cast<std::uint32_t>(t[(e + 1) % 3]);
             if (u == w) continue;
             const int dir = u < w ? 1 : -1;
             if (u > w) std::swap(u, w);
@@ -240,9 +249,12 @@ MeshInfo analyzeMesh(const TriangleMesh& mesh) {
         int sum = 0;
         while (j < edges.size() && edges[j].first == edges[i].first) sum += edges[j++].second;
         const std::size_t uses = j - i;
-        if (uses == 1) ++info.boundaryEdges;
-        else if (uses > 2) ++info.nonManifoldEdges;
-        else if (sum != 0) ++info.inconsistentEdges;
+        if (uses == 1)
+            ++info.boundaryEdges;
+        else if (uses > 2)
+            ++info.nonManifoldEdges;
+        else if (sum != 0)
+            ++info.inconsistentEdges;
         i = j;
     }
     info.closed = info.boundaryEdges == 0 && info.nonManifoldEdges == 0 && info.triangles > 0;
@@ -280,8 +292,9 @@ TriangleMesh readMesh(const std::string& path) {
     for (const auto& p : points) mesh.vertices.emplace_back(p.x(), p.y(), p.z());
     for (const auto& poly : polygons) {
         for (std::size_t c : poly) {
-            if (c >= points.size()) fail(path, "a face refers to vertex " + std::to_string(c) + " of " +
-                                                   std::to_string(points.size()));
+            if (c >= points.size())
+                fail(path,
+                     "a face refers to vertex " + std::to_string(c) + " of " + std::to_string(points.size()));
         }
         for (std::size_t c = 2; c < poly.size(); ++c) {
             mesh.triangles.push_back(

@@ -28,7 +28,8 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     in.seekg(0);
     char magic[10] = {};
     in.read(magic, 10);
-    if (in.gcount() < 10 || std::memcmp(magic, "\x93NUMPY", 6) != 0) fail(path, "not a .npy file (bad magic)");
+    if (in.gcount() < 10 || std::memcmp(magic, "\x93NUMPY", 6) != 0)
+        fail(path, "not a .npy file (bad magic)");
     const int major = static_cast<unsigned char>(magic[6]);
     std::size_t headerLen = 0, pre = 10;
     if (major == 1) {
@@ -78,13 +79,15 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     } catch (...) {
         fail(path, "unsupported dtype '" + descr + "'");
     }
-    if (!(kind == 'b' || kind == 'u' || kind == 'i') || !(width == 1 || width == 2 || width == 4 || width == 8))
+    if (!(kind == 'b' || kind == 'u' || kind == 'i') ||
+        !(width == 1 || width == 2 || width == 4 || width == 8))
         fail(path, "dtype '" + descr + "' is not boolean or integer (threshold a grey-level volume first)");
     if (endian == '>' && width > 1) fail(path, "big-endian arrays are not supported");
     checkGridSize("readNpy", {shape[0], shape[1], shape[2]}, 1, std::size_t(1) << 40);
     const std::size_t count = static_cast<std::size_t>(shape[0] * shape[1] * shape[2]);
     if (static_cast<std::uintmax_t>(size) < pre + headerLen + count * static_cast<std::size_t>(width))
-        fail(path, "truncated data: expected " + std::to_string(count * width) + " bytes after the header, file has " +
+        fail(path, "truncated data: expected " + std::to_string(count * width) +
+                       " bytes after the header, file has " +
                        std::to_string(size - static_cast<std::streamoff>(pre + headerLen)));
     std::vector<char> raw(count * static_cast<std::size_t>(width));
     in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
@@ -98,10 +101,24 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     auto value = [&](std::size_t q) -> long long {
         const char* p = raw.data() + q * width;
         switch (width) {
-        case 1: return kind == 'i' ? static_cast<long long>(static_cast<std::int8_t>(*p)) : static_cast<unsigned char>(*p);
-        case 2: { std::int16_t v; std::memcpy(&v, p, 2); return kind == 'u' ? static_cast<std::uint16_t>(v) : v; }
-        case 4: { std::int32_t v; std::memcpy(&v, p, 4); return kind == 'u' ? static_cast<std::uint32_t>(v) : v; }
-        default: { std::int64_t v; std::memcpy(&v, p, 8); return v; }
+        case 1:
+            return kind == 'i' ? static_cast<long long>(static_cast<std::int8_t>(*p))
+                               : static_cast<unsigned char>(*p);
+        case 2: {
+            std::int16_t v;
+            std::memcpy(&v, p, 2);
+            return kind == 'u' ? static_cast<std::uint16_t>(v) : v;
+        }
+        case 4: {
+            std::int32_t v;
+            std::memcpy(&v, p, 4);
+            return kind == 'u' ? static_cast<std::uint32_t>(v) : v;
+        }
+        default: {
+            std::int64_t v;
+            std::memcpy(&v, p, 8);
+            return v;
+        }
         }
     };
     std::size_t solid = 0;
@@ -116,7 +133,8 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
                 solid += on;
             }
     if (solid == 0)
-        fail(path, label >= 0 ? "no voxel has label " + std::to_string(label) : "the volume has no solid voxel");
+        fail(path,
+             label >= 0 ? "no voxel has label " + std::to_string(label) : "the volume has no solid voxel");
     return out;
 }
 

@@ -26,7 +26,9 @@ Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int res
                    int supersample) {
     validateMesh(target, "scoreSpheres");
     validateSpheres(spheres, "scoreSpheres");
-    if (resolution < 1) throw std::invalid_argument("scoreSpheres: resolution must be >= 1, got " + std::to_string(resolution));
+    if (resolution < 1)
+        throw std::invalid_argument("scoreSpheres: resolution must be >= 1, got " +
+                                    std::to_string(resolution));
     if (!std::isfinite(offset)) throw std::invalid_argument("scoreSpheres: offset must be finite");
     const MeshInfo info = analyzeMesh(target);
     Vec3 lo = info.lower, hi = info.upper;

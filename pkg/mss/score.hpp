@@ -18,9 +18,10 @@ struct Score {
     GridSpec grid;
 };
 
-/// Scores spheres against a mesh on a grid of @p resolution voxels along the mesh's shortest bounding-box edge,
-/// covering the mesh and the spheres, shifted by @p offset voxels along each axis from the centred placement so
-/// that a result is not scored on the very voxel centres it was fitted to. @p supersample as in voxelizeMesh.
+/// Scores spheres against a mesh on a grid of @p resolution voxels along the mesh's shortest bounding-box
+/// edge, covering the mesh and the spheres, shifted by @p offset voxels along each axis from the centred
+/// placement so that a result is not scored on the very voxel centres it was fitted to. @p supersample as in
+/// voxelizeMesh.
 Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int resolution = 100,
                    double offset = 0.37, int supersample = 1);
 

@@ -35,21 +35,23 @@ void writeSpheres(const SphereSet& s, const std::string& path) {
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
     {
         std::ofstream out(tmp);
-        if (!out) throw std::invalid_argument("writeSpheres: " + path + ": cannot write (directory missing or not writable)");
+        if (!out)
+            throw std::invalid_argument("writeSpheres: " + path +
+                                        ": cannot write (directory missing or not writable)");
         out << std::setprecision(17);
         if (ext == ".csv") {
             out << "x,y,z,r\n";
             for (std::size_t i = 0; i < s.size(); ++i)
-                out << s.centers[i].x() << ',' << s.centers[i].y() << ',' << s.centers[i].z() << ',' << s.radii[i]
-                    << '\n';
+                out << s.centers[i].x() << ',' << s.centers[i].y() << ',' << s.centers[i].z() << ','
+                    << s.radii[i] << '\n';
         } else if (ext == ".txt") {
             out << "# x y z r clumpId (yade-mss; read with ymport.textClumps)\n";
             for (std::size_t i = 0; i < s.size(); ++i)
-                out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << ' ' << s.radii[i]
-                    << " 0\n";
+                out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << ' '
+                    << s.radii[i] << " 0\n";
         } else {
-            out << "# vtk DataFile Version 3.0\nyade-mss spheres\nASCII\nDATASET POLYDATA\nPOINTS " << s.size()
-                << " double\n";
+            out << "# vtk DataFile Version 3.0\nyade-mss spheres\nASCII\nDATASET POLYDATA\nPOINTS "
+                << s.size() << " double\n";
             for (std::size_t i = 0; i < s.size(); ++i)
                 out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << '\n';
             out << "VERTICES " << s.size() << ' ' << 2 * s.size() << '\n';

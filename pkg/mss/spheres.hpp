@@ -20,13 +20,15 @@ struct SphereSet {
     }
 };
 
-/// Checks sizes agree, coordinates are finite and radii positive; throws std::invalid_argument naming @p where.
+/// Checks sizes agree, coordinates are finite and radii positive; throws std::invalid_argument naming @p
+/// where.
 void validateSpheres(const SphereSet& s, const std::string& where);
 
-/// Writes spheres by extension: .csv ("x,y,z,r" header and rows), .txt (YADE text clump "x y z r clumpId", the
-/// format of ymport.textClumps), .vtk (legacy VTK polydata, points with a "radius" scalar, for ParaView's glyphs).
-/// Full precision (17 significant digits). Written to a temporary file and renamed, so an interrupted run never
-/// leaves a half-written file. @throws std::invalid_argument on an unknown extension or unwritable path.
+/// Writes spheres by extension: .csv ("x,y,z,r" header and rows), .txt (YADE text clump "x y z r clumpId",
+/// the format of ymport.textClumps), .vtk (legacy VTK polydata, points with a "radius" scalar, for ParaView's
+/// glyphs). Full precision (17 significant digits). Written to a temporary file and renamed, so an
+/// interrupted run never leaves a half-written file. @throws std::invalid_argument on an unknown extension or
+/// unwritable path.
 void writeSpheres(const SphereSet& s, const std::string& path);
 
 /// Reads spheres from CSV (x,y,z,r with optional header; CLUMP's output), or a YADE text clump file

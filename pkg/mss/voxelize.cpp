@@ -9,12 +9,13 @@ namespace mss {
 
 GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res, const char* where) {
     const std::string w = where;
-    if (!lower.allFinite() || !upper.allFinite()) throw std::invalid_argument(w + ": bounding box is not finite");
+    if (!lower.allFinite() || !upper.allFinite())
+        throw std::invalid_argument(w + ": bounding box is not finite");
     const bool hasSize = res.voxelSize != 0.0, hasRes = res.resolution != 0;
     if (hasSize == hasRes) {
         std::ostringstream os;
-        os << w << ": give exactly one of a voxel size > 0 and a resolution >= 1, got voxel size " << res.voxelSize
-           << " and resolution " << res.resolution;
+        os << w << ": give exactly one of a voxel size > 0 and a resolution >= 1, got voxel size "
+           << res.voxelSize << " and resolution " << res.resolution;
         throw std::invalid_argument(os.str());
     }
     if (hasSize && !(res.voxelSize > 0.0 && std::isfinite(res.voxelSize))) {
@@ -30,8 +31,8 @@ GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res,
     const double shortest = extent.minCoeff();
     if (!(shortest > 0.0)) {
         std::ostringstream os;
-        os << w << ": the solid is flat (bounding box " << extent.x() << " x " << extent.y() << " x " << extent.z()
-           << "); it has no volume to fill";
+        os << w << ": the solid is flat (bounding box " << extent.x() << " x " << extent.y() << " x "
+           << extent.z() << "); it has no volume to fill";
         throw std::invalid_argument(os.str());
     }
     GridSpec g;
@@ -85,7 +86,8 @@ inline double edgeFunction(double ay, double az, double by, double bz, double py
 VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample) {
     validateMesh(mesh, "voxelizeMesh");
     if (supersample < 1 || supersample > 8)
-        throw std::invalid_argument("voxelizeMesh: supersample must be 1..8, got " + std::to_string(supersample));
+        throw std::invalid_argument("voxelizeMesh: supersample must be 1..8, got " +
+                                    std::to_string(supersample));
     if (!(grid.h > 0.0) || grid.size() == 0) throw std::invalid_argument("voxelizeMesh: empty grid");
     const MeshInfo info = analyzeMesh(mesh);
     const bool parity = !info.consistentlyOriented;
@@ -107,9 +109,11 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
         const double ylo = std::min({a.y(), b.y(), c.y()}), yhi = std::max({a.y(), b.y(), c.y()});
         const double zlo = std::min({a.z(), b.z(), c.z()}), zhi = std::max({a.z(), b.z(), c.z()});
         const long long J0 = std::max(0LL, static_cast<long long>(std::ceil((ylo + 0.5) * s - 0.5)));
-        const long long J1 = std::min<long long>(NY - 1, static_cast<long long>(std::floor((yhi + 0.5) * s - 0.5)));
+        const long long J1 =
+            std::min<long long>(NY - 1, static_cast<long long>(std::floor((yhi + 0.5) * s - 0.5)));
         const long long K0 = std::max(0LL, static_cast<long long>(std::ceil((zlo + 0.5) * s - 0.5)));
-        const long long K1 = std::min<long long>(NZ - 1, static_cast<long long>(std::floor((zhi + 0.5) * s - 0.5)));
+        const long long K1 =
+            std::min<long long>(NZ - 1, static_cast<long long>(std::floor((zhi + 0.5) * s - 0.5)));
         const int sign = det > 0 ? -1 : 1; // outward normal along -x: the ray enters
         for (long long K = K0; K <= K1; ++K) {
             const double pz = subCoord(K);
@@ -152,7 +156,8 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
                 const long long K = static_cast<long long>(k) * s + cz;
                 for (int j = 0; j < ny; ++j) {
                     for (int cy = 0; cy < s; ++cy) {
-                        const std::size_t col = static_cast<std::size_t>(j * s + cy) + static_cast<std::size_t>(NY) * K;
+                        const std::size_t col =
+                            static_cast<std::size_t>(j * s + cy) + static_cast<std::size_t>(NY) * K;
                         Hit* b = sorted.data() + start[col];
                         Hit* e = sorted.data() + start[col + 1];
                         if (b == e) continue;

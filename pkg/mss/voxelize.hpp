@@ -26,9 +26,9 @@ GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res,
 /// Binary voxelisation of a closed mesh (paper eq. 5): a voxel is solid when more than half of its
 /// @p supersample^3 sample points (a regular sub-lattice; 1 = voxel centre) lie inside the mesh.
 /// Inside is decided per sample by the winding number along +x rays (nonzero rule, so inside-out meshes and
-/// overlapping closed shells work); a mesh whose triangles are not consistently oriented uses the parity rule.
-/// Ray/edge ties are broken by a symbolic perturbation, so rays through shared edges and vertices are counted
-/// once (watertight). O(T + N) for T triangles and N voxels; parallel over z slices.
+/// overlapping closed shells work); a mesh whose triangles are not consistently oriented uses the parity
+/// rule. Ray/edge ties are broken by a symbolic perturbation, so rays through shared edges and vertices are
+/// counted once (watertight). O(T + N) for T triangles and N voxels; parallel over z slices.
 VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample = 1);
 
 /// Grid from @p res around the mesh bounding box, then voxelizeMesh. Checks the mesh first.

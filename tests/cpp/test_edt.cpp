@@ -28,7 +28,8 @@ double bruteForce(const VoxelGrid& v, int i, int j, int k) {
     for (int c = 0; c < v.nz(); ++c)
         for (int b = 0; b < v.ny(); ++b)
             for (int a = 0; a < v.nx(); ++a)
-                if (!v(a, b, c)) best = std::min(best, double((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)));
+                if (!v(a, b, c))
+                    best = std::min(best, double((a - i) * (a - i) + (b - j) * (b - j) + (c - k) * (c - k)));
     return std::sqrt(best);
 }
 } // namespace
@@ -43,7 +44,8 @@ TEST(Edt, MatchesBruteForceOnRandomGrids) {
             for (int j = 0; j < ny; ++j)
                 for (int i = 0; i < nx; ++i)
                     // squared distances are integers, exact in float: the only error is the final sqrt
-                    ASSERT_NEAR(e(i, j, k), bruteForce(v, i, j, k), 1e-5) << seed << " " << i << " " << j << " " << k;
+                    ASSERT_NEAR(e(i, j, k), bruteForce(v, i, j, k), 1e-5)
+                        << seed << " " << i << " " << j << " " << k;
     }
 }
 

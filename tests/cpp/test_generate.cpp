@@ -76,7 +76,8 @@ TEST(Generate, QualityTargetGivesFewSpheresThatMeetIt) {
     const Result r = generate(femur, res, o);
     EXPECT_LE(r.metrics.eta, 0.08);
     EXPECT_GT(r.spheres.size(), 3u);
-    o.method = Method::Paper; // the published procedure needs more spheres for the same target (or never meets it)
+    o.method =
+        Method::Paper; // the published procedure needs more spheres for the same target (or never meets it)
     o.maxIterations = 30;
     const Result p = generate(femur, res, o);
     EXPECT_TRUE(p.metrics.eta > 0.08 || p.spheres.size() > r.spheres.size())

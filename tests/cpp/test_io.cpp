@@ -80,9 +80,11 @@ TEST(MeshIo, ObjOffPlyThroughCgal) {
     const std::string obj = tempPath("tet.obj"), off = tempPath("tet.off"), ply = tempPath("tet.ply");
     writeText(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
     writeText(off, "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
-    writeText(ply, "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                   "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
-                   "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+    writeText(
+        ply,
+        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+        "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
     for (const auto& p : {obj, off, ply}) {
         const MeshInfo i = analyzeMesh(readMesh(p));
         EXPECT_EQ(i.triangles, 4u) << p;
@@ -102,7 +104,8 @@ TEST(MeshIo, BadFilesGetClearErrors) {
     expectError([&] { readMesh(p); }, "says 5 triangles");
     writeText(p, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 zz\n");
     expectError([&] { readMesh(p); }, "line 5");
-    writeText(p, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 0\nendloop\nendfacet\n");
+    writeText(p, "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 nan\nvertex 0 1 "
+                 "0\nendloop\nendfacet\n");
     expectError([&] { readMesh(p); }, "non-finite");
     std::remove(p.c_str());
     expectError([&] { readMesh(tempPath("missing.stl")); }, "cannot open");

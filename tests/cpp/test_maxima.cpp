@@ -29,7 +29,7 @@ TEST(Maxima, SubVoxelRefinementFindsTheApex) {
     EXPECT_NEAR(r.position.x(), c.x(), 0.1);
     EXPECT_NEAR(r.position.y(), c.y(), 0.1);
     EXPECT_NEAR(r.position.z(), c.z(), 0.1);
-    EXPECT_GE(r.value, f(7, 7, 7));  // eq. 24 never below the voxel value
+    EXPECT_GE(r.value, f(7, 7, 7)); // eq. 24 never below the voxel value
     EXPECT_LE(r.value, 6.0 + 1e-6); // nor above the true maximum here
 }
 

@@ -12,7 +12,9 @@ namespace {
 const std::string kData = MSS_TEST_DATA;
 const double kPi = 3.14159265358979323846;
 
-double voxelVolume(const VoxelGrid& v) { return double(countSolid(v)) * v.spec.h * v.spec.h * v.spec.h; }
+double voxelVolume(const VoxelGrid& v) {
+    return double(countSolid(v)) * v.spec.h * v.spec.h * v.spec.h;
+}
 } // namespace
 
 TEST(Voxelize, BallVolumeMatchesFourThirdsPiRCubed) {
@@ -24,7 +26,7 @@ TEST(Voxelize, BallVolumeMatchesFourThirdsPiRCubed) {
     // centre sampling: error ~ surface area * h * O(1/sqrt(n)) cancellation; 0.5% holds at 80 voxels
     EXPECT_NEAR(voxelVolume(v), meshVolume, 0.005 * meshVolume);
     EXPECT_NEAR(meshVolume, 4.0 / 3.0 * kPi, 0.002 * 4.18879); // the mesh itself approximates the unit ball
-    const VoxelGrid s = voxelizeMesh(ball, res, 3); // supersampling: closer still
+    const VoxelGrid s = voxelizeMesh(ball, res, 3);            // supersampling: closer still
     EXPECT_NEAR(voxelVolume(s), meshVolume, 0.003 * meshVolume);
 }
 
@@ -37,7 +39,8 @@ TEST(Voxelize, DoubleZeroHull) {
     for (int k = 0; k < v.nz(); ++k)
         for (int j = 0; j < v.ny(); ++j)
             for (int i = 0; i < v.nx(); ++i) {
-                const bool hull = i < 2 || j < 2 || k < 2 || i >= v.nx() - 2 || j >= v.ny() - 2 || k >= v.nz() - 2;
+                const bool hull =
+                    i < 2 || j < 2 || k < 2 || i >= v.nx() - 2 || j >= v.ny() - 2 || k >= v.nz() - 2;
                 if (hull) ASSERT_EQ(v(i, j, k), 0) << i << " " << j << " " << k;
             }
     EXPECT_EQ(v.nx(), 24); // 20 voxels across the ball plus 2 + 2
@@ -47,7 +50,8 @@ TEST(Voxelize, OrientationDoesNotMatter) {
     const TriangleMesh mesh = readMesh(kData + "/ellipsoid_2_1_1.stl");
     TriangleMesh flipped = mesh, mixed = mesh;
     for (auto& t : flipped.triangles) std::swap(t[1], t[2]);
-    for (std::size_t q = 0; q < mixed.triangles.size(); q += 2) std::swap(mixed.triangles[q][1], mixed.triangles[q][2]);
+    for (std::size_t q = 0; q < mixed.triangles.size(); q += 2)
+        std::swap(mixed.triangles[q][1], mixed.triangles[q][2]);
     Resolution res;
     res.resolution = 40;
     const VoxelGrid a = voxelizeMesh(mesh, res), b = voxelizeMesh(flipped, res), c = voxelizeMesh(mixed, res);
