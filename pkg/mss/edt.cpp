@@ -16,6 +16,13 @@ constexpr int kBlock = 16; // lines processed together so that strided passes re
 /// 1-D squared distance transform of sampled function f (length n) into d, FH 2012 algorithm 1:
 /// d(q) = min_p (q - p)^2 + f(p). Entries f = inf are not parabolas. v, z are scratch of n and n + 1.
 void envelope1d(const float* f, float* d, int n, int* v, float* z) {
+    // Fast path: a line of background only (common around a grain) is its own transform.
+    int q0 = 0;
+    while (q0 < n && f[q0] == 0.0f) ++q0;
+    if (q0 == n) {
+        std::fill(d, d + n, 0.0f);
+        return;
+    }
     int k = -1;
     for (int q = 0; q < n; ++q) {
         if (f[q] == kInf) continue;

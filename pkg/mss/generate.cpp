@@ -513,9 +513,14 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         return false;
     };
     static const bool kSkip = !std::getenv("MSS_NOSKIP");
-    auto refine = [&]() {
+    // With @p touched, only orbits overlapping one of them start out as candidates for moving.
+    auto refine = [&](const std::vector<Orbit>* touched = nullptr, int sweeps = 3) {
         std::vector<char> moved(chosen.size(), 1);
-        for (int sweep = 0; sweep < 3; ++sweep) {
+        if (touched)
+            for (std::size_t q = 0; q < chosen.size(); ++q)
+                moved[q] = std::any_of(touched->begin(), touched->end(),
+                                       [&](const Orbit& t) { return overlaps(chosen[q], t); });
+        for (int sweep = 0; sweep < sweeps; ++sweep) {
             bool improved = false;
             std::vector<char> movedNow(chosen.size(), 0);
             for (std::size_t oi = 0; oi < chosen.size(); ++oi) {
@@ -616,11 +621,17 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         const std::vector<Orbit> saved = chosen;
         const std::size_t savedPlaced = placed;
         const long long before = cov.mismatch();
+        std::vector<Orbit> touched{chosen[std::size_t(centre)]};
         for (const Ball& b : sym.images(chosen[std::size_t(centre)])) cov.remove(b);
         placed -= 1;
         chosen.erase(chosen.begin() + centre);
+        const std::size_t kept = chosen.size();
+        debug("repair: removed");
         greedy();
-        refine();
+        debug("repair: greedy");
+        touched.insert(touched.end(), chosen.begin() + std::ptrdiff_t(kept), chosen.end());
+        refine(&touched, 2);
+        debug("repair: refine");
         if (placed > savedPlaced && double(cov.mismatch()) <= 1.05 * double(before)) continue;
         for (const Orbit& o : chosen)
             for (const Ball& b : sym.images(o)) cov.remove(b);
@@ -632,9 +643,10 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
     }
     if (!allowBreak && placed < std::size_t(t.budget) && !t.met(cov)) {
         allowBreak = true;
-        const std::size_t before = placed;
+        const std::size_t before = placed, kept = chosen.size();
         greedy();
-        if (placed > before) refine();
+        const std::vector<Orbit> touched(chosen.begin() + std::ptrdiff_t(kept), chosen.end());
+        if (placed > before) refine(&touched);
     }
 
     debug("repair");
