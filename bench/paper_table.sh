@@ -3,11 +3,13 @@
 # For each run: n, D on an independent grid (mss compare: 100 voxels along the shortest edge, offset by 0.37
 # voxel from the centred placement, so no result is scored on the voxels it was fitted to), D on the generation
 # grid, wall time end to end (read STL .. write spheres) and per phase, peak memory per voxel of the grid.
-# usage: bench/paper_table.sh [THREADS]   (build first: scripts/setup.sh)
+# Times are the fastest of REPEAT runs (default 3).
+# usage: [REPEAT=N] bench/paper_table.sh [THREADS]   (build first: scripts/setup.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 MSS=./build/mss
 THREADS=${1:-2}
+REPEAT=${REPEAT:-3}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 TIME=""
@@ -16,8 +18,14 @@ TIME=""
 printf '%-10s %-9s %4s %9s %9s %7s %7s %7s %7s %7s %7s %8s\n' grain method n D_indep D_gen total read voxel edt select refine B/voxel
 run() { # mesh label method n
   local mesh=$1 label=$2 method=$3 n=$4
-  $TIME $MSS generate "$mesh" --spheres "$n" --resolution 103 --method "$method" --threads "$THREADS" \
-    -o "$OUT/s.csv" > "$OUT/gen.log"
+  # best of REPEAT runs (these machines are noisy); the output is the same every run
+  local best=1e9 t
+  for _ in $(seq "$REPEAT"); do
+    $TIME $MSS generate "$mesh" --spheres "$n" --resolution 103 --method "$method" --threads "$THREADS" \
+      -o "$OUT/s.csv" > "$OUT/run.log"
+    t=$(awk '/^seconds/{print $NF}' "$OUT/run.log")
+    if awk -v a="$t" -v b="$best" 'BEGIN{exit !(a < b)}'; then best=$t; cp "$OUT/run.log" "$OUT/gen.log"; fi
+  done
   local dgen grid secs dind mem vox bpv
   dgen=$(awk '/^dice/{print $2}' "$OUT/gen.log")
   grid=$(awk '/^grid/{print $2*$4*$6}' "$OUT/gen.log")
