@@ -4,6 +4,7 @@
 #include "mss/edt.hpp"      // exact Euclidean distance transform (eq. 8)
 #include "mss/generate.hpp" // the generator (sections 3.3-3.5)
 #include "mss/grid.hpp"     // voxel grids
+#include "mss/mass.hpp"     // mass properties of meshes, voxels, sphere unions
 #include "mss/maxima.hpp"   // local maxima and sub-voxel refinement (eq. 11-24)
 #include "mss/mesh.hpp"     // triangle meshes and their files
 #include "mss/npy.hpp"      // .npy voxel volumes
