@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 PACKAGES=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
-          libgtest-dev libbenchmark-dev)
+          libgtest-dev libbenchmark-dev libboost-python-dev python3-dev python3-numpy yade)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
@@ -22,4 +22,8 @@ BUILD_TYPE=${MSS_BUILD_TYPE:-Release}
 cmake -S . -B build -DCMAKE_BUILD_TYPE="$BUILD_TYPE" -DMSS_STRICT=${MSS_STRICT:-OFF} > build.log 2>&1 || {
   cat build.log; exit 1; }
 cmake --build build -j"$(nproc)" >> build.log 2>&1 || { tail -50 build.log; exit 1; }
-echo "setup: built build/mss"
+# install mss (/usr/local/bin) and the yade_mss package where Debian's python3, and so yade, finds it
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+$SUDO cmake --install build >> build.log 2>&1 || { tail -20 build.log; exit 1; }
+echo "setup: built and installed mss and yade_mss"

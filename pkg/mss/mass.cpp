@@ -16,7 +16,8 @@ void MassProperties::principal(Vec3& moments, Eigen::Matrix3d& axes) const {
 
 namespace {
 
-/// Inertia tensor about the centroid from integrals of 1, x, y, z, x^2, y^2, z^2, xy, yz, zx (about an origin).
+/// Inertia tensor about the centroid from integrals of 1, x, y, z, x^2, y^2, z^2, xy, yz, zx (about an
+/// origin).
 MassProperties fromIntegrals(const double in[10], const Vec3& origin) {
     MassProperties m;
     m.volume = in[0];
@@ -70,7 +71,8 @@ MassProperties meshMassProperties(const TriangleMesh& mesh) {
         in[8] += d.y() * (p0.z() * g0y + p1.z() * g1y + p2.z() * g2y);
         in[9] += d.z() * (p0.x() * g0z + p1.x() * g1z + p2.x() * g2z);
     }
-    const double mult[10] = {1. / 6, 1. / 24, 1. / 24, 1. / 24, 1. / 60, 1. / 60, 1. / 60, 1. / 120, 1. / 120, 1. / 120};
+    const double mult[10] = {1. / 6,  1. / 24, 1. / 24,  1. / 24,  1. / 60,
+                             1. / 60, 1. / 60, 1. / 120, 1. / 120, 1. / 120};
     const double sign = in[0] < 0 ? -1.0 : 1.0; // inside-out mesh: every integral flips sign
     for (int q = 0; q < 10; ++q) in[q] *= mult[q] * sign;
     if (!(in[0] > 0.0)) throw std::invalid_argument("meshMassProperties: the mesh encloses no volume");
@@ -95,8 +97,8 @@ MassProperties voxelMassProperties(const VoxelGrid& v) {
     if (n == 0) throw std::invalid_argument("voxelMassProperties: the volume has no solid voxel");
     // a cube of edge h: integral of x^2 over it = dv * (x_c^2 + h^2 / 12)
     const double own = n * dv * h * h / 12.0;
-    const double in[10] = {n * dv,         sx * dv,        sy * dv,  sz * dv,  sxx * dv + own, syy * dv + own,
-                           szz * dv + own, sxy * dv,       syz * dv, szx * dv};
+    const double in[10] = {n * dv,         sx * dv,        sy * dv,  sz * dv,  sxx * dv + own,
+                           syy * dv + own, szz * dv + own, sxy * dv, syz * dv, szx * dv};
     return fromIntegrals(in, o);
 }
 
@@ -112,7 +114,8 @@ MassProperties sphereUnionMassProperties(const SphereSet& spheres, int resolutio
     Resolution res;
     res.resolution = resolution;
     res.padding = 1;
-    return voxelMassProperties(voxelizeSpheres(spheres, gridForBox(lo, hi, res, "sphereUnionMassProperties")));
+    return voxelMassProperties(
+        voxelizeSpheres(spheres, gridForBox(lo, hi, res, "sphereUnionMassProperties")));
 }
 
 } // namespace mss

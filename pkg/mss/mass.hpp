@@ -9,19 +9,21 @@
 
 namespace mss {
 
-/// Volume, centroid and inertia tensor of a solid of unit density (multiply by the density for mass and inertia).
+/// Volume, centroid and inertia tensor of a solid of unit density (multiply by the density for mass and
+/// inertia).
 struct MassProperties {
     double volume = 0.0;
     Vec3 centroid = Vec3::Zero();
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero(); ///< about the centroid, world axes, per unit density
 
-    /// Principal moments (ascending) and axes (columns, a right-handed rotation matrix) of the inertia tensor.
+    /// Principal moments (ascending) and axes (columns, a right-handed rotation matrix) of the inertia
+    /// tensor.
     void principal(Vec3& moments, Eigen::Matrix3d& axes) const;
 };
 
 /// Exact mass properties of a closed triangle mesh by the divergence theorem (Eberly, "Polyhedral Mass
-/// Properties (Revisited)", 2002: surface integrals of the monomials up to degree 2). O(T). An inside-out mesh
-/// gives the same result. @throws std::invalid_argument on an empty mesh or zero volume.
+/// Properties (Revisited)", 2002: surface integrals of the monomials up to degree 2). O(T). An inside-out
+/// mesh gives the same result. @throws std::invalid_argument on an empty mesh or zero volume.
 MassProperties meshMassProperties(const TriangleMesh& mesh);
 
 /// Exact mass properties of a voxel volume: the union of its solid voxels as cubes of edge h.

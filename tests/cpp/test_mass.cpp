@@ -50,7 +50,7 @@ TEST(Mass, VoxelSumsAreExact) {
     const MassProperties m = voxelMassProperties(v);
     EXPECT_DOUBLE_EQ(m.volume, 16.0);
     EXPECT_NEAR((m.centroid - Vec3(13, 2, 2)).norm(), 0.0, 1e-12);
-    EXPECT_NEAR(m.inertia(0, 0), 16.0 * (4 + 4) / 12.0, 1e-12);  // box: m (b^2 + c^2) / 12
+    EXPECT_NEAR(m.inertia(0, 0), 16.0 * (4 + 4) / 12.0, 1e-12); // box: m (b^2 + c^2) / 12
     EXPECT_NEAR(m.inertia(1, 1), 16.0 * (16 + 4) / 12.0, 1e-12);
 }
 

@@ -1,0 +1,306 @@
+// Boost.Python module _mss: the yade-mss core for Python (YADE's module-pair style; the facade is yade_mss).
+//
+// Only built-in Python types cross this boundary (lists of floats, bytes, dicts, tuples): no converter is
+// registered for Eigen or any other type, so loading this module inside YADE cannot replace YADE's own
+// converters (registering an Eigen converter again would silently change Facet.vertices and friends for the
+// whole process). The facade turns lists into numpy arrays.
+#include "mss.hpp"
+
+#include <boost/python.hpp>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace py = boost::python;
+
+namespace {
+
+std::vector<double> doubles(const py::object& o, const char* what) {
+    std::vector<double> out;
+    const long n = py::len(o);
+    out.reserve(static_cast<std::size_t>(n));
+    for (long i = 0; i < n; ++i) {
+        py::extract<double> x(o[i]);
+        if (!x.check())
+            throw std::invalid_argument(std::string(what) + ": element " + std::to_string(i) +
+                                        " is not a number");
+        out.push_back(x());
+    }
+    return out;
+}
+
+std::vector<mss::Vec3> points(const py::object& o, const char* what) {
+    const std::vector<double> flat = doubles(o, what);
+    if (flat.size() % 3)
+        throw std::invalid_argument(std::string(what) + ": expected a flat list of x, y, z triples");
+    std::vector<mss::Vec3> out(flat.size() / 3);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = mss::Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+    return out;
+}
+
+mss::Vec3 vec3(const py::object& o, const char* what) {
+    const std::vector<double> v = doubles(o, what);
+    if (v.size() != 3) throw std::invalid_argument(std::string(what) + ": expected 3 numbers");
+    return mss::Vec3(v[0], v[1], v[2]);
+}
+
+py::list list(const mss::Vec3& v) {
+    py::list l;
+    for (int a = 0; a < 3; ++a) l.append(v[a]);
+    return l;
+}
+
+mss::TriangleMesh mesh(const py::object& vertices, const py::object& triangles) {
+    mss::TriangleMesh m;
+    m.vertices = points(vertices, "mesh vertices");
+    const std::vector<double> t = doubles(triangles, "mesh triangles");
+    if (t.size() % 3) throw std::invalid_argument("mesh triangles: expected a flat list of index triples");
+    for (std::size_t i = 0; i < t.size(); i += 3) {
+        std::array<int, 3> tri{};
+        for (int c = 0; c < 3; ++c) {
+            if (t[i + c] != static_cast<double>(static_cast<int>(t[i + c])))
+                throw std::invalid_argument("mesh triangles: indices must be integers");
+            tri[c] = static_cast<int>(t[i + c]);
+        }
+        m.triangles.push_back(tri);
+    }
+    mss::validateMesh(m, "mesh");
+    return m;
+}
+
+mss::SphereSet spheres(const py::object& centers, const py::object& radii) {
+    mss::SphereSet s;
+    s.centers = points(centers, "sphere centres");
+    s.radii = doubles(radii, "sphere radii");
+    mss::validateSpheres(s, "spheres");
+    return s;
+}
+
+/// Voxels from bytes with x fastest (numpy Fortran order), one byte per voxel, non-zero = solid.
+mss::VoxelGrid voxels(const py::object& data, const py::object& shape, double voxelSize,
+                      const py::object& origin) {
+    if (py::len(shape) != 3) throw std::invalid_argument("voxels: the array must be 3-D");
+    mss::GridSpec g;
+    std::array<long long, 3> dims{};
+    for (int a = 0; a < 3; ++a) dims[a] = py::extract<long long>(shape[a]);
+    mss::checkGridSize("voxels", dims, 1, std::size_t(1) << 40);
+    for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(dims[a]);
+    if (!(voxelSize > 0.0) || !std::isfinite(voxelSize))
+        throw std::invalid_argument("voxels: voxel size must be > 0 and finite, got " +
+                                    std::to_string(voxelSize));
+    g.h = voxelSize;
+    g.origin = vec3(origin, "voxels: origin");
+    if (!g.origin.allFinite()) throw std::invalid_argument("voxels: origin is not finite");
+    char* buf = nullptr;
+    Py_ssize_t len = 0;
+    if (!PyBytes_Check(data.ptr()) || PyBytes_AsStringAndSize(data.ptr(), &buf, &len) != 0)
+        throw std::invalid_argument("voxels: data must be bytes");
+    if (static_cast<std::size_t>(len) != g.size())
+        throw std::invalid_argument("voxels: " + std::to_string(len) + " bytes for " +
+                                    std::to_string(g.size()) + " voxels");
+    mss::VoxelGrid v(g, 0);
+    for (std::size_t q = 0; q < g.size(); ++q) v.data[q] = buf[q] != 0;
+    return v;
+}
+
+mss::GenerateOptions options(const py::dict& d) {
+    mss::GenerateOptions o;
+    if (d.has_key("nSpheres")) o.nSpheres = py::extract<int>(d["nSpheres"]);
+    if (d.has_key("eta")) o.eta = py::extract<double>(d["eta"]);
+    if (d.has_key("dice")) o.dice = py::extract<double>(d["dice"]);
+    if (d.has_key("rMin")) o.rMin = py::extract<double>(d["rMin"]);
+    if (d.has_key("maxIterations")) o.maxIterations = py::extract<int>(d["maxIterations"]);
+    if (d.has_key("deltaMin")) o.deltaMin = py::extract<double>(d["deltaMin"]);
+    if (d.has_key("keepSymmetry")) o.keepSymmetry = py::extract<bool>(d["keepSymmetry"]);
+    if (d.has_key("threads")) o.threads = py::extract<int>(d["threads"]);
+    if (d.has_key("method")) {
+        const std::string m = py::extract<std::string>(d["method"]);
+        if (m == "optimized")
+            o.method = mss::Method::Optimized;
+        else if (m == "paper")
+            o.method = mss::Method::Paper;
+        else
+            throw std::invalid_argument("generate: method must be 'optimized' or 'paper', got '" + m + "'");
+    }
+    return o;
+}
+
+mss::Resolution resolution(const py::dict& d) {
+    mss::Resolution r;
+    if (d.has_key("voxelSize")) r.voxelSize = py::extract<double>(d["voxelSize"]);
+    if (d.has_key("resolution")) r.resolution = py::extract<int>(d["resolution"]);
+    if (d.has_key("memoryLimit")) r.memoryLimit = py::extract<std::size_t>(d["memoryLimit"]);
+    return r;
+}
+
+py::dict grid(const mss::GridSpec& g) {
+    py::dict d;
+    d["dims"] = py::make_tuple(g.dims[0], g.dims[1], g.dims[2]);
+    d["voxelSize"] = g.h;
+    d["origin"] = list(g.origin);
+    return d;
+}
+
+py::dict result(const mss::Result& r) {
+    py::dict d;
+    py::list c, rad;
+    for (std::size_t i = 0; i < r.spheres.size(); ++i) {
+        for (int a = 0; a < 3; ++a) c.append(r.spheres.centers[i][a]);
+        rad.append(r.spheres.radii[i]);
+    }
+    d["centers"] = c;
+    d["radii"] = rad;
+    const mss::Metrics& m = r.metrics;
+    py::dict md;
+    md["spheres"] = m.spheres;
+    md["eta"] = m.eta;
+    md["dice"] = m.dice;
+    md["iterations"] = m.iterations;
+    md["solidVoxels"] = m.solidVoxels;
+    md["sphereVoxels"] = m.sphereVoxels;
+    md["symmetryPlanes"] = m.symmetryPlanes;
+    md["secondsVoxelize"] = m.secondsVoxelize;
+    md["secondsEdt"] = m.secondsEdt;
+    md["secondsSelect"] = m.secondsSelect;
+    md["secondsRefine"] = m.secondsRefine;
+    md["secondsTotal"] = m.secondsTotal;
+    d["metrics"] = md;
+    d["grid"] = grid(r.grid);
+    return d;
+}
+
+py::dict mass(const mss::MassProperties& m) {
+    py::dict d;
+    d["volume"] = m.volume;
+    d["centroid"] = list(m.centroid);
+    py::list I;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) I.append(m.inertia(i, j));
+    d["inertia"] = I;
+    return d;
+}
+
+py::dict score(const mss::Score& s) {
+    py::dict d;
+    d["dice"] = s.dice;
+    d["eta"] = s.eta;
+    d["volumeRatio"] = s.volumeRatio;
+    d["coverage"] = s.coverage;
+    d["outside"] = s.outside;
+    d["targetVoxels"] = s.targetVoxels;
+    d["sphereVoxels"] = s.sphereVoxels;
+    d["grid"] = grid(s.grid);
+    return d;
+}
+
+// ---- the module's functions ----
+
+py::tuple readMesh(const std::string& path) {
+    const mss::TriangleMesh m = mss::readMesh(path);
+    py::list v, t;
+    for (const auto& p : m.vertices)
+        for (int a = 0; a < 3; ++a) v.append(p[a]);
+    for (const auto& tri : m.triangles)
+        for (int c : tri) t.append(c);
+    return py::make_tuple(v, t);
+}
+
+py::dict meshInfo(const py::object& vertices, const py::object& triangles) {
+    const mss::MeshInfo i = mss::analyzeMesh(mesh(vertices, triangles));
+    py::dict d;
+    d["vertices"] = i.vertices;
+    d["triangles"] = i.triangles;
+    d["closed"] = i.closed;
+    d["boundaryEdges"] = i.boundaryEdges;
+    d["nonManifoldEdges"] = i.nonManifoldEdges;
+    d["consistentlyOriented"] = i.consistentlyOriented;
+    d["volume"] = std::abs(i.signedVolume);
+    d["insideOut"] = i.signedVolume < 0;
+    d["lower"] = list(i.lower);
+    d["upper"] = list(i.upper);
+    return d;
+}
+
+py::dict generateMesh(const py::object& vertices, const py::object& triangles, const py::dict& res,
+                      const py::dict& opts, int supersample) {
+    return result(mss::generate(mesh(vertices, triangles), resolution(res), options(opts), supersample));
+}
+
+py::dict generateVoxels(const py::object& data, const py::object& shape, double voxelSize,
+                        const py::object& origin, const py::dict& opts) {
+    return result(mss::generate(voxels(data, shape, voxelSize, origin), options(opts)));
+}
+
+py::dict massMesh(const py::object& vertices, const py::object& triangles) {
+    return mass(mss::meshMassProperties(mesh(vertices, triangles)));
+}
+
+py::dict massVoxels(const py::object& data, const py::object& shape, double voxelSize,
+                    const py::object& origin) {
+    return mass(mss::voxelMassProperties(voxels(data, shape, voxelSize, origin)));
+}
+
+py::dict massSpheres(const py::object& centers, const py::object& radii, int resolution) {
+    return mass(mss::sphereUnionMassProperties(spheres(centers, radii), resolution));
+}
+
+py::dict scoreMesh(const py::object& vertices, const py::object& triangles, const py::object& centers,
+                   const py::object& radii, int resolution, double offset, int supersample) {
+    return score(mss::scoreSpheres(mesh(vertices, triangles), spheres(centers, radii), resolution, offset,
+                                   supersample));
+}
+
+py::dict scoreVoxels(const py::object& data, const py::object& shape, double voxelSize,
+                     const py::object& origin, const py::object& centers, const py::object& radii) {
+    return score(mss::scoreSpheres(voxels(data, shape, voxelSize, origin), spheres(centers, radii)));
+}
+
+py::tuple readSpheres(const std::string& path) {
+    const mss::SphereSet s = mss::readSpheres(path);
+    py::list c, r;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        for (int a = 0; a < 3; ++a) c.append(s.centers[i][a]);
+        r.append(s.radii[i]);
+    }
+    return py::make_tuple(c, r);
+}
+
+void writeSpheres(const py::object& centers, const py::object& radii, const std::string& path) {
+    mss::writeSpheres(spheres(centers, radii), path);
+}
+
+void translateInvalid(const std::invalid_argument& e) {
+    PyErr_SetString(PyExc_ValueError, e.what());
+}
+void translateRuntime(const std::runtime_error& e) {
+    PyErr_SetString(PyExc_RuntimeError, e.what());
+}
+
+} // namespace
+
+BOOST_PYTHON_MODULE(_mss) {
+    py::register_exception_translator<std::invalid_argument>(&translateInvalid);
+    py::register_exception_translator<std::runtime_error>(&translateRuntime);
+    py::scope().attr("__doc__") = "yade-mss core (C++). Use the yade_mss package, which wraps this module.";
+    py::def("readMesh", readMesh, (py::arg("path")), "Mesh file -> (flat vertices, flat triangles).");
+    py::def("meshInfo", meshInfo, (py::arg("vertices"), py::arg("triangles")));
+    py::def("generateMesh", generateMesh,
+            (py::arg("vertices"), py::arg("triangles"), py::arg("resolution"), py::arg("options"),
+             py::arg("supersample") = 1));
+    py::def("generateVoxels", generateVoxels,
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options")));
+    py::def("massMesh", massMesh, (py::arg("vertices"), py::arg("triangles")));
+    py::def("massVoxels", massVoxels,
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin")));
+    py::def("massSpheres", massSpheres, (py::arg("centers"), py::arg("radii"), py::arg("resolution") = 200));
+    py::def("scoreMesh", scoreMesh,
+            (py::arg("vertices"), py::arg("triangles"), py::arg("centers"), py::arg("radii"),
+             py::arg("resolution") = 100, py::arg("offset") = 0.37, py::arg("supersample") = 1));
+    py::def("scoreVoxels", scoreVoxels,
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
+             py::arg("radii")));
+    py::def("readSpheres", readSpheres, (py::arg("path")));
+    py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
+}

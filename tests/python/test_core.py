@@ -1,0 +1,120 @@
+"""yade_mss without YADE: generation, scoring, mass properties, files. Run with /usr/bin/python3."""
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+import yade_mss
+from yade_mss import generate, massProperties, readSpheres, score, MssResult
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data')
+ELL = os.path.join(DATA, 'ellipsoid_2_1_1.stl')
+FEMUR = os.path.join(DATA, 'human_femur.stl')
+
+
+class Generate(unittest.TestCase):
+    def test_mesh_file(self):
+        r = generate(ELL, nSpheres=6, resolution=40)
+        self.assertEqual(len(r), 6)
+        self.assertEqual(r.centers.shape, (6, 3))
+        self.assertLess(r.metrics['dice'], 0.05)
+        self.assertAlmostEqual(r.targetMass.volume, 8.373, places=2)
+
+    def test_mesh_in_memory_gives_the_same_spheres(self):
+        from yade_mss import _mss
+        v, t = _mss.readMesh(ELL)
+        a = generate((np.array(v).reshape(-1, 3), np.array(t).reshape(-1, 3)), nSpheres=5, resolution=30)
+        b = generate(ELL, nSpheres=5, resolution=30)
+        np.testing.assert_array_equal(a.centers, b.centers)
+        np.testing.assert_array_equal(a.radii, b.radii)
+
+    def test_voxel_array_keeps_world_positions(self):
+        # a ball of radius 8 voxels centred at voxel (20, 18, 16), voxel size 0.5, origin (1, 2, 3)
+        i, j, k = np.mgrid[0:40, 0:36, 0:32]
+        ball = (i - 20) ** 2 + (j - 18) ** 2 + (k - 16) ** 2 <= 64
+        r = generate(ball, nSpheres=1, voxelSize=0.5, origin=(1, 2, 3))
+        np.testing.assert_allclose(r.centers[0], [1 + 10, 2 + 9, 3 + 8], atol=0.25)  # half a voxel
+        self.assertAlmostEqual(r.radii[0], 4.0, delta=0.25)
+        self.assertAlmostEqual(r.targetMass.volume, ball.sum() * 0.125)
+
+    def test_labelled_volume(self):
+        a = np.zeros((20, 20, 20), dtype=np.uint8)
+        a[3:8, 3:8, 3:8] = 1
+        a[10:18, 10:18, 10:18] = 2
+        r = generate(a, nSpheres=1, label=2)
+        self.assertTrue(np.all(r.centers[0] > 10) and np.all(r.centers[0] < 18))
+
+    def test_eta_target(self):
+        r = generate(FEMUR, eta=0.1, resolution=40)
+        self.assertLessEqual(r.metrics['eta'], 0.1)
+
+    def test_bad_input_is_a_value_error_naming_the_problem(self):
+        cases = [
+            (lambda: generate(ELL, nSpheres=0), 'nSpheres'),
+            (lambda: generate(ELL, nSpheres=3, resolution=0), 'resolution'),
+            (lambda: generate(ELL, nSpheres=3, resolution=10 ** 6), 'would need'),
+            (lambda: generate(ELL), 'termination criterion'),
+            (lambda: generate('missing.stl', nSpheres=3), 'cannot open'),
+            (lambda: generate('grain.xyz', nSpheres=3), 'unknown extension'),
+            (lambda: generate(np.zeros((4, 4)), nSpheres=3), '3-D'),
+            (lambda: generate(np.zeros((4, 4, 4), dtype=bool), nSpheres=3), 'no solid voxel'),
+            (lambda: generate(np.ones((4, 4, 4), dtype=float), nSpheres=3), 'not boolean or integer'),
+            (lambda: generate(ELL, nSpheres=3, method='best'), 'method'),
+            (lambda: generate(42, nSpheres=3), 'source must be'),
+        ]
+        for f, fragment in cases:
+            with self.assertRaises(ValueError) as ctx:
+                f()
+            self.assertIn(fragment, str(ctx.exception))
+
+
+class Files(unittest.TestCase):
+    def test_save_and_load(self):
+        r = generate(ELL, nSpheres=4, resolution=30)
+        with tempfile.TemporaryDirectory() as d:
+            p = os.path.join(d, 'r.npz')
+            r.save(p)
+            q = MssResult.load(p)
+        np.testing.assert_array_equal(q.centers, r.centers)
+        np.testing.assert_array_equal(q.radii, r.radii)
+        self.assertEqual(q.metrics['dice'], r.metrics['dice'])
+        np.testing.assert_array_equal(q.targetMass.inertia, r.targetMass.inertia)
+        with self.assertRaises(ValueError):
+            MssResult.load(ELL)
+
+    def test_read_clump_and_yade_files(self):
+        with tempfile.TemporaryDirectory() as d:
+            csv = os.path.join(d, 'clump.csv')
+            with open(csv, 'w') as f:
+                f.write('x,y,z,r\n0,0,0,1\n1,0,0,1\n')
+            txt = os.path.join(d, 'yade.txt')
+            with open(txt, 'w') as f:
+                f.write('# x y z r id\n0 0 0 1 0\n1 0 0 1 0\n')
+            for p in (csv, txt):
+                s = readSpheres(p)
+                self.assertEqual(len(s), 2)
+                self.assertIsNone(s.targetMass)
+                # union of two unit spheres one radius apart: 2 * 4/3 pi - 5 pi / 12
+                self.assertAlmostEqual(s.unionMass().volume, 8 * math.pi / 3 - 5 * math.pi / 12, delta=0.01)
+
+
+class Scoring(unittest.TestCase):
+    def test_score_prefers_more_spheres(self):
+        few = score(FEMUR, generate(FEMUR, nSpheres=5, resolution=40), resolution=50)
+        many = score(FEMUR, generate(FEMUR, nSpheres=40, resolution=40), resolution=50)
+        self.assertLess(many['dice'], few['dice'])
+        self.assertGreater(many['coverage'], few['coverage'])
+
+    def test_mass_properties_of_the_ellipsoid(self):
+        m = massProperties(ELL)
+        w, v = m.principal()
+        V = 8 * math.pi / 3
+        np.testing.assert_allclose(w, V * np.array([2, 5, 5]) / 5, rtol=2e-3)
+        self.assertAlmostEqual(abs(v[0, 0]), 1.0, places=9)
+
+
+if __name__ == '__main__':
+    unittest.main()
