@@ -193,6 +193,13 @@ class Dynamics(Base):
         self.assertLess(st.pos[2], -0.5)  # and it did fall
 
 
+class Converters(Base):
+    def test_yade_converters_untouched(self):
+        # yade_mss registers no Boost.Python converter: YADE's Eigen types still come back as YADE's types
+        f = utils.facet([(0, 0, 0), (1, 0, 0), (0, 1, 0)])
+        self.assertIsInstance(f.shape.vertices[0], me.Vector3)
+
+
 class Templates(Base):
     def test_replace_by_clumps(self):
         t = mssTemplate(ELL, nSpheres=6, resolution=30)
