@@ -33,6 +33,10 @@ generate options (termination: give at least one of --spheres, --eta, --dice, --
   --method M           optimized (default) or paper (the published procedure)
   --delta-min D        minimal centre distance in voxels, paper mode (default 1)
   --no-symmetry        do not detect and keep mirror planes
+  --clip               no sphere protrudes from the grain (exact distance to the mesh; voxel faces for .npy)
+  --no-refill          with --clip: shrink the spheres afterwards instead of choosing them under the constraint
+  --plane P,N          PX,PY,PZ,NX,NY,NZ: no sphere crosses this plane (spheres stay on the normal's side);
+                       may repeat
   --max-iterations N   iteration cap (default 100)
   --threads T          OpenMP threads (result is the same for any T)
   --memory-limit GIB   refuse grids needing more (default 8)
@@ -47,6 +51,7 @@ compare options:
 
 struct Args {
     std::vector<std::string> positional;
+    std::vector<std::string> planes; // --plane may repeat
     std::map<std::string, std::string> opts;
     bool has(const std::string& k) const { return opts.count(k) != 0; }
 };
@@ -71,7 +76,10 @@ const std::map<std::string, bool> kOptions = {{"--spheres", true},
                                               {"--label", true},
                                               {"--offset", true},
                                               {"--help", false},
-                                              {"-h", false}};
+                                              {"-h", false},
+                                              {"--clip", false},
+                                              {"--no-refill", false},
+                                              {"--plane", true}};
 
 Args parse(int argc, char** argv, int from) {
     Args a;
@@ -83,7 +91,10 @@ Args parse(int argc, char** argv, int from) {
             if (it == kOptions.end()) throw std::invalid_argument("unknown option '" + s + "'");
             if (it->second) {
                 if (i + 1 >= argc) throw std::invalid_argument("option " + s + " needs a value");
-                a.opts[s == "-o" ? "--output" : s] = argv[++i];
+                if (s == "--plane")
+                    a.planes.push_back(argv[++i]);
+                else
+                    a.opts[s == "-o" ? "--output" : s] = argv[++i];
             } else {
                 a.opts[s] = "";
             }
@@ -160,6 +171,7 @@ void printMetrics(const mss::Result& r) {
     std::cout << "eta         " << m.eta << "   (relative mismatch, eq. 7, generation grid)\n";
     std::cout << "dice        " << m.dice << "   (Dice mismatch, eq. 27, generation grid)\n";
     std::cout << "iterations  " << m.iterations << "   symmetry planes kept " << m.symmetryPlanes << "\n";
+    if (m.clipped) std::cout << "clipped     " << m.clipped << " spheres shrunk by the final clipping\n";
     std::cout << std::setprecision(3) << "seconds     read " << m.secondsRead << "  voxelize "
               << m.secondsVoxelize << "  edt " << m.secondsEdt << "  select " << m.secondsSelect
               << "  refine " << m.secondsRefine << "  total " << m.secondsTotal << "\n";
@@ -186,6 +198,19 @@ int cmdGenerate(const Args& a) {
     o.maxIterations = integer(a, "--max-iterations", 100);
     o.threads = integer(a, "--threads", 0);
     o.keepSymmetry = !a.has("--no-symmetry");
+    o.clip = a.has("--clip");
+    o.refill = !a.has("--no-refill");
+    for (const std::string& text : a.planes) {
+        std::string t = text;
+        for (char& c : t)
+            if (c == ',') c = ' ';
+        std::istringstream is(t);
+        mss::Plane p;
+        if (!(is >> p.point.x() >> p.point.y() >> p.point.z() >> p.normal.x() >> p.normal.y() >>
+              p.normal.z()))
+            throw std::invalid_argument("--plane: expected PX,PY,PZ,NX,NY,NZ, got '" + text + "'");
+        o.planes.push_back(p);
+    }
     const std::string method = a.has("--method") ? a.opts.at("--method") : "optimized";
     if (method == "optimized")
         o.method = mss::Method::Optimized;
@@ -207,6 +232,8 @@ int cmdGenerate(const Args& a) {
         r = mss::generate(mesh, resolution(a), o, integer(a, "--supersample", 1));
         r.metrics.secondsRead = tRead;
     }
+    for (const std::string& w : r.metrics.warnings)
+        std::cerr << "mss generate: warning: " << in << ": " << w << "\n";
     mss::writeSpheres(r.spheres, out);
     r.metrics.secondsTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     printMetrics(r);

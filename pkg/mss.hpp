@@ -1,6 +1,7 @@
 // yade-mss public API: the table of contents.
 #pragma once
 
+#include "mss/clip.hpp"     // distances to meshes, winding numbers, constraint planes
 #include "mss/edt.hpp"      // exact Euclidean distance transform (eq. 8)
 #include "mss/generate.hpp" // the generator (sections 3.3-3.5)
 #include "mss/grid.hpp"     // voxel grids

@@ -115,6 +115,20 @@ mss::GenerateOptions options(const py::dict& d) {
     if (d.has_key("deltaMin")) o.deltaMin = py::extract<double>(d["deltaMin"]);
     if (d.has_key("keepSymmetry")) o.keepSymmetry = py::extract<bool>(d["keepSymmetry"]);
     if (d.has_key("threads")) o.threads = py::extract<int>(d["threads"]);
+    if (d.has_key("clip")) o.clip = py::extract<bool>(d["clip"]);
+    if (d.has_key("refill")) o.refill = py::extract<bool>(d["refill"]);
+    if (d.has_key("planes")) {
+        const py::object planes = d["planes"];
+        for (long i = 0; i < py::len(planes); ++i) {
+            const std::vector<double> v = doubles(planes[i], "planes");
+            if (v.size() != 6)
+                throw std::invalid_argument("generate: a plane is 6 numbers: point and normal");
+            mss::Plane p;
+            p.point = mss::Vec3(v[0], v[1], v[2]);
+            p.normal = mss::Vec3(v[3], v[4], v[5]);
+            o.planes.push_back(p);
+        }
+    }
     if (d.has_key("method")) {
         const std::string m = py::extract<std::string>(d["method"]);
         if (m == "optimized")
@@ -161,6 +175,10 @@ py::dict result(const mss::Result& r) {
     md["solidVoxels"] = m.solidVoxels;
     md["sphereVoxels"] = m.sphereVoxels;
     md["symmetryPlanes"] = m.symmetryPlanes;
+    md["clipped"] = m.clipped;
+    py::list warnings;
+    for (const std::string& w : m.warnings) warnings.append(w);
+    md["warnings"] = warnings;
     md["secondsVoxelize"] = m.secondsVoxelize;
     md["secondsEdt"] = m.secondsEdt;
     md["secondsSelect"] = m.secondsSelect;

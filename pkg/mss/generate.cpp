@@ -8,10 +8,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
+#include <limits>
+#include <memory>
 #include <queue>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -35,6 +39,10 @@ inline int ceilInt(double x) {
     const int i = static_cast<int>(x);
     return i + (static_cast<double>(i) < x);
 }
+
+/// Largest radius allowed for a sphere centred at a point (clipping, constraint planes); negative where no
+/// centre may be; +inf without constraint. BoundVox: voxel coordinates and units of the generation grid.
+using BoundVox = std::function<double(const Vec3&)>;
 
 /// A sphere in continuous voxel coordinates of the generation grid.
 struct Ball {
@@ -267,7 +275,8 @@ struct Orbit {
     Vec3 c;
     double r;
     std::array<bool, 3> onPlane{false, false, false};
-    bool broken = false; ///< placed alone: its images did not fit the sphere budget
+    bool broken = false;  ///< placed alone: its images did not fit the sphere budget
+    bool bounded = false; ///< radius already reduced to what the constraints (clipping, planes) allow
 };
 
 class Symmetry {
@@ -324,7 +333,8 @@ struct Targets {
 };
 
 /// MSS paper, sections 3.3-3.4 as published.
-std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, Metrics& m) {
+std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, Metrics& m,
+                           const BoundVox& bound) {
     const double h = S.spec.h;
     const double rMinVox = opt.rMin / h;
     const std::size_t budget = opt.nSpheres > 0 ? std::size_t(opt.nSpheres) : SIZE_MAX;
@@ -342,7 +352,10 @@ std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Genera
             for (const Ball& b : balls)
                 near = near || (b.c - c.position).norm() < opt.deltaMin; // δmin, section 3.4
             if (near) continue;
-            balls.push_back({c.position, c.voxelValue});
+            double r = c.voxelValue;
+            if (bound) r = std::min(r, bound(c.position)); // clipped (section 3.5)
+            if (r < std::max(rMinVox, 1e-3)) continue;
+            balls.push_back({c.position, r});
             ++added;
         }
         return added;
@@ -380,7 +393,7 @@ std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Genera
 
 /// Optimised selection: see the comment at generate() below.
 std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
-                               Metrics& m, double& secondsRefine) {
+                               const BoundVox& bound, Metrics& m, double& secondsRefine) {
     const double h = S.spec.h;
     const double rMinVox = std::max(0.5, opt.rMin / h);
     const auto tStart = Clock::now();
@@ -399,9 +412,16 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
     // is more than half a voxel higher (on a slope of the distance field one neighbour is ~1 higher).
     std::vector<Orbit> cands;
     std::set<std::array<long long, 3>> seen;
+    // the largest radius the constraints allow for all images of an orbit
+    auto orbitBound = [&](const Orbit& o) {
+        double b = std::numeric_limits<double>::infinity();
+        if (bound)
+            for (const Ball& x : sym.images(o)) b = std::min(b, bound(x.c));
+        return b;
+    };
     auto addCandidate = [&](const Vec3& c, double r) {
         if (r < rMinVox) return;
-        const Orbit o = sym.make(c, r);
+        Orbit o = sym.make(c, r); // constraints applied when the greedy first looks at it (bounded)
         const Vec3 key = sym.canonical(o.c) * 8.0;
         if (!seen.insert({std::llround(key.x()), std::llround(key.y()), std::llround(key.z())}).second)
             return;
@@ -481,6 +501,15 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
             while (!heap.empty() && int(batch.size()) < kBatch) {
                 const std::size_t p = static_cast<std::size_t>(-heap.top().second);
                 if (stamp[p] == placed) break;
+                if (!cands[p].bounded) { // the constraints, looked up only for candidates the greedy reaches
+                    cands[p].bounded = true;
+                    cands[p].r = std::min(cands[p].r, orbitBound(cands[p]));
+                    if (cands[p].r < rMinVox) {
+                        heap.pop();
+                        used[p] = 1;
+                        continue;
+                    }
+                }
                 if (sym.images(cands[p]).size() > std::size_t(t.budget) - placed) {
                     if (!allowBreak) break;
                     cands[p].broken = true;
@@ -547,8 +576,15 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                                     trial.c[a] += sgn * step;
                                 else
                                     trial.r += sgn * step;
-                                if (trial.r < rMinVox) continue;
                                 if (a < 3 && (trial.c[a] < 1.0 || trial.c[a] > d[a] - 2.0)) continue;
+                                const double limit = orbitBound(trial);
+                                if (a < 3 && limit > trial.r && limit < 1e300) {
+                                    Orbit touching = trial; // under a constraint: grow to touch as well
+                                    touching.r = limit;
+                                    trials.push_back(touching);
+                                }
+                                trial.r = std::min(trial.r, limit);
+                                if (trial.r < rMinVox) continue;
                                 trials.push_back(trial);
                             }
                         }
@@ -659,7 +695,10 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
     return out;
 }
 
-Result generateOnGrid(const VoxelGrid& S, const GenerateOptions& opt, Metrics m, Clock::time_point start) {
+/// @p meshBound: the mesh's constraint in world units (clipping to the mesh, planes), or empty: then clipping
+/// and planes apply to the voxel volume S.
+Result generateOnGrid(const VoxelGrid& S, const GenerateOptions& opt, Metrics m, Clock::time_point start,
+                      std::function<double(const Vec3&)> meshBound = {}) {
     if (opt.threads > 0) {
 #ifdef _OPENMP
         omp_set_num_threads(opt.threads);
@@ -670,19 +709,67 @@ Result generateOnGrid(const VoxelGrid& S, const GenerateOptions& opt, Metrics m,
     m.secondsEdt = secondsSince(t0);
     if (countSolid(S) == 0)
         throw std::invalid_argument("generate: the voxelised solid is empty (resolution too coarse?)");
+    const double h = S.spec.h;
+    std::function<double(const Vec3&)> bound = meshBound;
+    if (!bound && (opt.clip || !opt.planes.empty())) {
+        // voxel volume: stay in the union of the solid voxels' cubes. The ball around c of radius
+        // (E(v) - |c - v| - sqrt(3)/2) h, v the voxel holding c, reaches no background voxel's cube: E(v) is
+        // the distance to the nearest background centre, 1-Lipschitz, and a cube lies within sqrt(3)/2 h of
+        // its centre. Conservative by up to a voxel: the guarantee holds at voxel accuracy.
+        bound = [&S, &E, &opt, h](const Vec3& c) {
+            double b = std::numeric_limits<double>::infinity();
+            for (const Plane& p : opt.planes) b = std::min(b, planeDistance(p, c));
+            if (!opt.clip || b < 0) return b;
+            const Vec3 vc = S.spec.toVoxel(c);
+            const auto v = S.spec.voxelOf(c);
+            if (!S.spec.contains(v[0], v[1], v[2]) || !S(v[0], v[1], v[2])) return -1.0;
+            const double e = E(v[0], v[1], v[2]) - (vc - Vec3(v[0], v[1], v[2])).norm() - 0.8660254037844387;
+            return std::min(b, e * h);
+        };
+    }
+    BoundVox boundVox;
+    // the optimiser asks again and again at the same points (moves back and forth): remember the answers
+    struct KeyHash {
+        std::size_t operator()(const std::array<long long, 3>& k) const {
+            return std::hash<long long>()(k[0] * 73856093LL ^ k[1] * 19349663LL ^ k[2] * 83492791LL);
+        }
+    };
+    std::unordered_map<std::array<long long, 3>, double, KeyHash> cache;
+    if (bound && (opt.refill || !opt.clip))
+        boundVox = [&bound, &S, &cache, h](const Vec3& v) {
+            const std::array<long long, 3> key{std::llround(v.x() * 65536.0), std::llround(v.y() * 65536.0),
+                                               std::llround(v.z() * 65536.0)};
+            auto it = cache.find(key);
+            if (it != cache.end()) return it->second;
+            const double b = bound(S.spec.toWorld(v)) / h;
+            cache.emplace(key, b);
+            return b;
+        };
     std::vector<Ball> balls;
     double secondsRefine = 0.0;
     t0 = Clock::now();
     if (opt.method == Method::Paper) {
-        balls = runPaper(S, E, opt, m);
+        balls = runPaper(S, E, opt, m, boundVox);
         m.secondsSelect = secondsSince(t0);
     } else {
-        balls = runOptimized(S, E, opt, m, secondsRefine);
+        balls = runOptimized(S, E, opt, boundVox, m, secondsRefine);
     }
     m.secondsRefine = secondsRefine;
     Result r;
     r.grid = S.spec;
-    for (const Ball& b : balls) r.spheres.add(S.spec.toWorld(b.c), b.r * S.spec.h);
+    const double rMin = std::max(opt.rMin, 1e-9 * h);
+    for (const Ball& b : balls) {
+        const Vec3 c = S.spec.toWorld(b.c);
+        double radius = b.r * h;
+        if (bound) { // final clipping in world units: the guarantee does not rest on the voxel maths
+            const double limit = bound(c);
+            if (limit < radius) {
+                ++m.clipped;
+                radius = limit;
+            }
+        }
+        if (radius >= rMin) r.spheres.add(c, radius);
+    }
     const Mismatch mm = mismatch(S, voxelizeSpheres(r.spheres, S.spec));
     m.spheres = r.spheres.size();
     m.eta = mm.eta;
@@ -709,6 +796,7 @@ void validateOptions(const GenerateOptions& o) {
     if (o.maxIterations < 1) bad("maxIterations must be >= 1", o.maxIterations);
     if (!(o.deltaMin >= 0.0) || !std::isfinite(o.deltaMin)) bad("deltaMin must be >= 0", o.deltaMin);
     if (o.threads < 0) bad("threads must be >= 0", o.threads);
+    for (const Plane& p : o.planes) validatePlane(p, "generate");
     if (o.nSpheres == 0 && o.eta == 0.0 && o.dice == 0.0 && o.rMin == 0.0)
         throw std::invalid_argument(
             "generate: give at least one termination criterion (sphere count, eta, dice or rMin)");
@@ -740,7 +828,7 @@ Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx) {
 //   often fewer than the budget and poorly placed for it. E* = 2E - Ẽ (eq. 25) is not needed: the exact gain
 //   already measures what a candidate adds beyond the current union.
 // - Centres and radii are then tuned by coordinate descent on the voxel mismatch; radii may exceed E by the
-//   discretisation the paper accepts (section 3.5). A strict no-protrusion option is separate (clipping).
+//   discretisation the paper accepts (section 3.5), unless clipping is asked for (GenerateOptions::clip).
 // - Mirror planes of the voxelised grain through the grid centre are detected; candidates are placed with
 //   their mirror images so the sphere set keeps the grain's symmetry (paper section 4.2 values this).
 Result generate(const VoxelGrid& volume, const GenerateOptions& options) {
@@ -757,13 +845,38 @@ Result generate(const TriangleMesh& mesh, const Resolution& resolution, const Ge
     const auto start = Clock::now();
     Metrics m;
     auto t0 = Clock::now();
-    const VoxelGrid S = voxelizeMesh(mesh, resolution, supersample);
+    const VoxelGrid S = voxelizeMesh(mesh, resolution, supersample, &m.warnings);
     m.secondsVoxelize = secondsSince(t0);
     if (countSolid(S) == 0)
         throw std::invalid_argument(
             "generate: the mesh voxelises to no solid voxel (open mesh or too coarse a "
             "resolution?)");
-    return generateOnGrid(S, options, m, start);
+    if (!options.clip && options.planes.empty()) return generateOnGrid(S, options, m, start);
+    // Clipping (paper section 3.5, with the exact distance to the surface instead of the nearest vertex): a
+    // sphere's radius is at most the distance from its centre to the nearest point of any triangle (CGAL AABB
+    // tree), and a centre outside the solid is not allowed. Inside: the voxel centre nearest to c when the
+    // surface is farther from c than that centre (same side), else the generalised winding number.
+    std::unique_ptr<MeshQuery> query;
+    VoxelGrid centres;
+    if (options.clip) {
+        query = std::make_unique<MeshQuery>(mesh);
+        if (supersample != 1) centres = voxelizeMesh(mesh, S.spec, 1);
+    }
+    const VoxelGrid& inside = supersample != 1 ? centres : S;
+    auto bound = [&](const Vec3& c) {
+        double b = std::numeric_limits<double>::infinity();
+        for (const Plane& p : options.planes) b = std::min(b, planeDistance(p, c));
+        if (!query || b < 0) return b;
+        const double dist = query->distance(c);
+        const auto v = S.spec.voxelOf(c);
+        bool in;
+        if (S.spec.contains(v[0], v[1], v[2]) && dist > (c - S.spec.voxelCenter(v[0], v[1], v[2])).norm())
+            in = inside(v[0], v[1], v[2]) != 0;
+        else
+            in = query->inside(c);
+        return in ? std::min(b, dist) : -1.0;
+    };
+    return generateOnGrid(S, options, m, start, bound);
 }
 
 } // namespace mss

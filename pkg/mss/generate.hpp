@@ -1,6 +1,7 @@
 // The MSS generator: a voxelised grain in, a sphere set out (MSS paper sections 3.3-3.5).
 #pragma once
 
+#include "mss/clip.hpp"
 #include "mss/grid.hpp"
 #include "mss/mesh.hpp"
 #include "mss/spheres.hpp"
@@ -36,6 +37,15 @@ struct GenerateOptions {
     Method method = Method::Optimized;
     bool keepSymmetry = true; ///< optimized: detect mirror planes of the voxelised grain and keep them
     int threads = 0;          ///< OpenMP threads; 0 = the default. The result does not depend on it.
+    /// No sphere protrudes from the solid (paper section 3.5, exactly): a mesh's spheres get radii at most
+    /// the exact distance from their centre to the surface, a sphere whose centre is outside is not placed; a
+    /// voxel volume's spheres stay inside the union of its solid voxels (a conservative bound from the EDT).
+    bool clip = false;
+    /// With clip: choose and tune spheres under the constraint, so that coverage lost to clipping is
+    /// regained. Without: generate freely, then shrink the radii (and drop spheres whose centre is outside).
+    bool refill = true;
+    std::vector<Plane>
+        planes; ///< planes no sphere may cross (system walls, a fragmentation plane), always applied
 };
 
 /// Figures of a generation, on the generation grid.
@@ -44,9 +54,11 @@ struct Metrics {
     double eta = 0.0;  ///< relative mismatch, eq. 7
     double dice = 0.0; ///< Dice mismatch, eq. 27
     int iterations = 0;
-    std::size_t solidVoxels = 0;  ///< sum of S
-    std::size_t sphereVoxels = 0; ///< sum of S~
-    int symmetryPlanes = 0;       ///< mirror planes detected and kept (optimized mode)
+    std::size_t solidVoxels = 0;       ///< sum of S
+    std::size_t sphereVoxels = 0;      ///< sum of S~
+    int symmetryPlanes = 0;            ///< mirror planes detected and kept (optimized mode)
+    std::size_t clipped = 0;           ///< spheres whose radius the final clipping reduced
+    std::vector<std::string> warnings; ///< what was wrong with the input and how it was handled
     double secondsRead = 0.0, secondsVoxelize = 0.0, secondsEdt = 0.0, secondsSelect = 0.0,
            secondsRefine = 0.0, secondsTotal = 0.0;
 };

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
@@ -260,6 +261,43 @@ MeshInfo analyzeMesh(const TriangleMesh& mesh) {
     info.closed = info.boundaryEdges == 0 && info.nonManifoldEdges == 0 && info.triangles > 0;
     info.consistentlyOriented = info.inconsistentEdges == 0;
     return info;
+}
+
+TriangleMesh capHoles(const TriangleMesh& mesh) {
+    validateMesh(mesh, "capHoles");
+    // directed edges without their twin are boundary edges; the cap runs along them backwards
+    std::map<std::pair<int, int>, int> directed;
+    for (const auto& t : mesh.triangles)
+        for (int e = 0; e < 3; ++e) ++directed[{t[e], t[(e + 1) % 3]}];
+    std::multimap<int, int> next; // boundary edge u -> v, keyed by u
+    for (const auto& [edge, n] : directed)
+        if (!directed.count({edge.second, edge.first})) next.emplace(edge.first, edge.second);
+    TriangleMesh out = mesh;
+    while (!next.empty()) {
+        std::vector<int> loop;
+        auto it = next.begin();
+        const int start = it->first;
+        int u = start;
+        while (it != next.end()) {
+            loop.push_back(u);
+            const int v = it->second;
+            next.erase(it);
+            u = v;
+            if (u == start) break;
+            it = next.find(u);
+        }
+        if (loop.size() < 3) continue;
+        Vec3 c = Vec3::Zero();
+        for (int v : loop) c += mesh.vertices[v];
+        c /= double(loop.size());
+        const int ci = static_cast<int>(out.vertices.size());
+        out.vertices.push_back(c);
+        for (std::size_t q = 0; q < loop.size(); ++q) {
+            const int a = loop[q], b = loop[(q + 1) % loop.size()];
+            out.triangles.push_back({b, a, ci}); // edge a -> b is on the boundary: the cap uses b -> a
+        }
+    }
+    return out;
 }
 
 TriangleMesh readMesh(const std::string& path) {

@@ -38,6 +38,10 @@ void validateMesh(const TriangleMesh& mesh, const std::string& where);
 /// Topology, volume and bounding box. O(T log T).
 MeshInfo analyzeMesh(const TriangleMesh& mesh);
 
+/// The mesh with each hole (loop of boundary edges) closed by a fan of triangles around the loop's centroid,
+/// oriented like the rest. Simple, not pretty: for volumes and tests, not for display.
+TriangleMesh capHoles(const TriangleMesh& mesh);
+
 /// Reads a mesh file by extension: .stl (ASCII or binary; our own reader, for speed and for errors that name
 /// the line or the size mismatch), .obj, .off, .ply (through CGAL's readers).
 /// Polygons with more than three corners are split into triangle fans. Identical vertices are merged.

@@ -1,7 +1,9 @@
 #include "mss/voxelize.hpp"
+#include "mss/clip.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -83,7 +85,8 @@ inline double edgeFunction(double ay, double az, double by, double bz, double py
 
 } // namespace
 
-VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample) {
+VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample,
+                       std::vector<std::string>* warnings) {
     validateMesh(mesh, "voxelizeMesh");
     if (supersample < 1 || supersample > 8)
         throw std::invalid_argument("voxelizeMesh: supersample must be 1..8, got " +
@@ -91,6 +94,18 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
     if (!(grid.h > 0.0) || grid.size() == 0) throw std::invalid_argument("voxelizeMesh: empty grid");
     const MeshInfo info = analyzeMesh(mesh);
     const bool parity = !info.consistentlyOriented;
+    std::unique_ptr<MeshQuery> winding;
+    if (!info.closed) {
+        winding = std::make_unique<MeshQuery>(mesh);
+        if (warnings)
+            warnings->push_back("the mesh is not closed (" + std::to_string(info.boundaryEdges) +
+                                " boundary edges, " + std::to_string(info.nonManifoldEdges) +
+                                " non-manifold edges): inside decided by the generalised winding number");
+    } else if (parity && warnings) {
+        warnings->push_back("the triangles are not consistently oriented (" +
+                            std::to_string(info.inconsistentEdges) +
+                            " edges): inside decided by the parity of crossings");
+    }
     const int s = supersample;
     const int NY = grid.dims[1] * s, NZ = grid.dims[2] * s;
     const std::size_t nColumns = static_cast<std::size_t>(NY) * NZ;
@@ -164,6 +179,23 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
                         std::sort(b, e, [](const Hit& p, const Hit& q) {
                             return p.x < q.x || (p.x == q.x && p.sign < q.sign);
                         });
+                        std::uint16_t* row = count.data() + static_cast<std::size_t>(j) * nx;
+                        auto fill = [&](double x0,
+                                        double x1) { // samples X with x0 <= (X + 0.5)/s - 0.5 <= x1
+                            long long X0 = static_cast<long long>(std::ceil((x0 + 0.5) * s - 0.5));
+                            long long X1 = static_cast<long long>(std::floor((x1 + 0.5) * s - 0.5));
+                            X0 = std::max(0LL, X0);
+                            X1 = std::min<long long>(static_cast<long long>(nx) * s - 1, X1);
+                            for (long long X = X0; X <= X1; ++X) ++row[X / s];
+                        };
+                        if (winding) { // open mesh: each run between crossings by its winding number
+                            const double py = subCoord(j * s + cy), pz = subCoord(K);
+                            for (Hit* h = b; h + 1 != e; ++h) {
+                                const double xm = 0.5 * (double(h->x) + double((h + 1)->x));
+                                if (winding->inside(grid.toWorld(Vec3(xm, py, pz)))) fill(h->x, (h + 1)->x);
+                            }
+                            continue;
+                        }
                         int winding = 0;
                         for (Hit* h = b; h != e; ++h) {
                             const int before = winding;
@@ -177,14 +209,7 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
                                 if (w2 == 0) break;
                             }
                             if (q == e) break; // unclosed run (open mesh): ignore the rest
-                            // samples X with x0 <= (X + 0.5)/s - 0.5 <= x1
-                            const double x0 = h->x, x1 = q->x;
-                            long long X0 = static_cast<long long>(std::ceil((x0 + 0.5) * s - 0.5));
-                            long long X1 = static_cast<long long>(std::floor((x1 + 0.5) * s - 0.5));
-                            X0 = std::max(0LL, X0);
-                            X1 = std::min<long long>(static_cast<long long>(nx) * s - 1, X1);
-                            std::uint16_t* row = count.data() + static_cast<std::size_t>(j) * nx;
-                            for (long long X = X0; X <= X1; ++X) ++row[X / s];
+                            fill(h->x, q->x);
                             winding = 0;
                             h = q;
                         }
@@ -198,10 +223,11 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
     return out;
 }
 
-VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supersample) {
+VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supersample,
+                       std::vector<std::string>* warnings) {
     validateMesh(mesh, "voxelizeMesh");
     const MeshInfo info = analyzeMesh(mesh);
-    return voxelizeMesh(mesh, gridForBox(info.lower, info.upper, res, "voxelizeMesh"), supersample);
+    return voxelizeMesh(mesh, gridForBox(info.lower, info.upper, res, "voxelizeMesh"), supersample, warnings);
 }
 
 VoxelGrid voxelizeSpheres(const SphereSet& spheres, const GridSpec& grid) {

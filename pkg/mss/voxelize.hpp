@@ -29,10 +29,15 @@ GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res,
 /// overlapping closed shells work); a mesh whose triangles are not consistently oriented uses the parity
 /// rule. Ray/edge ties are broken by a symbolic perturbation, so rays through shared edges and vertices are
 /// counted once (watertight). O(T + N) for T triangles and N voxels; parallel over z slices.
-VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample = 1);
+/// A mesh that is not closed (boundary or non-manifold edges) would fool any ray count: there each run
+/// between two crossings of a ray is inside when the generalised winding number at its middle is >= 1/2
+/// (MeshQuery), and a line saying so is added to @p warnings.
+VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample = 1,
+                       std::vector<std::string>* warnings = nullptr);
 
 /// Grid from @p res around the mesh bounding box, then voxelizeMesh. Checks the mesh first.
-VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supersample = 1);
+VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supersample = 1,
+                       std::vector<std::string>* warnings = nullptr);
 
 /// Voxelises the union of spheres (eq. 1) on @p grid: a voxel is set when its centre lies in a sphere
 /// (distance <= radius). O(sum of sphere volumes in voxels); parallel over z slices.

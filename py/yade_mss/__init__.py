@@ -202,7 +202,7 @@ def massProperties(source, voxelSize=None, origin=None, label=None):
 
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None,
              method='optimized', supersample=1, keepSymmetry=True, maxIterations=100, deltaMin=1.0, threads=0,
-             origin=None, label=None, memoryLimit=None):
+             origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=()):
     """Generates the sphere set of a grain (MSS paper, sections 2-3).
 
     :param source: mesh file (.stl .obj .off .ply), voxel file (.npy), 3-D numpy array (bool or int), a tuple
@@ -217,6 +217,11 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     :param int supersample: mesh: k^3 samples per voxel in voxelisation (1 = voxel centres)
     :param origin: voxels: world position of the centre of voxel (0, 0, 0)
     :param int label: voxels: solid where the array equals this label (labelled CT volumes)
+    :param bool clip: no sphere protrudes from the grain (mesh: exact distance to the surface; voxels: the faces
+        of the solid voxels)
+    :param bool refill: with clip, choose the spheres under the constraint to regain coverage (default)
+    :param planes: planes no sphere may cross, as ((px, py, pz), (nx, ny, nz)); spheres stay on the side the
+        normal points to
     :return: :class:`MssResult`
     """
     if isinstance(source, MssResult):
@@ -224,7 +229,8 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     if method not in ('optimized', 'paper'):
         raise ValueError("generate: method must be 'optimized' or 'paper', got %r" % (method,))
     opts = {'maxIterations': int(maxIterations), 'deltaMin': float(deltaMin), 'keepSymmetry': bool(keepSymmetry),
-            'threads': int(threads), 'method': method}
+            'threads': int(threads), 'method': method, 'clip': bool(clip), 'refill': bool(refill),
+            'planes': [_plane(p) for p in planes]}
     if nSpheres is not None:
         if int(nSpheres) != nSpheres or nSpheres < 1:
             raise ValueError('generate: nSpheres must be an integer >= 1, got %r' % (nSpheres,))
@@ -250,7 +256,20 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
             raise ValueError('generate: resolution applies to meshes; voxels are used at their own resolution')
         d = _mss.generateVoxels(*s.args(), opts)
         target = MassProperties._fromDict(_mss.massVoxels(*s.args()))
+    for w in d['metrics'].get('warnings', []):
+        warnings.warn('%s: %s' % (s.name, w))
     return MssResult(d['centers'], d['radii'], d['metrics'], d['grid'], target, s.name)
+
+
+def _plane(p):
+    try:
+        point, normal = p
+        v = [float(x) for x in point] + [float(x) for x in normal]
+    except (TypeError, ValueError):
+        raise ValueError('planes: each plane is ((px, py, pz), (nx, ny, nz)), got %r' % (p,))
+    if len(v) != 6:
+        raise ValueError('planes: each plane is ((px, py, pz), (nx, ny, nz)), got %r' % (p,))
+    return v
 
 
 def readSpheres(path):
@@ -355,13 +374,15 @@ _ghostConjugate = [None]
 
 
 def mssClump(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None, clip=False,
-             center=None, orientation=None, scale=1.0, material=-1, color=None, mask=1, mass='target', **kw):
+             center=None, orientation=None, scale=1.0, material=-1, color=None, mask=1, mass='target', planes=(),
+             **kw):
     """Builds one YADE clump from a grain and appends it to O.bodies, as ``O.bodies.appendClumped`` does.
 
     :param source: mesh file, voxel file (.npy), 3-D numpy array, (vertices, triangles), or an :class:`MssResult`
         (then no generation happens)
     :param int nSpheres: at most this many spheres; eta, dice, rMin, voxelSize, resolution: see :func:`generate`
-    :param bool clip: no sphere protruding from the mesh (not available yet: raises NotImplementedError)
+    :param bool clip: no sphere protrudes from the grain (see :func:`generate`); planes: likewise (in the file's
+        frame, before placement)
     :param Vector3 center: where the clump's centre of mass goes (default: where it is in the file's frame)
     :param orientation: rotation about the centre of mass: a Quaternion, (axis, angle), a 3x3 matrix
     :param float scale: size factor about the centre of mass
@@ -377,14 +398,13 @@ def mssClump(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     inertia make YADE's sums come out exact. Its id is the last in ``O.bodies[clumpId].shape.members``.
     """
     utils, O, me = _yade()
-    if clip:
-        raise NotImplementedError('mssClump: clip=True (exact mesh clipping) is not implemented yet')
     if mass not in ('target', 'union'):
         raise ValueError("mssClump: mass must be 'target' or 'union', got %r" % (mass,))
     if not (float(scale) > 0 and math.isfinite(float(scale))):
         raise ValueError('mssClump: scale must be > 0, got %r' % (scale,))
     r = source if isinstance(source, MssResult) else generate(source, nSpheres=nSpheres, eta=eta, dice=dice,
-                                                               rMin=rMin, voxelSize=voxelSize, resolution=resolution)
+                                                               rMin=rMin, voxelSize=voxelSize, resolution=resolution,
+                                                               clip=clip, planes=planes)
     if len(r) == 0:
         raise RuntimeError('mssClump: the generator returned no sphere')
     if mass == 'target':
@@ -472,7 +492,8 @@ class MssTemplate(object):
         self.equivalentRadius = rEq * scale
 
 
-def mssTemplate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None, scale=1.0):
+def mssTemplate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None, scale=1.0,
+                clip=False):
     """Generates a grain once as a template for packings; see :class:`MssTemplate`.
 
     Templates normalised for ``replaceByClumps`` (``t.clumpTemplate``) and ``makeClumpCloud`` (``t.spherePack``).
@@ -480,7 +501,8 @@ def mssTemplate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize
     if not (float(scale) > 0):
         raise ValueError('mssTemplate: scale must be > 0, got %r' % (scale,))
     r = source if isinstance(source, MssResult) else generate(source, nSpheres=nSpheres, eta=eta, dice=dice,
-                                                               rMin=rMin, voxelSize=voxelSize, resolution=resolution)
+                                                               rMin=rMin, voxelSize=voxelSize, resolution=resolution,
+                                                               clip=clip)
     return MssTemplate(r, float(scale))
 
 

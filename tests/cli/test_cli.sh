@@ -34,6 +34,16 @@ check "vtk has 6 points" grep -q 'POINTS 6 double' "$TMP/e.vtk"
 "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --eta 0.1 --resolution 40 --method paper -o "$TMP/p.csv" > "$TMP/p.log"
 check "paper mode meets eta or stops" grep -q '^eta' "$TMP/p.log"
 
+# clipping and planes: nothing outside the grain, nothing across the plane
+"$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --clip -o "$TMP/clip.csv" > /dev/null
+"$MSS" compare "$DATA/human_femur.stl" "$TMP/clip.csv" --resolution 40 > "$TMP/clip.log"
+check "clipped spheres have nothing outside" grep -qE '^outside +0$' "$TMP/clip.log"
+"$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --plane 0,0,-90,0,0,1 -o "$TMP/plane.csv" > /dev/null
+check "no sphere crosses the plane z = -90" awk -F, 'NR > 1 && $3 - $4 < -90 - 1e-9 {bad = 1} END {exit bad}' "$TMP/plane.csv"
+expect_error "bad plane" "expected PX,PY,PZ,NX,NY,NZ" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --plane 1,2,3 -o "$TMP/x.csv"
+"$MSS" generate "$DATA/stanford_bunny_open.stl" --spheres 5 --resolution 30 -o "$TMP/bunny.csv" > /dev/null 2> "$TMP/bunny.err"
+check "open mesh: a warning, and spheres" grep -q "not closed" "$TMP/bunny.err"
+
 # compare: scores our own output; a perfect-ish fit has small dice
 "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.txt" --resolution 50 > "$TMP/cmp.log"
 dice=$(awk '/^dice/{print $2}' "$TMP/cmp.log")

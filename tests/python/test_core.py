@@ -4,6 +4,7 @@ import os
 import sys
 import tempfile
 import unittest
+import warnings
 
 import numpy as np
 
@@ -69,6 +70,23 @@ class Generate(unittest.TestCase):
             with self.assertRaises(ValueError) as ctx:
                 f()
             self.assertIn(fragment, str(ctx.exception))
+
+
+class Clipping(unittest.TestCase):
+    def test_clip_and_planes(self):
+        r = generate(FEMUR, nSpheres=20, resolution=40, clip=True,
+                     planes=[((0, 0, -90), (0, 0, 1))])
+        self.assertGreater(len(r), 5)
+        self.assertTrue(np.all(r.centers[:, 2] - r.radii >= -90 - 1e-9))
+        self.assertEqual(score(FEMUR, r, resolution=40)['outside'], 0.0)
+        with self.assertRaises(ValueError):
+            generate(FEMUR, nSpheres=3, planes=[((0, 0, 0), (0, 0))])
+
+    def test_open_mesh_warns(self):
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter('always')
+            generate(os.path.join(DATA, 'stanford_bunny_open.stl'), nSpheres=5, resolution=30)
+        self.assertTrue(any('not closed' in str(x.message) for x in w))
 
 
 class Files(unittest.TestCase):

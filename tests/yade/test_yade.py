@@ -139,6 +139,15 @@ class Bodies(Base):
             np.testing.assert_allclose(pb, 0.5 * R.dot(pa), atol=1e-9 * 100)
             self.assertAlmostEqual(O.bodies[b].shape.radius, 0.5 * O.bodies[a].shape.radius, places=12)
 
+    def test_clipped_clump_stays_inside(self):
+        cid, ids = mssClump(FEMUR, nSpheres=15, resolution=40, clip=True)
+        from yade_mss import _mss, MssResult
+        c = np.array([np.array(O.bodies[i].state.pos) for i in ids])
+        r = np.array([O.bodies[i].shape.radius for i in ids])
+        s = _mss.scoreMesh(*_mss.readMesh(FEMUR), c.ravel().tolist(), r.tolist(), 40, 0.37, 1)
+        self.assertEqual(s['outside'], 0.0)
+        self.assertEqual(len(ids), 15)
+
     def test_errors_leave_bodies_unchanged(self):
         mssClump(ELL, nSpheres=3, resolution=20)
         n = len(O.bodies)

@@ -1,0 +1,60 @@
+// Keeping spheres inside a grain: exact distances to a mesh, inside tests that tolerate imperfect meshes, and
+// constraint planes (MSS paper section 3.5).
+#pragma once
+
+#include "mss/grid.hpp"
+#include "mss/mesh.hpp"
+#include "mss/spheres.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace mss {
+
+/// A plane no sphere may cross: spheres stay on the side the normal points to, {x : (x - point) . n >= 0}.
+struct Plane {
+    Vec3 point = Vec3::Zero();
+    Vec3 normal = Vec3::UnitZ();
+};
+
+/// Throws std::invalid_argument for a plane with a non-finite point or a zero or non-finite normal.
+void validatePlane(const Plane& p, const char* where);
+
+/// Signed distance from @p x to the plane, positive on the allowed side.
+double planeDistance(const Plane& p, const Vec3& x);
+
+/// Distance and inside queries against a triangle mesh.
+///
+/// distance(): exact Euclidean distance to the nearest point of any triangle, through CGAL's AABB tree
+/// (O(log T) typical). winding(): the generalised winding number (Jacobson, Kavan and Sorkine-Hornung,
+/// "Robust inside-outside segmentation using generalized winding numbers", SIGGRAPH 2013), the sum of the
+/// triangles' signed solid angles over 4 pi (Van Oosterom and Strackee 1983), evaluated with the hierarchical
+/// dipole approximation of Barill et al. ("Fast winding numbers for soups and clouds", SIGGRAPH 2018) for far
+/// clusters: 1 inside a closed mesh, 0 outside, and a smooth value across the holes of an open one.
+/// inside() thresholds |winding| at 1/2, so inside-out meshes work too.
+class MeshQuery {
+public:
+    explicit MeshQuery(const TriangleMesh& mesh);
+    ~MeshQuery();
+    MeshQuery(const MeshQuery&) = delete;
+    MeshQuery& operator=(const MeshQuery&) = delete;
+
+    double distance(const Vec3& p) const;
+    double winding(const Vec3& p) const;
+    bool inside(const Vec3& p) const { return std::abs(winding(p)) >= 0.5; }
+    /// Exact winding number, O(T): for tests of the approximation.
+    double windingExact(const Vec3& p) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+/// Clips a sphere set: each radius becomes at most the exact distance from its centre to the mesh surface
+/// (when @p mesh is given) and to every plane; a sphere whose centre is outside the mesh (generalised winding
+/// number < 1/2) or beyond a plane, or whose radius would fall below @p rMin, is removed.
+/// @param changed if given, receives the number of spheres shrunk or removed.
+SphereSet clipSpheres(const SphereSet& spheres, const TriangleMesh* mesh, const std::vector<Plane>& planes,
+                      double rMin = 0.0, std::size_t* changed = nullptr);
+
+} // namespace mss
