@@ -286,6 +286,7 @@ int cmdInfo(const Args& a) {
     std::cout << "oriented      " << (i.consistentlyOriented ? "yes" : "no")
               << (i.signedVolume < 0 ? " (inside out)" : "") << "\n";
     std::cout << "degenerate    " << i.degenerateTriangles << "\n";
+    std::cout << "self_intersections " << mss::countSelfIntersections(mesh) << "\n";
     std::cout << "volume        " << std::abs(i.signedVolume) << "\n";
     std::cout << "bbox_min      " << i.lower.x() << " " << i.lower.y() << " " << i.lower.z() << "\n";
     std::cout << "bbox_max      " << i.upper.x() << " " << i.upper.y() << " " << i.upper.z() << "\n";

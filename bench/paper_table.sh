@@ -16,13 +16,15 @@ TIME=""
 [ -x /usr/bin/time ] && TIME="/usr/bin/time -f %M -o $OUT/mem"
 
 printf '%-10s %-9s %4s %9s %9s %7s %7s %7s %7s %7s %7s %8s\n' grain method n D_indep D_gen total read voxel edt select refine B/voxel
-run() { # mesh label method n
+run() { # mesh label method n [extra generate options]
   local mesh=$1 label=$2 method=$3 n=$4
+  shift 4
+  local extra=("$@")
   # best of REPEAT runs (these machines are noisy); the output is the same every run
   local best=1e9 t
   for _ in $(seq "$REPEAT"); do
     $TIME $MSS generate "$mesh" --spheres "$n" --resolution 103 --method "$method" --threads "$THREADS" \
-      -o "$OUT/s.csv" > "$OUT/run.log"
+      "${extra[@]}" -o "$OUT/s.csv" > "$OUT/run.log" 2> /dev/null
     t=$(awk '/^seconds/{print $NF}' "$OUT/run.log")
     if awk -v a="$t" -v b="$best" 'BEGIN{exit !(a < b)}'; then best=$t; cp "$OUT/run.log" "$OUT/gen.log"; fi
   done
@@ -41,5 +43,8 @@ for method in optimized paper; do
   run tests/data/ellipsoid_2_1_1.stl ellipsoid "$method" 10
   for n in 10 20 30 50 70 100; do run tests/data/human_femur.stl femur "$method" "$n"; done
 done
+echo "clipping (no sphere protrudes), femur 70: method column = optimized; clip+refill, then clip afterwards only"
+run tests/data/human_femur.stl femur+clip optimized 70 --clip
+run tests/data/human_femur.stl femur+shrink optimized 70 --clip --no-refill
 echo "grids: ellipsoid 210x107x107, femur 128x107x206 (--resolution 103; paper: 209x107x107, 127x107x205)"
 echo "peak memory per voxel is the whole process (mesh, hit lists, all grids) over the generation grid's voxels"

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <stdexcept>
 
@@ -166,6 +167,34 @@ double MeshQuery::windingExact(const Vec3& p) const {
     double omega = 0.0;
     for (const auto& t : impl_->corners) omega += solidAngle(t[0] - p, t[1] - p, t[2] - p);
     return omega / kFourPi;
+}
+
+std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t limit) {
+    validateMesh(mesh, "countSelfIntersections");
+    std::vector<Tri> tris;
+    std::vector<std::array<int, 3>> ids;
+    for (const auto& t : mesh.triangles) {
+        const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
+        if ((b - a).cross(c - a).squaredNorm() == 0.0) continue;
+        tris.emplace_back(K::Point_3(a.x(), a.y(), a.z()), K::Point_3(b.x(), b.y(), b.z()), K::Point_3(c.x(), c.y(), c.z()));
+        ids.push_back(t);
+    }
+    Tree tree(tris.begin(), tris.end());
+    std::size_t count = 0;
+    std::vector<Tree::Primitive_id> hits;
+    for (std::size_t i = 0; i < tris.size() && count < limit; ++i) {
+        hits.clear();
+        tree.all_intersected_primitives(tris[i], std::back_inserter(hits));
+        for (const auto& h : hits) {
+            const std::size_t j = static_cast<std::size_t>(h - tris.begin());
+            if (j <= i) continue;
+            bool shared = false;
+            for (int a : ids[i])
+                for (int b : ids[j]) shared = shared || a == b;
+            if (!shared) ++count;
+        }
+    }
+    return count;
 }
 
 SphereSet clipSpheres(const SphereSet& spheres, const TriangleMesh* mesh, const std::vector<Plane>& planes,

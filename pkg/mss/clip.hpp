@@ -50,6 +50,10 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+/// Number of pairs of triangles that intersect without sharing a vertex (self-intersections), through an AABB
+/// tree: O(T log T) typical. Stops counting at @p limit.
+std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t limit = 1000000);
+
 /// Clips a sphere set: each radius becomes at most the exact distance from its centre to the mesh surface
 /// (when @p mesh is given) and to every plane; a sphere whose centre is outside the mesh (generalised winding
 /// number < 1/2) or beyond a plane, or whose radius would fall below @p rMin, is removed.

@@ -235,3 +235,18 @@ TEST(Clip, OpenBunnyVolumeMatchesItsClosedVersion) {
     EXPECT_EQ(r.spheres.size(), 30u);
     EXPECT_LT(scoreSpheres(closed, r.spheres, 60).dice, 0.08); // like a closed mesh
 }
+
+TEST(Clip, SelfIntersectingMeshIsReportedAndVoxelisedAsTheUnion) {
+    // two unit cubes overlapping by half: one mesh of two closed shells that cross each other
+    const TriangleMesh cube = readMesh(kData + "/cube.stl");
+    TriangleMesh two = cube;
+    const int n = static_cast<int>(cube.vertices.size());
+    for (const Vec3& v : cube.vertices) two.vertices.push_back(v + Vec3(0.5, 0, 0));
+    for (const auto& t : cube.triangles) two.triangles.push_back({t[0] + n, t[1] + n, t[2] + n});
+    EXPECT_EQ(countSelfIntersections(cube), 0u);
+    EXPECT_GT(countSelfIntersections(two), 0u);
+    Resolution res;
+    res.voxelSize = 0.02;
+    const VoxelGrid v = voxelizeMesh(two, res);
+    EXPECT_NEAR(double(countSolid(v)) * std::pow(0.02, 3), 1.5, 0.01); // the union, not the parity of the two
+}
