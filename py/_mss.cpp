@@ -225,6 +225,14 @@ py::tuple readMesh(const std::string& path) {
     return py::make_tuple(v, t);
 }
 
+/// .npy file -> (bytes, x fastest, one per voxel: 1 solid), shape); the C++ reader's checks and messages.
+py::tuple readNpy(const std::string& path, long long label) {
+    const mss::VoxelGrid v = mss::readNpy(path, 1.0, mss::Vec3::Zero(), label);
+    const std::string bytes(reinterpret_cast<const char*>(v.data.data()), v.data.size());
+    return py::make_tuple(py::object(py::handle<>(PyBytes_FromStringAndSize(bytes.data(), Py_ssize_t(bytes.size())))),
+                          py::make_tuple(v.nx(), v.ny(), v.nz()));
+}
+
 py::dict meshInfo(const py::object& vertices, const py::object& triangles) {
     const mss::MeshInfo i = mss::analyzeMesh(mesh(vertices, triangles));
     py::dict d;
@@ -303,6 +311,7 @@ BOOST_PYTHON_MODULE(_mss) {
     py::register_exception_translator<std::runtime_error>(&translateRuntime);
     py::scope().attr("__doc__") = "yade-mss core (C++). Use the yade_mss package, which wraps this module.";
     py::def("readMesh", readMesh, (py::arg("path")), "Mesh file -> (flat vertices, flat triangles).");
+    py::def("readNpy", readNpy, (py::arg("path"), py::arg("label") = -1));
     py::def("meshInfo", meshInfo, (py::arg("vertices"), py::arg("triangles")));
     py::def("generateMesh", generateMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("resolution"), py::arg("options"),

@@ -40,17 +40,42 @@ GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res,
     GridSpec g;
     g.h = hasSize ? res.voxelSize : shortest / res.resolution;
     if (!(g.h > 0.0) || !std::isfinite(g.h)) throw std::invalid_argument(w + ": voxel size underflows");
-    std::array<long long, 3> dims{};
-    for (int a = 0; a < 3; ++a) {
-        const double cells = std::ceil(extent[a] / g.h - 1e-9);
-        if (!(cells < 4e9)) {
-            std::ostringstream os;
-            os << w << ": voxel size " << g.h << " is absurdly small for an extent of " << extent[a];
-            throw std::invalid_argument(os.str());
+    auto dimsFor = [&](double h) {
+        std::array<long long, 3> d{};
+        for (int a = 0; a < 3; ++a) {
+            const double cells = std::min(4e9, std::ceil(extent[a] / h - 1e-9));
+            d[a] = std::max(1LL, static_cast<long long>(cells)) + 2LL * res.padding;
         }
-        dims[a] = std::max(1LL, static_cast<long long>(cells)) + 2LL * res.padding;
+        return d;
+    };
+    auto bytesFor = [&](double h) {
+        const auto d = dimsFor(h);
+        return static_cast<long double>(d[0]) * d[1] * d[2] * kBytesPerVoxelGenerate;
+    };
+    const std::array<long long, 3> dims = dimsFor(g.h);
+    if (bytesFor(g.h) > static_cast<long double>(res.memoryLimit) ||
+        static_cast<long double>(dims[0]) * dims[1] * dims[2] > 2147483647.0L) {
+        // the memory guard: refuse before allocating, and say what would fit
+        std::ostringstream os;
+        os.precision(4);
+        os << w << ": a grid of " << dims[0] << "x" << dims[1] << "x" << dims[2] << " voxels would need "
+           << static_cast<double>(bytesFor(g.h) / 1073741824.0L) << " GiB, over the limit of "
+           << static_cast<double>(res.memoryLimit) / 1073741824.0 << " GiB";
+        long long lo = 0, hi = hasRes ? res.resolution : static_cast<long long>(std::ceil(shortest / g.h));
+        while (lo < hi) { // largest resolution that fits
+            const long long mid = (lo + hi + 1) / 2;
+            const double h = shortest / double(mid);
+            const auto d = dimsFor(h);
+            if (bytesFor(h) <= static_cast<long double>(res.memoryLimit) &&
+                static_cast<long double>(d[0]) * d[1] * d[2] <= 2147483647.0L)
+                lo = mid;
+            else
+                hi = mid - 1;
+        }
+        if (lo >= 1)
+            os << "; resolution " << lo << " (voxel size " << shortest / double(lo) << ") would fit";
+        throw std::invalid_argument(os.str());
     }
-    checkGridSize(where, dims, kBytesPerVoxelGenerate, res.memoryLimit);
     for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(dims[a]);
     const Vec3 center = 0.5 * (lower + upper);
     g.origin = center - 0.5 * g.h * Vec3(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1);
@@ -93,6 +118,9 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
                                     std::to_string(supersample));
     if (!(grid.h > 0.0) || grid.size() == 0) throw std::invalid_argument("voxelizeMesh: empty grid");
     const MeshInfo info = analyzeMesh(mesh);
+    if (info.degenerateTriangles == info.triangles)
+        throw std::invalid_argument("voxelizeMesh: all " + std::to_string(info.triangles) +
+                                    " triangles are degenerate (zero area): the mesh encloses nothing");
     const bool parity = !info.consistentlyOriented;
     std::unique_ptr<MeshQuery> winding;
     if (!info.closed) {

@@ -173,15 +173,11 @@ def _source(source, voxelSize=None, origin=None, label=None):
         if ext in _MESH_EXT:
             v, t = _mss.readMesh(path)
             return _Mesh(v, t, os.path.basename(path))
-        if ext == '.npy':
-            if not os.path.exists(path):
-                raise ValueError('readNpy: %s: cannot open file' % path)
-            try:
-                a = np.load(path, allow_pickle=False)
-            except Exception as e:  # numpy raises several types for bad files
-                raise ValueError('readNpy: %s: not a readable .npy file (%s)' % (path, e))
-            return _Voxels(a, voxelSize, origin, os.path.basename(path), label)
-        raise ValueError('%s: unknown extension %r (expected a mesh .stl .obj .off .ply or voxels .npy)' % (path, ext))
+        if ext == '.npy':  # the C++ reader: its checks and messages, as in the mss command
+            data, shape = _mss.readNpy(path, -1 if label is None else int(label))
+            a = np.frombuffer(data, dtype=np.uint8).reshape(shape, order='F')
+            return _Voxels(a, voxelSize, origin, os.path.basename(path))
+        raise ValueError("readMesh: %s: unknown mesh extension '%s' (expected .stl, .obj, .off or .ply, or .npy voxels)" % (path, ext))
     if isinstance(source, dict) and 'vertices' in source and 'triangles' in source:
         return _Mesh(source['vertices'], source['triangles'], 'mesh')
     if isinstance(source, tuple) and len(source) == 2:

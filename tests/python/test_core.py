@@ -59,7 +59,7 @@ class Generate(unittest.TestCase):
             (lambda: generate(ELL, nSpheres=3, resolution=10 ** 6), 'would need'),
             (lambda: generate(ELL), 'termination criterion'),
             (lambda: generate('missing.stl', nSpheres=3), 'cannot open'),
-            (lambda: generate('grain.xyz', nSpheres=3), 'unknown extension'),
+            (lambda: generate('grain.xyz', nSpheres=3), 'unknown mesh extension'),
             (lambda: generate(np.zeros((4, 4)), nSpheres=3), '3-D'),
             (lambda: generate(np.zeros((4, 4, 4), dtype=bool), nSpheres=3), 'no solid voxel'),
             (lambda: generate(np.ones((4, 4, 4), dtype=float), nSpheres=3), 'not boolean or integer'),
