@@ -209,6 +209,39 @@ class Converters(Base):
         self.assertIsInstance(f.shape.vertices[0], me.Vector3)
 
 
+class Settling(Base):
+    def test_clumps_settle_in_a_box(self):
+        from yade_mss import mssClumpCloud
+        t1 = mssTemplate(ELL, nSpheres=6, resolution=30, scale=0.004)
+        t2 = mssTemplate(FEMUR, nSpheres=8, resolution=30, scale=0.0001)
+        L = 0.06
+        clumps = mssClumpCloud([t1, t2], (0, 0, 0), (L, L, 2 * L), num=36, seed=11, material='grain')
+        self.assertGreaterEqual(len(clumps), 30)
+        walls = [O.bodies.append(utils.wall(x, axis=a, sense=s, material='grain'))
+                 for x, a, s in ((0, 0, 1), (L, 0, -1), (0, 1, 1), (L, 1, -1), (0, 2, 1))]
+        O.engines = [ForceResetter(),
+                     InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                                     [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                     NewtonIntegrator(damping=0.4, gravity=(0, 0, -9.81))]
+        O.dt = 0.5 * utils.PWaveTimeStep()
+
+        def kinetic():
+            return sum(0.5 * O.bodies[c].state.mass * O.bodies[c].state.vel.squaredNorm() for c, m in clumps)
+
+        history = []
+        for _ in range(30):  # 0.4 s of falling and settling
+            O.run(2000, True)
+            history.append(kinetic())
+        peak, late = max(history), history[-1]
+        for c, members in clumps:
+            p = np.array(O.bodies[c].state.pos)
+            self.assertTrue(np.all(np.isfinite(p)))
+            self.assertTrue(-0.005 < p[0] < L + 0.005 and -0.005 < p[1] < L + 0.005 and p[2] > -0.005)
+        self.assertLess(late, 0.01 * peak)  # the kinetic energy decays: coming to rest
+        self.assertTrue(np.all(np.isfinite(history)))
+
+
 class Templates(Base):
     def test_replace_by_clumps(self):
         t = mssTemplate(ELL, nSpheres=6, resolution=30)
