@@ -229,8 +229,9 @@ py::tuple readMesh(const std::string& path) {
 py::tuple readNpy(const std::string& path, long long label) {
     const mss::VoxelGrid v = mss::readNpy(path, 1.0, mss::Vec3::Zero(), label);
     const std::string bytes(reinterpret_cast<const char*>(v.data.data()), v.data.size());
-    return py::make_tuple(py::object(py::handle<>(PyBytes_FromStringAndSize(bytes.data(), Py_ssize_t(bytes.size())))),
-                          py::make_tuple(v.nx(), v.ny(), v.nz()));
+    return py::make_tuple(
+        py::object(py::handle<>(PyBytes_FromStringAndSize(bytes.data(), Py_ssize_t(bytes.size())))),
+        py::make_tuple(v.nx(), v.ny(), v.nz()));
 }
 
 py::dict meshInfo(const py::object& vertices, const py::object& triangles) {

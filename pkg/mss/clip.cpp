@@ -176,7 +176,8 @@ std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t limit) 
     for (const auto& t : mesh.triangles) {
         const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
         if ((b - a).cross(c - a).squaredNorm() == 0.0) continue;
-        tris.emplace_back(K::Point_3(a.x(), a.y(), a.z()), K::Point_3(b.x(), b.y(), b.z()), K::Point_3(c.x(), c.y(), c.z()));
+        tris.emplace_back(K::Point_3(a.x(), a.y(), a.z()), K::Point_3(b.x(), b.y(), b.z()),
+                          K::Point_3(c.x(), c.y(), c.z()));
         ids.push_back(t);
     }
     Tree tree(tris.begin(), tris.end());

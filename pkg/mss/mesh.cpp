@@ -1,8 +1,5 @@
 #include "mss/mesh.hpp"
 
-#include <CGAL/IO/polygon_soup_io.h>
-#include <CGAL/Simple_cartesian.h>
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -19,8 +16,6 @@
 namespace mss {
 
 namespace {
-
-using Kernel = CGAL::Simple_cartesian<double>;
 
 [[noreturn]] void fail(const std::string& path, const std::string& what) {
     throw std::invalid_argument("readMesh: " + path + ": " + what);
@@ -183,6 +178,338 @@ TriangleMesh readStl(const std::string& path) {
     return readAsciiStl(path, buf);
 }
 
+/// Faces with more than three corners become triangle fans; indices are checked against the vertex count.
+void addPolygon(TriangleMesh& mesh, const std::vector<long long>& poly, const std::string& path,
+                const std::string& where) {
+    if (poly.size() < 3) fail(path, where + ": a face needs at least 3 vertices");
+    for (long long c : poly)
+        if (c < 0 || c >= static_cast<long long>(mesh.vertices.size()))
+            fail(path, where + ": a face refers to vertex " + std::to_string(c) + " of " +
+                           std::to_string(mesh.vertices.size()));
+    for (std::size_t c = 2; c < poly.size(); ++c)
+        mesh.triangles.push_back(
+            {static_cast<int>(poly[0]), static_cast<int>(poly[c - 1]), static_cast<int>(poly[c])});
+}
+
+bool parseDouble(std::string_view w, double& v) {
+    const char* b = w.data() + (!w.empty() && w[0] == '+');
+    const auto r = std::from_chars(b, w.data() + w.size(), v);
+    return !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+}
+
+bool parseInt(std::string_view w, long long& v) {
+    const char* b = w.data() + (!w.empty() && w[0] == '+');
+    const auto r = std::from_chars(b, w.data() + w.size(), v);
+    return !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+}
+
+/// Splits a line into whitespace-separated words.
+std::vector<std::string_view> words(std::string_view line) {
+    std::vector<std::string_view> out;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        const std::size_t b = i;
+        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        if (i > b) out.push_back(line.substr(b, i - b));
+    }
+    return out;
+}
+
+/// Line by line, with its number, '#' comments removed.
+template <class F> void forLines(const std::vector<char>& buf, F&& f) {
+    std::size_t i = 0, lineNo = 0;
+    while (i < buf.size()) {
+        std::size_t e = i;
+        while (e < buf.size() && buf[e] != '\n') ++e;
+        std::string_view line(buf.data() + i, e - i);
+        const auto hash = line.find('#');
+        if (hash != std::string_view::npos) line = line.substr(0, hash);
+        if (!f(line, ++lineNo)) return;
+        i = e + 1;
+    }
+}
+
+// Our own OBJ, OFF and PLY readers: CGAL 5.5's, fuzzed (fuzz/), reserved gigabytes on the say-so of an OFF
+// header and ran into undefined behaviour on malformed OFF and PLY files (fuzz/regressions keeps those
+// inputs).
+
+/// Wavefront OBJ: "v x y z [w]" and "f a b c ..." (each index "i", "i/t", "i//n" or "i/t/n"; negative: from
+/// the end); everything else (vt, vn, g, o, s, usemtl, l, ...) is ignored.
+TriangleMesh readObj(const std::string& path, const std::vector<char>& buf) {
+    TriangleMesh mesh;
+    std::vector<long long> poly;
+    forLines(buf, [&](std::string_view line, std::size_t no) {
+        const auto w = words(line);
+        if (w.empty()) return true;
+        const std::string at = "OBJ line " + std::to_string(no);
+        if (w[0] == "v") {
+            double x, y, z;
+            if (w.size() < 4 || !parseDouble(w[1], x) || !parseDouble(w[2], y) || !parseDouble(w[3], z))
+                fail(path, at + ": a vertex needs three numbers");
+            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+                fail(path, at + ": non-finite coordinate");
+            mesh.vertices.emplace_back(x, y, z);
+        } else if (w[0] == "f") {
+            poly.clear();
+            for (std::size_t k = 1; k < w.size(); ++k) {
+                long long idx;
+                if (!parseInt(w[k].substr(0, w[k].find('/')), idx) || idx == 0)
+                    fail(path, at + ": '" + std::string(w[k]) + "' is not a vertex index");
+                poly.push_back(idx > 0 ? idx - 1 : static_cast<long long>(mesh.vertices.size()) + idx);
+            }
+            addPolygon(mesh, poly, path, at);
+        }
+        return true;
+    });
+    if (mesh.triangles.empty()) fail(path, "OBJ file has no faces");
+    return mesh;
+}
+
+/// Object File Format: "OFF" (or COFF, NOFF, ...: extra per-vertex data is skipped), counts, vertex lines,
+/// face lines "n i1 ... in [colour]". Binary OFF is refused.
+TriangleMesh readOff(const std::string& path, const std::vector<char>& buf) {
+    TriangleMesh mesh;
+    long long nv = -1, nf = -1, seenV = 0, seenF = 0;
+    bool magic = false;
+    std::vector<long long> poly;
+    forLines(buf, [&](std::string_view line, std::size_t no) {
+        auto w = words(line);
+        if (w.empty()) return true;
+        const std::string at = "OFF line " + std::to_string(no);
+        if (!magic) {
+            if (w[0].size() < 3 || w[0].substr(w[0].size() - 3) != "OFF")
+                fail(path, "not an OFF file (it must start with OFF)");
+            magic = true;
+            if (w.size() > 1 && w[1] == "BINARY") fail(path, "binary OFF is not supported");
+            w.erase(w.begin());
+            if (w.empty()) return true;
+        }
+        if (nv < 0) {
+            if (w.size() < 2 || !parseInt(w[0], nv) || !parseInt(w[1], nf) || nv < 0 || nf < 0)
+                fail(path, at + ": expected the vertex and face counts");
+            // every vertex takes at least 6 characters ("0 0 0\n"), every face at least 8 ("3 0 1 2\n")
+            if (nv * 6 + nf * 8 > static_cast<long long>(buf.size()))
+                fail(path, "OFF header announces " + std::to_string(nv) + " vertices and " +
+                               std::to_string(nf) + " faces, more than the file holds");
+            mesh.vertices.reserve(static_cast<std::size_t>(nv));
+            return true;
+        }
+        if (seenV < nv) {
+            double x, y, z;
+            if (w.size() < 3 || !parseDouble(w[0], x) || !parseDouble(w[1], y) || !parseDouble(w[2], z))
+                fail(path, at + ": a vertex needs three numbers");
+            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+                fail(path, at + ": non-finite coordinate");
+            mesh.vertices.emplace_back(x, y, z);
+            ++seenV;
+            return true;
+        }
+        if (seenF < nf) {
+            long long n;
+            if (!parseInt(w[0], n) || n < 3 || static_cast<long long>(w.size()) < n + 1)
+                fail(path, at + ": a face is a count n >= 3 and n vertex indices");
+            poly.clear();
+            for (long long k = 1; k <= n; ++k) {
+                long long idx;
+                if (!parseInt(w[static_cast<std::size_t>(k)], idx)) fail(path, at + ": bad vertex index");
+                poly.push_back(idx);
+            }
+            addPolygon(mesh, poly, path, at);
+            ++seenF;
+            return true;
+        }
+        return false;
+    });
+    if (!magic || nv < 0) fail(path, "malformed OFF file (no header)");
+    if (seenV < nv || seenF < nf)
+        fail(path, "OFF file ends early: " + std::to_string(seenV) + " of " + std::to_string(nv) +
+                       " vertices, " + std::to_string(seenF) + " of " + std::to_string(nf) + " faces");
+    if (mesh.triangles.empty()) fail(path, "OFF file has no faces");
+    return mesh;
+}
+
+/// Polygon File Format (PLY), ASCII and binary of either byte order: "vertex" elements give x, y, z; "face"
+/// elements a list property (vertex_indices); other elements and properties are skipped.
+TriangleMesh readPly(const std::string& path, const std::vector<char>& buf) {
+    struct Property {
+        std::string name, type, countType; // countType non-empty: a list
+    };
+    struct Element {
+        std::string name;
+        long long count;
+        std::vector<Property> props;
+    };
+    auto typeSize = [](const std::string& t) -> int {
+        if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+        if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+        if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32")
+            return 4;
+        if (t == "double" || t == "float64") return 8;
+        return 0;
+    };
+    std::vector<Element> elements;
+    std::string format;
+    std::size_t pos = 0, lineNo = 0;
+    bool end = false;
+    auto nextLine = [&]() {
+        std::size_t e = pos;
+        while (e < buf.size() && buf[e] != '\n') ++e;
+        std::string_view line(buf.data() + pos, e - pos);
+        pos = std::min(buf.size(), e + 1);
+        ++lineNo;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        return line;
+    };
+    if (nextLine() != "ply") fail(path, "not a PLY file (it must start with ply)");
+    while (pos < buf.size()) {
+        const auto w = words(nextLine());
+        if (w.empty()) continue;
+        const std::string at = "PLY header line " + std::to_string(lineNo) + ": ";
+        if (w[0] == "format") {
+            if (w.size() < 2 ||
+                (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+                fail(path, at + "unknown format");
+            format = std::string(w[1]);
+        } else if (w[0] == "comment" || w[0] == "obj_info") {
+        } else if (w[0] == "element") {
+            long long n;
+            if (w.size() < 3 || !parseInt(w[2], n) || n < 0)
+                fail(path, at + "element needs a name and a count");
+            elements.push_back({std::string(w[1]), n, {}});
+        } else if (w[0] == "property") {
+            if (elements.empty()) fail(path, at + "property before any element");
+            if (w.size() >= 5 && w[1] == "list") {
+                if (!typeSize(std::string(w[2])) || !typeSize(std::string(w[3])))
+                    fail(path, at + "unknown type in list property");
+                elements.back().props.push_back({std::string(w[4]), std::string(w[3]), std::string(w[2])});
+            } else if (w.size() >= 3 && typeSize(std::string(w[1]))) {
+                elements.back().props.push_back({std::string(w[2]), std::string(w[1]), ""});
+            } else {
+                fail(path, at + "malformed property");
+            }
+        } else if (w[0] == "end_header") {
+            end = true;
+            break;
+        } else {
+            fail(path, at + "unexpected '" + std::string(w[0]) + "'");
+        }
+    }
+    if (format.empty() || !end) fail(path, "malformed PLY header (format or end_header missing)");
+    long long items = 0;
+    bool hasVertex = false, hasFace = false;
+    for (const Element& e : elements) {
+        items += e.count;
+        hasVertex = hasVertex || e.name == "vertex";
+        hasFace = hasFace || e.name == "face";
+    }
+    if (!hasVertex || !hasFace) fail(path, "PLY file without vertex or face element");
+    const bool ascii = format == "ascii";
+    if (items * (ascii ? 2 : 1) > static_cast<long long>(buf.size() - pos))
+        fail(path, "PLY header announces " + std::to_string(items) + " elements, more than the file holds");
+    const bool swap = format == "binary_big_endian";
+
+    // readers of one value, ASCII or binary
+    std::vector<std::string_view> tokens;
+    std::size_t tok = 0;
+    if (ascii) tokens = words(std::string_view(buf.data() + pos, buf.size() - pos));
+    auto value = [&](const std::string& type) -> double {
+        if (ascii) {
+            if (tok >= tokens.size()) fail(path, "PLY data ends early");
+            double v;
+            if (!parseDouble(tokens[tok++], v))
+                fail(path, "PLY data: '" + std::string(tokens[tok - 1]) + "' is not a number");
+            return v;
+        }
+        const int n = typeSize(type);
+        if (pos + static_cast<std::size_t>(n) > buf.size()) fail(path, "PLY data ends early");
+        unsigned char b[8];
+        std::memcpy(b, buf.data() + pos, static_cast<std::size_t>(n));
+        pos += static_cast<std::size_t>(n);
+        if (swap) std::reverse(b, b + n);
+        if (type == "char" || type == "int8") return static_cast<std::int8_t>(b[0]);
+        if (type == "uchar" || type == "uint8") return b[0];
+        if (type == "short" || type == "int16") {
+            std::int16_t v;
+            std::memcpy(&v, b, 2);
+            return v;
+        }
+        if (type == "ushort" || type == "uint16") {
+            std::uint16_t v;
+            std::memcpy(&v, b, 2);
+            return v;
+        }
+        if (type == "int" || type == "int32") {
+            std::int32_t v;
+            std::memcpy(&v, b, 4);
+            return v;
+        }
+        if (type == "uint" || type == "uint32") {
+            std::uint32_t v;
+            std::memcpy(&v, b, 4);
+            return v;
+        }
+        if (type == "float" || type == "float32") {
+            float v;
+            std::memcpy(&v, b, 4);
+            return v;
+        }
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+    };
+    TriangleMesh mesh;
+    std::vector<long long> poly;
+    for (const Element& e : elements) {
+        int ix = -1, iy = -1, iz = -1, il = -1;
+        for (int k = 0; k < static_cast<int>(e.props.size()); ++k) {
+            const Property& p = e.props[static_cast<std::size_t>(k)];
+            if (p.name == "x") ix = k;
+            if (p.name == "y") iy = k;
+            if (p.name == "z") iz = k;
+            if (!p.countType.empty() && (il < 0 || p.name == "vertex_indices" || p.name == "vertex_index"))
+                il = k;
+        }
+        if (e.name == "vertex" && (ix < 0 || iy < 0 || iz < 0))
+            fail(path, "PLY vertex element without x, y, z");
+        if (e.name == "face" && il < 0) fail(path, "PLY face element without a list of vertex indices");
+        for (long long n = 0; n < e.count; ++n) {
+            Vec3 v = Vec3::Zero();
+            poly.clear();
+            for (int k = 0; k < static_cast<int>(e.props.size()); ++k) {
+                const Property& p = e.props[static_cast<std::size_t>(k)];
+                if (p.countType.empty()) {
+                    const double x = value(p.type);
+                    if (k == ix) v.x() = x;
+                    if (k == iy) v.y() = x;
+                    if (k == iz) v.z() = x;
+                    continue;
+                }
+                const double len = value(p.countType);
+                if (!(len >= 0 && len <= 1e6) || len != std::floor(len))
+                    fail(path, "PLY data: bad list length");
+                for (long long q = 0; q < static_cast<long long>(len); ++q) {
+                    const double idx = value(p.type);
+                    if (k == il) {
+                        if (idx != std::floor(idx) || std::abs(idx) > 9e18)
+                            fail(path, "PLY data: bad vertex index");
+                        poly.push_back(static_cast<long long>(idx));
+                    }
+                }
+            }
+            if (e.name == "vertex") {
+                if (!v.allFinite())
+                    fail(path, "PLY vertex " + std::to_string(n) + " has a non-finite coordinate");
+                mesh.vertices.push_back(v);
+            } else if (e.name == "face") {
+                addPolygon(mesh, poly, path, "PLY face " + std::to_string(n));
+            }
+        }
+    }
+    if (mesh.triangles.empty()) fail(path, "PLY file has no faces");
+    return mesh;
+}
+
 } // namespace
 
 std::string fileExtension(const std::string& path) {
@@ -315,30 +642,11 @@ TriangleMesh readMesh(const std::string& path) {
         return mesh;
     }
 
-    std::vector<Kernel::Point_3> points;
-    std::vector<std::vector<std::size_t>> polygons;
-    bool ok = false;
-    try {
-        ok = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
-    } catch (const std::exception& e) {
-        fail(path, std::string("malformed file: ") + e.what());
-    }
-    if (!ok) fail(path, "malformed " + ext.substr(1) + " file (CGAL's reader refused it)");
-
-    TriangleMesh mesh;
-    mesh.vertices.reserve(points.size());
-    for (const auto& p : points) mesh.vertices.emplace_back(p.x(), p.y(), p.z());
-    for (const auto& poly : polygons) {
-        for (std::size_t c : poly) {
-            if (c >= points.size())
-                fail(path,
-                     "a face refers to vertex " + std::to_string(c) + " of " + std::to_string(points.size()));
-        }
-        for (std::size_t c = 2; c < poly.size(); ++c) {
-            mesh.triangles.push_back(
-                {static_cast<int>(poly[0]), static_cast<int>(poly[c - 1]), static_cast<int>(poly[c])});
-        }
-    }
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<char> buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    TriangleMesh mesh = ext == ".obj"   ? readObj(path, buf)
+                        : ext == ".off" ? readOff(path, buf)
+                                        : readPly(path, buf);
     validateMesh(mesh, "readMesh: " + path);
     return mesh;
 }

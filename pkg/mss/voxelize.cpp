@@ -72,8 +72,7 @@ GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res,
             else
                 hi = mid - 1;
         }
-        if (lo >= 1)
-            os << "; resolution " << lo << " (voxel size " << shortest / double(lo) << ") would fit";
+        if (lo >= 1) os << "; resolution " << lo << " (voxel size " << shortest / double(lo) << ") would fit";
         throw std::invalid_argument(os.str());
     }
     for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(dims[a]);

@@ -76,7 +76,7 @@ TEST(MeshIo, AsciiAndBinaryStlAgree) {
     std::remove(bin.c_str());
 }
 
-TEST(MeshIo, ObjOffPlyThroughCgal) {
+TEST(MeshIo, ObjOffPlyAscii) {
     const std::string obj = tempPath("tet.obj"), off = tempPath("tet.off"), ply = tempPath("tet.ply");
     writeText(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
     writeText(off, "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
@@ -92,6 +92,39 @@ TEST(MeshIo, ObjOffPlyThroughCgal) {
         EXPECT_NEAR(i.signedVolume, 1.0 / 6.0, 1e-12) << p;
         std::remove(p.c_str());
     }
+}
+
+TEST(MeshIo, ObjIndexFormsAndBinaryPly) {
+    const std::string obj = tempPath("tet2.obj"), ply = tempPath("tet_bin.ply");
+    // "i/t/n" and "i//n" forms and negative (relative) indices, a quad split into two triangles
+    writeText(obj, "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nvt 0 0\nvn 0 0 1\n"
+                   "f 1/1/1 4/1/1 3//1 2//1\nf -5 -4 -1\nf 2 3 5\nf 3 4 5\nf 4 1 5\n");
+    const MeshInfo a = analyzeMesh(readMesh(obj));
+    EXPECT_EQ(a.triangles, 6u);
+    EXPECT_TRUE(a.closed);
+    EXPECT_NEAR(a.signedVolume, 1.0 / 3.0, 1e-12); // a pyramid: base 1, height 1
+    std::string bin =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+        "property float z\nproperty uchar red\nelement face 4\nproperty list uchar int vertex_indices\n"
+        "end_header\n";
+    const float v[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (const auto& p : v) {
+        bin.append(reinterpret_cast<const char*>(p), 12);
+        bin.push_back('\x7f');
+    }
+    const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    for (const auto& t : f) {
+        bin.push_back('\x03');
+        bin.append(reinterpret_cast<const char*>(t), 12);
+    }
+    writeText(ply, bin);
+    const MeshInfo b = analyzeMesh(readMesh(ply));
+    EXPECT_EQ(b.triangles, 4u);
+    EXPECT_NEAR(b.signedVolume, 1.0 / 6.0, 1e-7);
+    writeText(ply, bin.substr(0, bin.size() - 5)); // cut short
+    expectError([&] { readMesh(ply); }, "ends early");
+    std::remove(obj.c_str());
+    std::remove(ply.c_str());
 }
 
 TEST(MeshIo, BadFilesGetClearErrors) {
