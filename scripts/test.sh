@@ -11,9 +11,9 @@ MSS_STRICT=${MSS_STRICT:-ON} bash scripts/setup.sh
 (cd build && ctest --output-on-failure -j"$(nproc)")
 [ "${MSS_QUICK:-0}" = "1" ] && exit 0
 
-echo "== sanitizers (ASan + UBSan)"
+echo "== sanitizers (ASan + UBSan); not strict: GCC 12 reports false maybe-uninitialized warnings in libstdc++ under ASan"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMSS_SANITIZE=ON -DMSS_BUILD_PYTHON=OFF \
-  -DMSS_BUILD_BENCH=OFF -DMSS_STRICT=ON > build-asan.log 2>&1 || { tail -30 build-asan.log; exit 1; }
+  -DMSS_BUILD_BENCH=OFF -DMSS_STRICT=OFF > build-asan.log 2>&1 || { tail -30 build-asan.log; exit 1; }
 cmake --build build-asan -j"$(nproc)" >> build-asan.log 2>&1 || { tail -50 build-asan.log; exit 1; }
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure -j"$(nproc)")
