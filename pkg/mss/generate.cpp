@@ -61,7 +61,9 @@ public:
         : S_(target), cover_(target.size(), 0), prefix_(target.size()), nx_(target.nx()) {
         solid_ = countSolid(target);
         mismatch_ = static_cast<long long>(solid_);
-        for (std::size_t row = 0; row < target.size(); row += std::size_t(nx_)) rebuildRow(row, 0);
+        const long long rows = static_cast<long long>(target.size() / std::size_t(nx_));
+#pragma omp parallel for schedule(static)
+        for (long long row = 0; row < rows; ++row) rebuildRow(std::size_t(row) * std::size_t(nx_), 0);
     }
 
     /// Decrease of the mismatch if @p b were added (negative if it would add more outside than inside).
@@ -163,14 +165,28 @@ public:
             }
         return total;
     }
-    void add(const Ball& b) { change(b, +1); }
-    void remove(const Ball& b) { change(b, -1); }
+    void add(const Ball& b) {
+        change(b, +1);
+    }
+    void remove(const Ball& b) {
+        change(b, -1);
+    }
 
-    long long mismatch() const { return mismatch_; }
-    std::size_t solid() const { return solid_; }
-    std::size_t covered() const { return covered_; }
-    double eta() const { return solid_ ? double(mismatch_) / double(solid_) : 0.0; }
-    double dice() const { return (solid_ + covered_) ? double(mismatch_) / double(solid_ + covered_) : 0.0; }
+    long long mismatch() const {
+        return mismatch_;
+    }
+    std::size_t solid() const {
+        return solid_;
+    }
+    std::size_t covered() const {
+        return covered_;
+    }
+    double eta() const {
+        return solid_ ? double(mismatch_) / double(solid_) : 0.0;
+    }
+    double dice() const {
+        return (solid_ + covered_) ? double(mismatch_) / double(solid_ + covered_) : 0.0;
+    }
 
 private:
     long long sum(std::size_t row, int i0, int i1) const {
@@ -436,7 +452,8 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
     }
     debug("maxima");
     const auto& d = S.spec.dims;
-    std::vector<std::array<int, 3>> ridge;
+    std::vector<std::vector<std::array<int, 3>>> ridgeSlices(std::size_t(std::max(d[2], 1)));
+#pragma omp parallel for schedule(dynamic, 4)
     for (int k = 1; k < d[2] - 1; ++k)
         for (int j = 1; j < d[1] - 1; ++j)
             for (int i = 1; i < d[0] - 1; ++i) {
@@ -445,8 +462,10 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                 const float up = std::max({E(i - 1, j, k), E(i + 1, j, k), E(i, j - 1, k), E(i, j + 1, k),
                                            E(i, j, k - 1), E(i, j, k + 1)}) -
                                  e;
-                if (up < 0.5f) ridge.push_back({i, j, k});
+                if (up < 0.5f) ridgeSlices[std::size_t(k)].push_back({i, j, k});
             }
+    std::vector<std::array<int, 3>> ridge; // in voxel order, whatever the threads
+    for (const auto& slice : ridgeSlices) ridge.insert(ridge.end(), slice.begin(), slice.end());
     constexpr std::size_t kMaxRidge = 10000;
     const std::size_t stride = std::max<std::size_t>(1, (ridge.size() + kMaxRidge - 1) / kMaxRidge);
     for (std::size_t q = 0; q < ridge.size(); q += stride) {
@@ -564,13 +583,17 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                 long long best = cov.gain(sym.images(o));
                 const long long start = best;
                 for (double step : {0.5, 0.25}) {
+                    int lastAxis = -1; // the move just taken: its reverse leads back, no need to look
+                    double lastSign = 0.0;
                     for (int rep = 0; rep < 6; ++rep) {
                         // the moves: centre +- step along each free axis, radius +- step; evaluated in
                         // parallel
                         std::vector<Orbit> trials;
+                        std::vector<std::pair<int, double>> moves;
                         for (int a = 0; a < 4; ++a) {
                             if (a < 3 && o.onPlane[a]) continue;
                             for (double sgn : {-1.0, 1.0}) {
+                                if (a == lastAxis && sgn == -lastSign) continue;
                                 Orbit trial = o;
                                 if (a < 3)
                                     trial.c[a] += sgn * step;
@@ -582,10 +605,12 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                                     Orbit touching = trial; // under a constraint: grow to touch as well
                                     touching.r = limit;
                                     trials.push_back(touching);
+                                    moves.emplace_back(a, sgn);
                                 }
                                 trial.r = std::min(trial.r, limit);
                                 if (trial.r < rMinVox) continue;
                                 trials.push_back(trial);
+                                moves.emplace_back(a, sgn);
                             }
                         }
                         std::vector<long long> g(trials.size());
@@ -599,6 +624,8 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                             }
                         if (pick < 0) break;
                         o = trials[pick];
+                        lastAxis = moves[pick].first;
+                        lastSign = moves[pick].second;
                     }
                 }
                 for (const Ball& b : sym.images(o)) cov.add(b);
