@@ -289,7 +289,8 @@ TriangleMesh readOff(const std::string& path, const std::vector<char>& buf) {
             if (w.size() < 2 || !parseInt(w[0], nv) || !parseInt(w[1], nf) || nv < 0 || nf < 0)
                 fail(path, at + ": expected the vertex and face counts");
             // every vertex takes at least 6 characters ("0 0 0\n"), every face at least 8 ("3 0 1 2\n")
-            if (nv * 6 + nf * 8 > static_cast<long long>(buf.size()))
+            const long long size = static_cast<long long>(buf.size()); // compared so that nothing overflows
+            if (nv > size / 6 || nf > size / 8 || nv * 6 + nf * 8 > size)
                 fail(path, "OFF header announces " + std::to_string(nv) + " vertices and " +
                                std::to_string(nf) + " faces, more than the file holds");
             mesh.vertices.reserve(static_cast<std::size_t>(nv));
@@ -376,6 +377,8 @@ TriangleMesh readPly(const std::string& path, const std::vector<char>& buf) {
             long long n;
             if (w.size() < 3 || !parseInt(w[2], n) || n < 0)
                 fail(path, at + "element needs a name and a count");
+            if (n > static_cast<long long>(buf.size()))
+                fail(path, at + "element count " + std::to_string(n) + " is more than the file holds");
             elements.push_back({std::string(w[1]), n, {}});
         } else if (w[0] == "property") {
             if (elements.empty()) fail(path, at + "property before any element");
