@@ -283,6 +283,7 @@ int cmdInfo(const Args& a) {
     std::cout << "closed        " << (i.closed ? "yes" : "no") << "\n";
     std::cout << "boundary_edges " << i.boundaryEdges << "\n";
     std::cout << "nonmanifold_edges " << i.nonManifoldEdges << "\n";
+    std::cout << "inconsistent_edges " << i.inconsistentEdges << "\n";
     std::cout << "oriented      " << (i.consistentlyOriented ? "yes" : "no")
               << (i.signedVolume < 0 ? " (inside out)" : "") << "\n";
     std::cout << "degenerate    " << i.degenerateTriangles << "\n";
