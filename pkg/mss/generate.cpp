@@ -1,4 +1,5 @@
 #include "mss/generate.hpp"
+#include "mss/ball_rows.hpp"
 #include "mss/edt.hpp"
 #include "mss/maxima.hpp"
 
@@ -30,15 +31,8 @@ double secondsSince(Clock::time_point t) {
     return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-/// floor and ceil to int without a libm call (x86-64 baseline has no rounding instruction); |x| < 2^31.
-inline int floorInt(double x) {
-    const int i = static_cast<int>(x);
-    return i - (static_cast<double>(i) > x);
-}
-inline int ceilInt(double x) {
-    const int i = static_cast<int>(x);
-    return i + (static_cast<double>(i) < x);
-}
+using detail::ceilInt;
+using detail::floorInt;
 
 /// Largest radius allowed for a sphere centred at a point (clipping, constraint planes); negative where no
 /// centre may be; +inf without constraint. BoundVox: voxel coordinates and units of the generation grid.
@@ -200,27 +194,8 @@ private:
         }
     }
     template <class F> void forColumns(const Ball& b, F&& f) const {
-        const auto& d = S_.spec.dims;
-        const double r2 = b.r * b.r;
-        const int k0 = std::max(0, ceilInt((b.c.z() - b.r))),
-                  k1 = std::min(d[2] - 1, floorInt((b.c.z() + b.r)));
-        for (int k = k0; k <= k1; ++k) {
-            const double dz = k - b.c.z();
-            const double rz2 = r2 - dz * dz;
-            if (rz2 < 0) continue;
-            const double ry = std::sqrt(rz2);
-            const int j0 = std::max(0, ceilInt((b.c.y() - ry))),
-                      j1 = std::min(d[1] - 1, floorInt((b.c.y() + ry)));
-            for (int j = j0; j <= j1; ++j) {
-                const double dy = j - b.c.y();
-                const double rx2 = rz2 - dy * dy;
-                if (rx2 < 0) continue;
-                const double rx = std::sqrt(rx2);
-                const int i0 = std::max(0, ceilInt((b.c.x() - rx))),
-                          i1 = std::min(d[0] - 1, floorInt((b.c.x() + rx)));
-                if (i0 <= i1) f(S_.spec.index(0, j, k), i0, i1);
-            }
-        }
+        detail::forBallRows(b.c, b.r, S_.spec.dims, 0, S_.spec.dims[2] - 1,
+                            [&](int j, int k, int i0, int i1) { f(S_.spec.index(0, j, k), i0, i1); });
     }
     void change(const Ball& b, int delta) {
         forColumns(b, [&](std::size_t row, int i0, int i1) {

@@ -1,4 +1,5 @@
 #include "mss/voxelize.hpp"
+#include "mss/ball_rows.hpp"
 #include "mss/clip.hpp"
 
 #include <algorithm>
@@ -260,7 +261,6 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supe
 VoxelGrid voxelizeSpheres(const SphereSet& spheres, const GridSpec& grid) {
     validateSpheres(spheres, "voxelizeSpheres");
     VoxelGrid out(grid, 0);
-    const int nx = grid.dims[0], ny = grid.dims[1], nz = grid.dims[2];
     std::vector<Vec3> c(spheres.size());
     std::vector<double> r(spheres.size());
     for (std::size_t i = 0; i < c.size(); ++i) {
@@ -268,27 +268,12 @@ VoxelGrid voxelizeSpheres(const SphereSet& spheres, const GridSpec& grid) {
         r[i] = spheres.radii[i] / grid.h;
     }
 #pragma omp parallel for schedule(dynamic, 1)
-    for (int k = 0; k < nz; ++k) {
-        for (std::size_t s = 0; s < c.size(); ++s) {
-            const double dz = k - c[s].z();
-            const double rz2 = r[s] * r[s] - dz * dz;
-            if (rz2 < 0) continue;
-            const double ry = std::sqrt(rz2);
-            const int j0 = std::max(0, static_cast<int>(std::ceil(c[s].y() - ry)));
-            const int j1 = std::min(ny - 1, static_cast<int>(std::floor(c[s].y() + ry)));
-            for (int j = j0; j <= j1; ++j) {
-                const double dy = j - c[s].y();
-                const double rx2 = rz2 - dy * dy;
-                if (rx2 < 0) continue;
-                const double rx = std::sqrt(rx2);
-                const int i0 = std::max(0, static_cast<int>(std::ceil(c[s].x() - rx)));
-                const int i1 = std::min(nx - 1, static_cast<int>(std::floor(c[s].x() + rx)));
-                if (i0 > i1) continue;
-                std::uint8_t* row = &out(0, j, k);
+    for (int k = 0; k < grid.dims[2]; ++k)
+        for (std::size_t s = 0; s < c.size(); ++s)
+            detail::forBallRows(c[s], r[s], grid.dims, k, k, [&](int j, int kk, int i0, int i1) {
+                std::uint8_t* row = &out(0, j, kk);
                 std::fill(row + i0, row + i1 + 1, std::uint8_t(1));
-            }
-        }
-    }
+            });
     return out;
 }
 

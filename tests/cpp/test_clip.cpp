@@ -43,17 +43,24 @@ double bruteDistance(const TriangleMesh& m, const Vec3& p) {
     return best;
 }
 
-/// Largest distance by which any sphere reaches outside the mesh: points on each sphere (a Fibonacci
-/// lattice), outside by the exact winding number, measured by brute force.
+/// n points spread evenly over the sphere (c, r): a Fibonacci lattice.
+std::vector<Vec3> surfacePoints(const Vec3& c, double r, int n) {
+    std::vector<Vec3> out;
+    const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
+    for (int k = 0; k < n; ++k) {
+        const double z = 1.0 - 2.0 * (k + 0.5) / n, rr = std::sqrt(1 - z * z), phi = golden * k;
+        out.push_back(c + r * Vec3(rr * std::cos(phi), rr * std::sin(phi), z));
+    }
+    return out;
+}
+
+/// Largest distance by which any sphere reaches outside the mesh: points on each sphere, outside by the exact
+/// winding number, measured by brute force.
 double maxProtrusion(const TriangleMesh& mesh, const MeshQuery& q, const SphereSet& s, int perSphere) {
     double worst = 0.0;
-    const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
     for (std::size_t i = 0; i < s.size(); ++i)
-        for (int k = 0; k < perSphere; ++k) {
-            const double z = 1.0 - 2.0 * (k + 0.5) / perSphere, rr = std::sqrt(1 - z * z), phi = golden * k;
-            const Vec3 p = s.centers[i] + s.radii[i] * Vec3(rr * std::cos(phi), rr * std::sin(phi), z);
+        for (const Vec3& p : surfacePoints(s.centers[i], s.radii[i], perSphere))
             if (std::abs(q.windingExact(p)) < 0.5) worst = std::max(worst, bruteDistance(mesh, p));
-        }
     return worst;
 }
 } // namespace
@@ -205,10 +212,8 @@ TEST(Clip, VoxelVolumesStayInTheirSolidVoxels) {
     const Result r = generate(v, o);
     ASSERT_GT(r.spheres.size(), 0u);
     for (std::size_t s = 0; s < r.spheres.size(); ++s)
-        for (int k = 0; k < 200; ++k) { // every surface point lies in a solid voxel of the input
-            const double z = 1.0 - 2.0 * (k + 0.5) / 200, rr = std::sqrt(1 - z * z), phi = 2.39996 * k;
-            const Vec3 p =
-                r.spheres.centers[s] + r.spheres.radii[s] * Vec3(rr * std::cos(phi), rr * std::sin(phi), z);
+        for (const Vec3& p : surfacePoints(r.spheres.centers[s], r.spheres.radii[s], 200)) {
+            // every surface point lies in a solid voxel of the input
             const auto q = g.voxelOf(p);
             ASSERT_TRUE(g.contains(q[0], q[1], q[2]));
             EXPECT_EQ(v(q[0], q[1], q[2]), 1);

@@ -265,7 +265,9 @@ class Templates(Base):
 
     def test_make_clump_cloud(self):
         t = mssTemplate(FEMUR, nSpheres=8, resolution=30, scale=0.01)
-        np.testing.assert_allclose(np.mean([c for c, r in t.spherePack], axis=0) * 0, 0)
+        # the template is centred at the centre of mass of the union of its spheres
+        members = MssResult([tuple(c) for c, r in t.spherePack], [r for c, r in t.spherePack])
+        np.testing.assert_allclose(members.unionMass().centroid, 0, atol=1e-3 * t.equivalentRadius)
         sp = pack.SpherePack()
         n = sp.makeClumpCloud((0, 0, 0), (5, 5, 5), [t.spherePack], num=5, seed=3)
         self.assertEqual(n, 5)
