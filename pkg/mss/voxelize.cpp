@@ -267,13 +267,19 @@ VoxelGrid voxelizeSpheres(const SphereSet& spheres, const GridSpec& grid) {
         c[i] = grid.toVoxel(spheres.centers[i]);
         r[i] = spheres.radii[i] / grid.h;
     }
+    // spheres wholly outside the grid are dropped here, before any index maths (that stays within int range)
+    std::vector<char> meets(c.size(), 1);
+    for (std::size_t s = 0; s < c.size(); ++s)
+        for (int a = 0; a < 3; ++a)
+            if (!(c[s][a] + r[s] >= 0.0 && c[s][a] - r[s] <= grid.dims[a] - 1.0)) meets[s] = 0;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int k = 0; k < grid.dims[2]; ++k)
         for (std::size_t s = 0; s < c.size(); ++s)
-            detail::forBallRows(c[s], r[s], grid.dims, k, k, [&](int j, int kk, int i0, int i1) {
-                std::uint8_t* row = &out(0, j, kk);
-                std::fill(row + i0, row + i1 + 1, std::uint8_t(1));
-            });
+            if (meets[s])
+                detail::forBallRows(c[s], r[s], grid.dims, k, k, [&](int j, int kk, int i0, int i1) {
+                    std::uint8_t* row = &out(0, j, kk);
+                    std::fill(row + i0, row + i1 + 1, std::uint8_t(1));
+                });
     return out;
 }
 
