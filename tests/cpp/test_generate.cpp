@@ -138,6 +138,24 @@ TEST(Generate, EllipsoidTenSpheresMirrorSymmetric) {
     }
 }
 
+// More spheres must keep paying on a smooth grain. Before the refinement could slide a ball along the surface
+// (centre and radius together), D stalled at 0.0027 from 40 spheres on and 80 spheres scored worse than 40.
+TEST(Generate, EllipsoidKeepsImprovingWithMoreSpheres) {
+    const TriangleMesh ell = readMesh(kData + "/ellipsoid_2_1_1.stl");
+    Resolution res;
+    res.resolution = 103;
+    double previous = 1.0;
+    for (int n : {10, 40, 80}) {
+        GenerateOptions o;
+        o.nSpheres = n;
+        const Result r = generate(ell, res, o);
+        const double d = scoreSpheres(ell, r.spheres, 100, 0.37).dice;
+        EXPECT_LT(d, previous) << n << " spheres";
+        previous = d;
+        if (n == 40) EXPECT_LT(d, 0.0015);
+    }
+}
+
 TEST(Generate, SameOutputForAnyThreadCount) {
     const TriangleMesh femur = readMesh(kData + "/human_femur.stl");
     Resolution res;
