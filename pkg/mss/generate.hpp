@@ -42,7 +42,9 @@ struct GenerateOptions {
     /// voxel volume's spheres stay inside the union of its solid voxels (a conservative bound from the EDT).
     bool clip = false;
     /// With clip: choose and tune spheres under the constraint, so that coverage lost to clipping is
-    /// regained. Without: generate freely, then shrink the radii (and drop spheres whose centre is outside).
+    /// regained (optimized: from nothing and from the free optimum cut down, the better kept; paper: the MSS
+    /// iterations continue with the clipped spheres). Without: generate freely, then shrink the radii (and
+    /// drop spheres whose centre is outside).
     bool refill = true;
     std::vector<Plane>
         planes; ///< planes no sphere may cross (system walls, a fragmentation plane), always applied
