@@ -67,7 +67,9 @@ public:
         return total;
     }
     /// Decrease of the mismatch if all @p balls were added together (they may overlap each other).
-    long long gain(const std::vector<Ball>& balls) const {
+    /// @p mirrored: the balls are mirror images of the first under planes that map the target and the
+    /// coverage onto themselves, so apart from each other they all gain the same.
+    long long gain(const std::vector<Ball>& balls, bool mirrored = false) const {
         bool independent = true;
         for (std::size_t p = 0; p < balls.size() && independent; ++p)
             for (std::size_t q = p + 1; q < balls.size(); ++q)
@@ -75,6 +77,7 @@ public:
                     independent = false;
                     break;
                 }
+        if (independent && mirrored) return gain(balls[0]) * static_cast<long long>(balls.size());
         if (independent) {
             long long total = 0;
             for (const Ball& b : balls) total += gain(b);
@@ -93,15 +96,16 @@ public:
             const double r2 = b.r * b.r;
             long long total = 0;
             const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
-                      k1 = std::min(d[2] - 1, floorInt(b.c.z() + b.r));
+                      k1 = std::min(halfEnd(mirrored, 2), floorInt(b.c.z() + b.r));
             for (int k = k0; k <= k1; ++k) {
                 const double dz = k - b.c.z();
                 const double rz2 = r2 - dz * dz;
                 if (rz2 < 0) continue;
                 const double ry = std::sqrt(rz2);
                 const int j0 = std::max(0, ceilInt(b.c.y() - ry)),
-                          j1 = std::min(d[1] - 1, floorInt(b.c.y() + ry));
+                          j1 = std::min(halfEnd(mirrored, 1), floorInt(b.c.y() + ry));
                 for (int j = j0; j <= j1; ++j) {
+                    const long long w = weight(mirrored, j, k);
                     const double dy = j - b.c.y();
                     const double rx2 = rz2 - dy * dy;
                     if (rx2 < 0) continue;
@@ -111,9 +115,9 @@ public:
                     const std::size_t row = S_.spec.index(0, j, k);
                     const bool hasA = a0 <= a1, hasB = b0 <= b1;
                     if (hasA && hasB && b0 <= a1 + 1)
-                        total += sum(row, a0, std::max(a1, b1));
+                        total += w * sum(row, a0, std::max(a1, b1));
                     else
-                        total += (hasA ? sum(row, a0, a1) : 0) + (hasB ? sum(row, b0, b1) : 0);
+                        total += w * ((hasA ? sum(row, a0, a1) : 0) + (hasB ? sum(row, b0, b1) : 0));
                 }
             }
             return total;
@@ -124,8 +128,10 @@ public:
             lo = lo.cwiseMin(b.c - Vec3::Constant(b.r));
             hi = hi.cwiseMax(b.c + Vec3::Constant(b.r));
         }
-        const int k0 = std::max(0, ceilInt((lo.z()))), k1 = std::min(d[2] - 1, floorInt((hi.z())));
-        const int j0 = std::max(0, ceilInt((lo.y()))), j1 = std::min(d[1] - 1, floorInt((hi.y())));
+        const int k0 = std::max(0, ceilInt((lo.z()))),
+                  k1 = std::min(halfEnd(mirrored, 2), floorInt((hi.z())));
+        const int j0 = std::max(0, ceilInt((lo.y()))),
+                  j1 = std::min(halfEnd(mirrored, 1), floorInt((hi.y())));
         long long total = 0;
         std::array<std::pair<int, int>, 8> iv;
         for (int k = k0; k <= k1; ++k)
@@ -145,19 +151,25 @@ public:
                 }
                 if (n == 0) continue;
                 const std::size_t row = S_.spec.index(0, j, k);
+                long long rowTotal = 0;
                 int a = iv[0].first, e = iv[0].second;
                 for (int p = 1; p < n; ++p) {
                     if (iv[p].first <= e + 1) {
                         e = std::max(e, iv[p].second);
                     } else {
-                        total += sum(row, a, e);
+                        rowTotal += sum(row, a, e);
                         a = iv[p].first;
                         e = iv[p].second;
                     }
                 }
-                total += sum(row, a, e);
+                rowTotal += sum(row, a, e);
+                total += weight(mirrored, j, k) * rowTotal;
             }
         return total;
+    }
+    /// Mirror planes (normal to x, y, z, through the grid centre) that map the target onto itself exactly.
+    void setMirrorPlanes(const std::array<bool, 3>& planes) {
+        mirror_ = planes;
     }
     void add(const Ball& b) {
         change(b, +1);
@@ -183,6 +195,18 @@ public:
     }
 
 private:
+    // A mirrored union of images under a symmetric coverage gains the same in rows (j, k) and their mirror
+    // images under the y and z planes: only the lower half is visited, rows off the plane counted twice.
+    int halfEnd(bool mirrored, int axis) const {
+        const int n = S_.spec.dims[axis];
+        return mirrored && mirror_[axis] ? (n - 1) / 2 : n - 1;
+    }
+    long long weight(bool mirrored, int j, int k) const {
+        long long w = 1;
+        if (mirrored && mirror_[1] && 2 * j != S_.spec.dims[1] - 1) w *= 2;
+        if (mirrored && mirror_[2] && 2 * k != S_.spec.dims[2] - 1) w *= 2;
+        return w;
+    }
     long long sum(std::size_t row, int i0, int i1) const {
         return prefix_[row + i1] - (i0 > 0 ? prefix_[row + i0 - 1] : 0);
     }
@@ -231,6 +255,7 @@ private:
     const VoxelGrid& S_;
     std::vector<std::uint16_t> cover_;
     std::vector<std::int32_t> prefix_;
+    std::array<bool, 3> mirror_{false, false, false};
     int nx_;
     std::size_t solid_ = 0, covered_ = 0;
     long long mismatch_ = 0;
@@ -238,8 +263,9 @@ private:
 
 /// Mirror planes through the grid centre, normal to x, y or z, under which the volume is invariant up to a
 /// tolerance (a voxelised mesh of a symmetric grain can differ in a few voxels where the surface passes
-/// exactly through voxel centres).
-std::array<bool, 3> mirrorAxes(const VoxelGrid& S, std::size_t solid) {
+/// exactly through voxel centres). @p exact: whether the volume is invariant exactly under all planes found.
+std::array<bool, 3> mirrorAxes(const VoxelGrid& S, std::size_t solid, bool& exact) {
+    exact = true;
     std::array<bool, 3> sym{false, false, false};
     const int nx = S.nx(), ny = S.ny(), nz = S.nz();
     const std::size_t limit = std::size_t(1e-3 * double(solid));
@@ -257,6 +283,7 @@ std::array<bool, 3> mirrorAxes(const VoxelGrid& S, std::size_t solid) {
                 diff += rowDiff(&S(0, j, k), &S(0, jm, km), a == 0);
             }
         sym[a] = diff <= limit;
+        exact = exact && (!sym[a] || diff == 0);
     }
     return sym;
 }
@@ -276,6 +303,7 @@ public:
         for (int a = 0; a < 3; ++a) mid_[a] = 0.5 * (g.dims[a] - 1);
     }
     int planes() const { return int(axes_[0]) + int(axes_[1]) + int(axes_[2]); }
+    const std::array<bool, 3>& axes() const { return axes_; }
     /// Snaps coordinates within half a voxel of a plane onto it (on a grid of even size the voxels next to
     /// the plane are half a voxel off it); those stay on it.
     Orbit make(const Vec3& c, double r) const {
@@ -395,9 +423,11 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
     };
     Coverage cov(S);
     debug("coverage");
-    const Symmetry sym(S.spec, opt.keepSymmetry ? mirrorAxes(S, cov.solid())
+    bool exactSymmetry = false;
+    const Symmetry sym(S.spec, opt.keepSymmetry ? mirrorAxes(S, cov.solid(), exactSymmetry)
                                                 : std::array<bool, 3>{false, false, false});
     m.symmetryPlanes = sym.planes();
+    if (exactSymmetry) cov.setMirrorPlanes(sym.axes());
     debug("symmetry");
     const Targets t{opt.nSpheres > 0 ? opt.nSpheres : INT32_MAX, opt.eta, opt.dice};
 
@@ -453,6 +483,16 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
     debug("candidates");
     // Lazy greedy: a max-heap of (mismatch removed per sphere, candidate), re-evaluated when stale.
     std::vector<Orbit> chosen;
+    // Gain of an orbit's images added together. While the target is exactly mirror symmetric and every placed
+    // orbit is whole, the coverage is symmetric too: images apart from each other gain the same, so one is
+    // counted (the ellipsoid's orbits have up to 8 images).
+    auto orbitGain = [&](const Orbit& o) {
+        const std::vector<Ball> imgs = sym.images(o);
+        const bool mirrored =
+            exactSymmetry && imgs.size() > 1 &&
+            std::none_of(chosen.begin(), chosen.end(), [](const Orbit& c) { return c.broken; });
+        return cov.gain(imgs, mirrored);
+    };
     std::vector<char> used(cands.size(), 0);
     std::size_t evaluations = 0;
     // Heap keys: first an upper bound (a ball fully inside), then the last evaluated gain per sphere, kept
@@ -524,8 +564,8 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
             gains.assign(batch.size(), 0.0);
 #pragma omp parallel for schedule(dynamic, 1)
             for (int e = 0; e < int(batch.size()); ++e) {
-                const auto imgs = sym.images(cands[std::size_t(-batch[e])]);
-                gains[e] = double(cov.gain(imgs)) / double(imgs.size());
+                const Orbit& o = cands[std::size_t(-batch[e])];
+                gains[e] = double(orbitGain(o)) / double(sym.images(o).size());
             }
             evaluations += batch.size();
             for (std::size_t e = 0; e < batch.size(); ++e) {
@@ -576,7 +616,7 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                     if (stale) continue;
                 }
                 for (const Ball& b : sym.images(o)) cov.remove(b);
-                long long best = cov.gain(sym.images(o));
+                long long best = orbitGain(o);
                 const long long start = best;
                 for (double step : {0.5, 0.25}) {
                     int lastAxis = -1; // the move just taken: its reverse leads back, no need to look
@@ -624,7 +664,7 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                         }
                         std::vector<long long> g(trials.size());
 #pragma omp parallel for schedule(dynamic, 1)
-                        for (int e = 0; e < int(trials.size()); ++e) g[e] = cov.gain(sym.images(trials[e]));
+                        for (int e = 0; e < int(trials.size()); ++e) g[e] = orbitGain(trials[e]);
                         int pick = -1;
                         for (int e = 0; e < int(trials.size()); ++e)
                             if (g[e] > best) {
