@@ -23,6 +23,50 @@ double planeDistance(const Plane& p, const Vec3& x) {
     return (x - p.point).dot(p.normal.normalized());
 }
 
+double voxelClearance(const VoxelGrid& solid, const ScalarGrid& edt, const Vec3& c) {
+    const auto& d = solid.spec.dims;
+    const std::array<int, 3> v{int(std::lround(c.x())), int(std::lround(c.y())), int(std::lround(c.z()))};
+    auto background = [&](int i, int j, int k) {
+        return i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2] || !solid(i, j, k);
+    };
+    if (!std::isfinite(c.x() + c.y() + c.z()) || background(v[0], v[1], v[2])) return -1.0;
+    const double off = (c - Vec3(v[0], v[1], v[2])).norm();
+    const double e = edt(v[0], v[1], v[2]);
+    const double rin = std::max(0.0, e - off - 1e-6), rout = e + off + 0.8660254037844387 + 1e-6;
+    double best = (e + off) * (e + off); // the cube of the background centre nearest to v is that near
+    auto cubeGap = [](double t) { return std::max(std::abs(t) - 0.5, 0.0); };
+    const int k0 = int(std::ceil(c.z() - rout)), k1 = int(std::floor(c.z() + rout));
+    for (int k = k0; k <= k1; ++k) {
+        const double dz = k - c.z(), gz = cubeGap(dz);
+        const double rz2 = rout * rout - dz * dz;
+        if (rz2 < 0 || gz * gz >= best) continue;
+        const double ry = std::sqrt(rz2);
+        const int j0 = int(std::ceil(c.y() - ry)), j1 = int(std::floor(c.y() + ry));
+        for (int j = j0; j <= j1; ++j) {
+            const double dy = j - c.y(), gy = cubeGap(dy);
+            const double ryz2 = dy * dy + dz * dz, gyz2 = gy * gy + gz * gz;
+            const double rx2 = rout * rout - ryz2;
+            if (rx2 < 0 || gyz2 >= best) continue;
+            const double xo = std::sqrt(rx2), xi = rin * rin > ryz2 ? std::sqrt(rin * rin - ryz2) : -1.0;
+            auto scan = [&](int i0, int i1) {
+                for (int i = i0; i <= i1; ++i)
+                    if (background(i, j, k)) {
+                        const double gx = cubeGap(i - c.x());
+                        best = std::min(best, gx * gx + gyz2);
+                    }
+            };
+            const int lo = int(std::ceil(c.x() - xo)), hi = int(std::floor(c.x() + xo));
+            if (xi < 0) {
+                scan(lo, hi);
+            } else { // the row crosses the inner ball, where no background centre is: its two ends
+                scan(lo, int(std::floor(c.x() - xi)));
+                scan(int(std::ceil(c.x() + xi)), hi);
+            }
+        }
+    }
+    return std::sqrt(best);
+}
+
 namespace {
 using K = CGAL::Simple_cartesian<double>;
 using Tri = K::Triangle_3;

@@ -790,19 +790,13 @@ Result generateOnGrid(const VoxelGrid& S, const GenerateOptions& opt, Metrics m,
     const double h = S.spec.h;
     std::function<double(const Vec3&)> bound = meshBound;
     if (!bound && (opt.clip || !opt.planes.empty())) {
-        // voxel volume: stay in the union of the solid voxels' cubes. The ball around c of radius
-        // (E(v) - |c - v| - sqrt(3)/2) h, v the voxel holding c, reaches no background voxel's cube: E(v) is
-        // the distance to the nearest background centre, 1-Lipschitz, and a cube lies within sqrt(3)/2 h of
-        // its centre. Conservative by up to a voxel: the guarantee holds at voxel accuracy.
+        // voxel volume: stay in the union of the solid voxels' cubes, the exact clearance (voxelClearance)
         bound = [&S, &E, &opt, h](const Vec3& c) {
             double b = std::numeric_limits<double>::infinity();
             for (const Plane& p : opt.planes) b = std::min(b, planeDistance(p, c));
             if (!opt.clip || b < 0) return b;
-            const Vec3 vc = S.spec.toVoxel(c);
-            const auto v = S.spec.voxelOf(c);
-            if (!S.spec.contains(v[0], v[1], v[2]) || !S(v[0], v[1], v[2])) return -1.0;
-            const double e = E(v[0], v[1], v[2]) - (vc - Vec3(v[0], v[1], v[2])).norm() - 0.8660254037844387;
-            return std::min(b, e * h);
+            const double e = voxelClearance(S, E, S.spec.toVoxel(c));
+            return e < 0 ? -1.0 : std::min(b, e * h);
         };
     }
     BoundVox boundVox;

@@ -1,4 +1,5 @@
 #include "mss/clip.hpp"
+#include "mss/edt.hpp"
 #include "mss/generate.hpp"
 #include "mss/score.hpp"
 
@@ -243,11 +244,68 @@ TEST(Clip, VoxelVolumesStayInTheirSolidVoxels) {
     ASSERT_GT(r.spheres.size(), 0u);
     for (std::size_t s = 0; s < r.spheres.size(); ++s)
         for (const Vec3& p : surfacePoints(r.spheres.centers[s], r.spheres.radii[s], 200)) {
-            // every surface point lies in a solid voxel of the input
-            const auto q = g.voxelOf(p);
+            // every surface point lies in a solid voxel of the input (spheres may touch a face: a point is
+            // taken a hair inside, 1e-9 of the radius)
+            const Vec3 in = r.spheres.centers[s] + (p - r.spheres.centers[s]) * (1.0 - 1e-9);
+            const auto q = g.voxelOf(in);
             ASSERT_TRUE(g.contains(q[0], q[1], q[2]));
             EXPECT_EQ(v(q[0], q[1], q[2]), 1);
         }
+}
+
+// The voxel clearance is exact: the distance to the nearest background cube, against all of them.
+TEST(Clip, VoxelClearanceIsExact) {
+    GridSpec g;
+    g.dims = {24, 20, 18};
+    VoxelGrid v(g, 0);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int k = 2; k < 16; ++k)
+        for (int j = 2; j < 18; ++j)
+            for (int i = 2; i < 22; ++i) // a blob with a few holes
+                v(i, j, k) =
+                    (i - 12) * (i - 12) / 90.0 + (j - 10) * (j - 10) / 60.0 + (k - 9) * (k - 9) / 45.0 <=
+                        1.0 &&
+                    u(rng) > 0.02;
+    const ScalarGrid E = distanceTransform(v);
+    int checked = 0;
+    for (int t = 0; t < 400; ++t) {
+        const Vec3 c(1 + 21 * u(rng), 1 + 17 * u(rng), 1 + 15 * u(rng));
+        const auto q = g.voxelOf(g.toWorld(c));
+        const double got = voxelClearance(v, E, c);
+        if (!v(q[0], q[1], q[2])) {
+            EXPECT_EQ(got, -1.0);
+            continue;
+        }
+        double best = 1e300;
+        for (int k = -1; k <= g.dims[2]; ++k)
+            for (int j = -1; j <= g.dims[1]; ++j)
+                for (int i = -1; i <= g.dims[0]; ++i) {
+                    if (g.contains(i, j, k) && v(i, j, k)) continue;
+                    const Vec3 gap = ((c - Vec3(i, j, k)).cwiseAbs() - Vec3::Constant(0.5)).cwiseMax(0.0);
+                    best = std::min(best, gap.norm());
+                }
+        EXPECT_NEAR(got, best, 1e-12) << c.transpose();
+        ++checked;
+    }
+    EXPECT_GT(checked, 50);
+}
+
+// Clipped to a block of solid voxels, one sphere fills it to its faces: radius half the block's side.
+TEST(Clip, VoxelClippingReachesTheFaces) {
+    GridSpec g;
+    g.dims = {20, 20, 20};
+    g.h = 0.1;
+    VoxelGrid v(g, 0);
+    for (int k = 4; k < 16; ++k)
+        for (int j = 4; j < 16; ++j)
+            for (int i = 4; i < 16; ++i) v(i, j, k) = 1;
+    GenerateOptions o;
+    o.nSpheres = 1;
+    o.clip = true;
+    const Result r = generate(v, o);
+    ASSERT_EQ(r.spheres.size(), 1u);
+    EXPECT_NEAR(r.spheres.radii[0], 6 * g.h, 1e-9); // 12 voxels wide
 }
 
 TEST(Clip, OpenBunnyVolumeMatchesItsClosedVersion) {
