@@ -39,7 +39,8 @@ struct GenerateOptions {
     int threads = 0;          ///< OpenMP threads; 0 = the default. The result does not depend on it.
     /// No sphere protrudes from the solid (paper section 3.5, exactly): a mesh's spheres get radii at most
     /// the exact distance from their centre to the surface, a sphere whose centre is outside is not placed; a
-    /// voxel volume's spheres stay inside the union of its solid voxels (a conservative bound from the EDT).
+    /// voxel volume's spheres stay inside the union of its solid voxels (exact distance to the nearest
+    /// background voxel cube, voxelClearance).
     bool clip = false;
     /// With clip: choose and tune spheres under the constraint, so that coverage lost to clipping is
     /// regained (optimized: from nothing and from the free optimum cut down, the better kept; paper: the MSS
