@@ -3,7 +3,7 @@
 # independent grid (mss compare: 100 voxels along the shortest edge, offset 0.37 voxel) without clipping, with
 # --clip (spheres chosen under the constraint: "refill"), with --clip --no-refill (the unclipped spheres shrunk
 # afterwards), the ratio clip/unclipped, and the spheres --clip needs to reach the unclipped D of the
-# generation grid (--dice target).
+# generation grid (--dice target). CT-voxels: a voxel volume, clipped to the faces of its solid voxels.
 # usage: bench/clip_cost.sh [THREADS]   (build first: scripts/setup.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +22,8 @@ run() { # input label method n [extra options for every run]
     $MSS generate "$in" --spheres "$n" --method "$method" --threads "$THREADS" $clip "${extra[@]}" \
       -o "$OUT/s.csv" > "$OUT/run.log"
     [ -z "$clip" ] && gen=$(awk '/^dice/{print $2}' "$OUT/run.log")
-    d+=("$($MSS compare "$in" "$OUT/s.csv" --resolution 100 --offset 0.37 "${extra[@]:0:0}" |
+    # a voxel volume is scored on its own voxels (--resolution and --offset apply to meshes)
+    d+=("$($MSS compare "$in" "$OUT/s.csv" --resolution 100 --offset 0.37 ${NPY:+--npy-voxel-size 1} |
       awk '/^dice/{print $2}')")
   done
   local same="-"
@@ -40,5 +41,6 @@ for n in 30 70; do run $F femur paper "$n" --resolution 103; done
 for g in ellipsoid_2_1_1 cube octahedron torus stanford_bunny_open; do
   for n in 10 40; do run tests/data/$g.stl "$g" optimized "$n" --resolution 103; done
 done
+for n in 10 30; do NPY=1 run tests/data/grain_voxels_155x157x167.npy CT-voxels optimized "$n" --npy-voxel-size 1; done
 echo "D: Dice mismatch (eq. 27) on an independent grid; ratio = D_clip / D; n_clip_same_D: spheres that --clip"
 echo "needs to reach, on the generation grid, the D that n unclipped spheres reach there."
