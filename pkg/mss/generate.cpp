@@ -424,8 +424,14 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
     Coverage cov(S);
     debug("coverage");
     bool exactSymmetry = false;
-    const Symmetry sym(S.spec, opt.keepSymmetry ? mirrorAxes(S, cov.solid(), exactSymmetry)
-                                                : std::array<bool, 3>{false, false, false});
+    std::array<bool, 3> axes{false, false, false};
+    if (opt.keepSymmetry) axes = mirrorAxes(S, cov.solid(), exactSymmetry);
+    // a constraint plane is mirrored onto itself only if it is parallel to the mirror's normal; any other
+    // breaks that symmetry (an oblique cut through a symmetric grain would leave no orbit on its side)
+    for (const Plane& p : opt.planes)
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(p.normal[a]) > 1e-12 * p.normal.norm()) axes[a] = false;
+    const Symmetry sym(S.spec, axes);
     m.symmetryPlanes = sym.planes();
     if (exactSymmetry) cov.setMirrorPlanes(sym.axes());
     debug("symmetry");

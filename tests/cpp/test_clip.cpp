@@ -183,6 +183,30 @@ TEST(Clip, ConstraintPlanes) {
     EXPECT_THROW(generate(femur, res, o), std::invalid_argument);
 }
 
+// A plane across a symmetric grain breaks the mirror symmetries it is not parallel to: an oblique cut
+// through the ellipsoid's centre used to leave no whole orbit on its side, and no sphere at all.
+TEST(Clip, PlanesBreakTheSymmetriesTheyCross) {
+    const TriangleMesh ell = readMesh(kData + "/ellipsoid_2_1_1.stl");
+    Resolution res;
+    res.resolution = 40;
+    GenerateOptions o;
+    o.nSpheres = 10;
+    Plane oblique;
+    oblique.point = Vec3(0.1, 0, 0);
+    oblique.normal = Vec3(1, 0.3, -0.2);
+    Plane floor; // parallel to x and y: those two mirrors stay
+    floor.point = Vec3(0, 0, -0.5);
+    floor.normal = Vec3(0, 0, 1);
+    for (const Plane& p : {oblique, floor}) {
+        o.planes = {p};
+        const Result r = generate(ell, res, o);
+        EXPECT_EQ(r.spheres.size(), 10u);
+        EXPECT_EQ(r.metrics.symmetryPlanes, p.normal.x() != 0 ? 0 : 2);
+        for (std::size_t i = 0; i < r.spheres.size(); ++i)
+            EXPECT_GE(planeDistance(p, r.spheres.centers[i]), r.spheres.radii[i] - 1e-12);
+    }
+}
+
 TEST(Clip, RefillRegainsCoverage) {
     const TriangleMesh femur = readMesh(kData + "/human_femur.stl");
     Resolution res;
@@ -251,6 +275,18 @@ TEST(Clip, VoxelVolumesStayInTheirSolidVoxels) {
             ASSERT_TRUE(g.contains(q[0], q[1], q[2]));
             EXPECT_EQ(v(q[0], q[1], q[2]), 1);
         }
+    // a plane across a voxel volume: no sphere crosses it, clipped or not
+    Plane cut;
+    cut.point = g.toWorld(Vec3(15, 13, 11));
+    cut.normal = Vec3(1.0, 0.3, -0.2);
+    o.planes = {cut};
+    for (bool clip : {true, false}) {
+        o.clip = clip;
+        const Result p = generate(v, o);
+        ASSERT_GT(p.spheres.size(), 2u);
+        for (std::size_t s = 0; s < p.spheres.size(); ++s)
+            EXPECT_GE(planeDistance(cut, p.spheres.centers[s]), p.spheres.radii[s] - 1e-12);
+    }
 }
 
 // The voxel clearance is exact: the distance to the nearest background cube, against all of them.
