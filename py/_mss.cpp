@@ -105,6 +105,19 @@ mss::VoxelGrid voxels(const py::object& data, const py::object& shape, double vo
     return v;
 }
 
+std::vector<mss::Plane> planes(const py::object& list) {
+    std::vector<mss::Plane> out;
+    for (long i = 0; i < py::len(list); ++i) {
+        const std::vector<double> v = doubles(list[i], "planes");
+        if (v.size() != 6) throw std::invalid_argument("generate: a plane is 6 numbers: point and normal");
+        mss::Plane p;
+        p.point = mss::Vec3(v[0], v[1], v[2]);
+        p.normal = mss::Vec3(v[3], v[4], v[5]);
+        out.push_back(p);
+    }
+    return out;
+}
+
 mss::GenerateOptions options(const py::dict& d) {
     mss::GenerateOptions o;
     if (d.has_key("nSpheres")) o.nSpheres = py::extract<int>(d["nSpheres"]);
@@ -118,16 +131,7 @@ mss::GenerateOptions options(const py::dict& d) {
     if (d.has_key("clip")) o.clip = py::extract<bool>(d["clip"]);
     if (d.has_key("refill")) o.refill = py::extract<bool>(d["refill"]);
     if (d.has_key("planes")) {
-        const py::object planes = d["planes"];
-        for (long i = 0; i < py::len(planes); ++i) {
-            const std::vector<double> v = doubles(planes[i], "planes");
-            if (v.size() != 6)
-                throw std::invalid_argument("generate: a plane is 6 numbers: point and normal");
-            mss::Plane p;
-            p.point = mss::Vec3(v[0], v[1], v[2]);
-            p.normal = mss::Vec3(v[3], v[4], v[5]);
-            o.planes.push_back(p);
-        }
+        o.planes = planes(d["planes"]);
     }
     if (d.has_key("method")) {
         const std::string m = py::extract<std::string>(d["method"]);
@@ -260,13 +264,18 @@ py::dict generateVoxels(const py::object& data, const py::object& shape, double 
     return result(mss::generate(voxels(data, shape, voxelSize, origin), options(opts)));
 }
 
-py::dict massMesh(const py::object& vertices, const py::object& triangles) {
-    return mass(mss::meshMassProperties(mesh(vertices, triangles)));
+// with planes: the part of the solid on their allowed side (a fragment)
+py::dict massMesh(const py::object& vertices, const py::object& triangles, const py::object& cuts) {
+    const std::vector<mss::Plane> p = planes(cuts);
+    const mss::TriangleMesh m = mesh(vertices, triangles);
+    return mass(mss::meshMassProperties(p.empty() ? m : mss::clipMeshByPlanes(m, p)));
 }
 
 py::dict massVoxels(const py::object& data, const py::object& shape, double voxelSize,
-                    const py::object& origin) {
-    return mass(mss::voxelMassProperties(voxels(data, shape, voxelSize, origin)));
+                    const py::object& origin, const py::object& cuts) {
+    const std::vector<mss::Plane> p = planes(cuts);
+    const mss::VoxelGrid v = voxels(data, shape, voxelSize, origin);
+    return mass(mss::voxelMassProperties(p.empty() ? v : mss::cutVoxelsByPlanes(v, p)));
 }
 
 py::dict massSpheres(const py::object& centers, const py::object& radii, int resolution) {
@@ -319,9 +328,11 @@ BOOST_PYTHON_MODULE(_mss) {
              py::arg("supersample") = 1));
     py::def("generateVoxels", generateVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options")));
-    py::def("massMesh", massMesh, (py::arg("vertices"), py::arg("triangles")));
+    py::def("massMesh", massMesh,
+            (py::arg("vertices"), py::arg("triangles"), py::arg("planes") = py::list()));
     py::def("massVoxels", massVoxels,
-            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin")));
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"),
+             py::arg("planes") = py::list()));
     py::def("massSpheres", massSpheres, (py::arg("centers"), py::arg("radii"), py::arg("resolution") = 200));
     py::def("scoreMesh", scoreMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("centers"), py::arg("radii"),

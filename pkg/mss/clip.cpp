@@ -23,6 +23,76 @@ double planeDistance(const Plane& p, const Vec3& x) {
     return (x - p.point).dot(p.normal.normalized());
 }
 
+TriangleMesh clipMeshByPlanes(const TriangleMesh& mesh, const std::vector<Plane>& planes) {
+    std::vector<std::array<Vec3, 3>> soup;
+    soup.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles)
+        soup.push_back({mesh.vertices[std::size_t(t[0])], mesh.vertices[std::size_t(t[1])],
+                        mesh.vertices[std::size_t(t[2])]});
+    for (const Plane& plane : planes) {
+        validatePlane(plane, "clipMeshByPlanes");
+        std::vector<std::array<Vec3, 3>> kept;
+        std::vector<std::pair<Vec3, Vec3>> cuts; // (entry, exit) of each clipped polygon's cut edge
+        Vec3 mean = Vec3::Zero();
+        for (const auto& tri : soup) {
+            std::array<double, 3> s;
+            for (int q = 0; q < 3; ++q) s[q] = planeDistance(plane, tri[q]);
+            if (s[0] >= 0 && s[1] >= 0 && s[2] >= 0) {
+                kept.push_back(tri);
+                continue;
+            }
+            std::array<Vec3, 4> poly;
+            int n = 0;
+            Vec3 entry = Vec3::Zero(), exit = Vec3::Zero();
+            for (int q = 0; q < 3; ++q) {
+                const int r = (q + 1) % 3;
+                if (s[q] >= 0) poly[std::size_t(n++)] = tri[q];
+                if ((s[q] >= 0) != (s[r] >= 0)) {
+                    const Vec3 x = tri[q] + (tri[r] - tri[q]) * (s[q] / (s[q] - s[r]));
+                    poly[std::size_t(n++)] = x;
+                    (s[q] >= 0 ? exit : entry) = x;
+                }
+            }
+            if (n < 3) continue; // wholly on the other side
+            for (int q = 1; q + 1 < n; ++q)
+                kept.push_back({poly[0], poly[std::size_t(q)], poly[std::size_t(q + 1)]});
+            // the polygon runs along the cut from exit to entry; the cap runs the other way
+            cuts.emplace_back(entry, exit);
+            mean += entry + exit;
+        }
+        if (!cuts.empty()) {
+            mean /= double(2 * cuts.size());
+            const Vec3 nrm = plane.normal.normalized();
+            const Vec3 apex = mean - nrm * planeDistance(plane, mean); // on the plane, near the cut
+            for (const auto& [entry, exit] : cuts) kept.push_back({apex, entry, exit});
+        }
+        soup.swap(kept);
+    }
+    TriangleMesh out;
+    out.vertices.reserve(3 * soup.size());
+    for (const auto& tri : soup) {
+        const int base = int(out.vertices.size());
+        out.vertices.insert(out.vertices.end(), tri.begin(), tri.end());
+        out.triangles.push_back({base, base + 1, base + 2});
+    }
+    return out;
+}
+
+VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& planes) {
+    for (const Plane& p : planes) validatePlane(p, "cutVoxelsByPlanes");
+    VoxelGrid out = volume;
+    const auto& d = volume.spec.dims;
+    for (int k = 0; k < d[2]; ++k)
+        for (int j = 0; j < d[1]; ++j)
+            for (int i = 0; i < d[0]; ++i) {
+                if (!out(i, j, k)) continue;
+                const Vec3 c = volume.spec.voxelCenter(i, j, k);
+                for (const Plane& p : planes)
+                    if (planeDistance(p, c) < 0) out(i, j, k) = 0;
+            }
+    return out;
+}
+
 double voxelClearance(const VoxelGrid& solid, const ScalarGrid& edt, const Vec3& c) {
     const auto& d = solid.spec.dims;
     const std::array<int, 3> v{int(std::lround(c.x())), int(std::lround(c.y())), int(std::lround(c.z()))};

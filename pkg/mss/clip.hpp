@@ -23,6 +23,17 @@ void validatePlane(const Plane& p, const char* where);
 /// Signed distance from @p x to the plane, positive on the allowed side.
 double planeDistance(const Plane& p, const Vec3& x);
 
+/// The part of a closed mesh on the allowed side of every plane, closed again: each triangle is clipped
+/// (Sutherland-Hodgman) and each cut is capped by a fan of triangles over its cut segments, from a point of
+/// the plane (a signed fan, exact for the integrals of meshMassProperties whatever the cut's shape: holes and
+/// several loops included). The result is a triangle soup with the input's orientation, empty when nothing
+/// is left. @throws std::invalid_argument on a bad plane.
+TriangleMesh clipMeshByPlanes(const TriangleMesh& mesh, const std::vector<Plane>& planes);
+
+/// The voxels of @p volume whose centre lies on the allowed side of every plane (a fragment at voxel
+/// accuracy). @throws std::invalid_argument on a bad plane.
+VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& planes);
+
 /// Clearance of a point in a voxel volume: the exact distance from @p c (continuous voxel coordinates of
 /// @p solid's grid) to the nearest background voxel's cube [b - 1/2, b + 1/2]^3, cells outside the grid
 /// counting as background; -1 when the voxel holding @p c is background. A ball of that radius around @p c

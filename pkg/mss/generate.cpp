@@ -781,27 +781,41 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
 
 /// @p meshBound: the mesh's constraint in world units (clipping to the mesh, planes), or empty: then clipping
 /// and planes apply to the voxel volume S.
-Result generateOnGrid(const VoxelGrid& S, const GenerateOptions& opt, Metrics m, Clock::time_point start,
+Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metrics m, Clock::time_point start,
                       std::function<double(const Vec3&)> meshBound = {}) {
     if (opt.threads > 0) {
 #ifdef _OPENMP
         omp_set_num_threads(opt.threads);
 #endif
     }
+    if (countSolid(grain) == 0)
+        throw std::invalid_argument("generate: the voxelised solid is empty (resolution too coarse?)");
+    // Constraint planes cut the target as well: the spheres are fitted to, and scored against, the part of
+    // the grain on the allowed side of every plane (voxel centres), so that a fragment gets its own D and a
+    // quality target it can meet.
+    VoxelGrid fragment;
+    if (!opt.planes.empty()) {
+        fragment = cutVoxelsByPlanes(grain, opt.planes);
+        if (countSolid(fragment) == 0)
+            throw std::invalid_argument(
+                "generate: no part of the solid lies on the allowed side of the planes");
+    }
+    const VoxelGrid& S = opt.planes.empty() ? grain : fragment;
     auto t0 = Clock::now();
     const ScalarGrid E = distanceTransform(S); // eq. 8
     m.secondsEdt = secondsSince(t0);
-    if (countSolid(S) == 0)
-        throw std::invalid_argument("generate: the voxelised solid is empty (resolution too coarse?)");
     const double h = S.spec.h;
     std::function<double(const Vec3&)> bound = meshBound;
+    ScalarGrid grainEdt; // the whole grain's, for the voxel clearance when planes cut it
+    if (!bound && opt.clip && !opt.planes.empty()) grainEdt = distanceTransform(grain);
     if (!bound && (opt.clip || !opt.planes.empty())) {
         // voxel volume: stay in the union of the solid voxels' cubes, the exact clearance (voxelClearance)
-        bound = [&S, &E, &opt, h](const Vec3& c) {
+        const ScalarGrid& Eg = opt.planes.empty() ? E : grainEdt;
+        bound = [&grain, &Eg, &opt, h](const Vec3& c) {
             double b = std::numeric_limits<double>::infinity();
             for (const Plane& p : opt.planes) b = std::min(b, planeDistance(p, c));
             if (!opt.clip || b < 0) return b;
-            const double e = voxelClearance(S, E, S.spec.toVoxel(c));
+            const double e = voxelClearance(grain, Eg, grain.spec.toVoxel(c));
             return e < 0 ? -1.0 : std::min(b, e * h);
         };
     }

@@ -188,12 +188,15 @@ def _source(source, voxelSize=None, origin=None, label=None):
                      'MssResult; got %s' % type(source).__name__)
 
 
-def massProperties(source, voxelSize=None, origin=None, label=None):
-    """:class:`MassProperties` (unit density) of a mesh (exact, divergence theorem) or voxels (exact voxel sums)."""
+def massProperties(source, voxelSize=None, origin=None, label=None, planes=()):
+    """:class:`MassProperties` (unit density) of a mesh (exact, divergence theorem) or voxels (exact voxel sums).
+    With ``planes`` (as in :func:`generate`): of the part on their allowed side, a fragment (a mesh cut and capped
+    exactly; voxels whose centre is on that side)."""
     s = _source(source, voxelSize, origin, label)
+    cuts = [_plane(p) for p in planes]
     if isinstance(s, _Mesh):
-        return MassProperties._fromDict(_mss.massMesh(*s.args()))
-    return MassProperties._fromDict(_mss.massVoxels(*s.args()))
+        return MassProperties._fromDict(_mss.massMesh(*s.args(), cuts))
+    return MassProperties._fromDict(_mss.massVoxels(*s.args(), cuts))
 
 
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None,
@@ -217,7 +220,8 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
         of the solid voxels)
     :param bool refill: with clip, choose the spheres under the constraint to regain coverage (default)
     :param planes: planes no sphere may cross, as ((px, py, pz), (nx, ny, nz)); spheres stay on the side the
-        normal points to
+        normal points to. Planes that cut the grain make the target its part on that side (a fragment): the
+        mismatch, the quality targets and ``targetMass`` refer to it.
     :return: :class:`MssResult`
     """
     if isinstance(source, MssResult):
@@ -246,12 +250,12 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
         if memoryLimit is not None:
             res['memoryLimit'] = int(memoryLimit)
         d = _mss.generateMesh(*s.args(), res, opts, int(supersample))
-        target = MassProperties._fromDict(_mss.massMesh(*s.args()))
+        target = MassProperties._fromDict(_mss.massMesh(*s.args(), opts['planes']))
     else:
         if resolution is not None:
             raise ValueError('generate: resolution applies to meshes; voxels are used at their own resolution')
         d = _mss.generateVoxels(*s.args(), opts)
-        target = MassProperties._fromDict(_mss.massVoxels(*s.args()))
+        target = MassProperties._fromDict(_mss.massVoxels(*s.args(), opts['planes']))
     for w in d['metrics'].get('warnings', []):
         warnings.warn('%s: %s' % (s.name, w))
     return MssResult(d['centers'], d['radii'], d['metrics'], d['grid'], target, s.name)

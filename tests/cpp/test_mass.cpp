@@ -1,3 +1,4 @@
+#include "mss/clip.hpp"
 #include "mss/mass.hpp"
 #include "mss/voxelize.hpp"
 
@@ -66,4 +67,59 @@ TEST(Mass, SphereUnionCountsOverlapsOnce) {
     const double V = 2 * 4.0 / 3.0 * kPi - 5.0 * kPi / 12.0;
     EXPECT_NEAR(sphereUnionMassProperties(two, 200).volume, V, 2e-3 * V);
     EXPECT_NEAR(sphereUnionMassProperties(two, 200).centroid.x(), 0.5, 1e-9);
+}
+
+// A grain cut by planes (a fragment): clipped and capped, its mass properties are exact.
+TEST(Mass, CutCubeIsExact) {
+    const TriangleMesh cube = readMesh(kData + "/cube.stl"); // [-0.5, 0.5]^3
+    Plane p;
+    p.point = Vec3(-0.2, 0, 0);
+    p.normal = Vec3(2, 0, 0); // keep x >= -0.2: a 0.7 x 1 x 1 box
+    const MassProperties m = meshMassProperties(clipMeshByPlanes(cube, {p}));
+    EXPECT_NEAR(m.volume, 0.7, 1e-12);
+    EXPECT_NEAR((m.centroid - Vec3(0.15, 0, 0)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(m.inertia(0, 0), 0.7 * (1 + 1) / 12.0, 1e-12);
+    EXPECT_NEAR(m.inertia(1, 1), 0.7 * (0.49 + 1) / 12.0, 1e-12);
+    EXPECT_NEAR(m.inertia(0, 1), 0.0, 1e-12);
+    // two planes cutting off a corner wedge each: the sum of the parts is the whole
+    Plane q;
+    q.point = Vec3(0.1, 0.2, -0.1);
+    q.normal = Vec3(0.3, -1, 0.4);
+    Plane qb = q;
+    qb.normal = -q.normal;
+    const MassProperties a = meshMassProperties(clipMeshByPlanes(cube, {q})),
+                         b = meshMassProperties(clipMeshByPlanes(cube, {qb}));
+    EXPECT_NEAR(a.volume + b.volume, 1.0, 1e-12);
+    EXPECT_NEAR((a.volume * a.centroid + b.volume * b.centroid).norm(), 0.0, 1e-12);
+    // second moments about the origin add up too: I_O = I_c + V (|c|^2 1 - c c^T)
+    auto aboutOrigin = [](const MassProperties& x) {
+        return Eigen::Matrix3d(x.inertia +
+                               x.volume * (x.centroid.squaredNorm() * Eigen::Matrix3d::Identity() -
+                                           x.centroid * x.centroid.transpose()));
+    };
+    EXPECT_NEAR((aboutOrigin(a) + aboutOrigin(b) - Eigen::Matrix3d::Identity() / 6.0).norm(), 0.0, 1e-12);
+    EXPECT_LT(std::abs(a.volume - 0.5), 0.45); // a real cut
+    // nothing left
+    Plane away;
+    away.point = Vec3(0, 0, 2);
+    away.normal = Vec3(0, 0, 1);
+    EXPECT_TRUE(clipMeshByPlanes(cube, {away}).triangles.empty());
+}
+
+// The femur (a real, bumpy mesh whose cut has several loops in general) split in two: the halves add up.
+TEST(Mass, CutFemurHalvesAddUp) {
+    const TriangleMesh femur = readMesh(kData + "/human_femur.stl");
+    const MassProperties whole = meshMassProperties(femur);
+    Plane p;
+    p.point = whole.centroid;
+    p.normal = Vec3(0.1, 0.2, 1.0);
+    Plane q = p;
+    q.normal = -p.normal;
+    const MassProperties a = meshMassProperties(clipMeshByPlanes(femur, {p})),
+                         b = meshMassProperties(clipMeshByPlanes(femur, {q}));
+    EXPECT_NEAR(a.volume + b.volume, whole.volume, 1e-9 * whole.volume);
+    EXPECT_NEAR((a.volume * a.centroid + b.volume * b.centroid - whole.volume * whole.centroid).norm(), 0.0,
+                1e-9 * whole.volume * 100);
+    EXPECT_GT(a.volume, 0.1 * whole.volume);
+    EXPECT_GT(b.volume, 0.1 * whole.volume);
 }

@@ -82,6 +82,28 @@ class Clipping(unittest.TestCase):
         with self.assertRaises(ValueError):
             generate(FEMUR, nSpheres=3, planes=[((0, 0, 0), (0, 0))])
 
+    def test_fragment(self):
+        # a plane through the grain: the target is the part on its allowed side (mass, mismatch, targets)
+        whole = massProperties(FEMUR)
+        up, down = ((whole.centroid, (0.1, 0.2, 1.0)), (whole.centroid, (-0.1, -0.2, -1.0)))
+        a, b = massProperties(FEMUR, planes=[up]), massProperties(FEMUR, planes=[down])
+        self.assertAlmostEqual(a.volume + b.volume, whole.volume, delta=1e-9 * whole.volume)
+        self.assertGreater(a.volume, 0.2 * whole.volume)
+        r = generate(FEMUR, dice=0.06, resolution=40, planes=[up])
+        self.assertAlmostEqual(r.targetMass.volume, a.volume, delta=1e-9 * a.volume)
+        self.assertLessEqual(r.metrics['dice'], 0.06)  # reachable: the whole grain would leave D near 0.5
+        n = np.array([0.1, 0.2, 1.0]) / np.linalg.norm([0.1, 0.2, 1.0])
+        self.assertTrue(np.all((r.centers - whole.centroid) @ n - r.radii >= -1e-9))
+        v = np.load(os.path.join(DATA, 'grain_voxels_155x157x167.npy'))
+        g = massProperties(v)
+        h = massProperties(v, planes=[(g.centroid, (1, 0, 0))])
+        self.assertGreater(h.volume, 0.3 * g.volume)
+        self.assertLess(h.volume, 0.7 * g.volume)
+        self.assertGreater(h.centroid[0], g.centroid[0])
+        with self.assertRaises(ValueError) as ctx:
+            generate(FEMUR, nSpheres=3, resolution=20, planes=[((0, 0, 1e6), (0, 0, 1))])
+        self.assertIn('allowed side of the planes', str(ctx.exception))
+
     def test_open_mesh_warns(self):
         with warnings.catch_warnings(record=True) as w:
             warnings.simplefilter('always')

@@ -78,6 +78,17 @@ class MassAndInertia(Base):
         self.assertLess(math.degrees(math.acos(min(1.0, abs(axis[0])))), 1.0)
         np.testing.assert_allclose(np.array(st.pos), 0, atol=1e-9)
 
+    def test_fragment_gets_its_own_mass(self):
+        # half the ellipsoid beyond a fragmentation plane x = 0: mass 2000 V / 2, centre of mass at x = 3 a / 8
+        cid, ids = mssClump(ELL, nSpheres=8, resolution=60, planes=[((0, 0, 0), (1, 0, 0))])
+        st = O.bodies[cid].state
+        M = 2000 * 4.0 / 3.0 * math.pi * 2.0 / 2
+        self.assertLess(abs(st.mass - M) / M, 0.005)
+        self.assertLess(abs(st.pos[0] - 3 * 2.0 / 8) / 0.75, 0.005)
+        for i in ids:
+            b = O.bodies[i]
+            self.assertGreaterEqual(b.state.pos[0] - b.shape.radius, -1e-9)
+
     def test_union(self):
         r = generate(ELL, nSpheres=10, resolution=60)
         cid, ids = mssClump(r, mass='union')
