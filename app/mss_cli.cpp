@@ -47,6 +47,7 @@ voxel input (.npy) options:
 compare options:
   --resolution N       scoring grid: N voxels along the shortest edge (default 100)
   --offset F           shift of the scoring grid, in voxels (default 0.37)
+  --plane PX,PY,PZ,NX,NY,NZ   score against the part of the target on the normal's side (a fragment)
 )";
 
 struct Args {
@@ -125,6 +126,22 @@ int integer(const Args& a, const std::string& key, int fallback) {
     return static_cast<int>(v);
 }
 
+std::vector<mss::Plane> planes(const Args& a) {
+    std::vector<mss::Plane> out;
+    for (const std::string& text : a.planes) {
+        std::string t = text;
+        for (char& c : t)
+            if (c == ',') c = ' ';
+        std::istringstream is(t);
+        mss::Plane p;
+        if (!(is >> p.point.x() >> p.point.y() >> p.point.z() >> p.normal.x() >> p.normal.y() >>
+              p.normal.z()))
+            throw std::invalid_argument("--plane: expected PX,PY,PZ,NX,NY,NZ, got '" + text + "'");
+        out.push_back(p);
+    }
+    return out;
+}
+
 mss::Vec3 vec3(const Args& a, const std::string& key) {
     auto it = a.opts.find(key);
     if (it == a.opts.end()) return mss::Vec3::Zero();
@@ -200,17 +217,7 @@ int cmdGenerate(const Args& a) {
     o.keepSymmetry = !a.has("--no-symmetry");
     o.clip = a.has("--clip");
     o.refill = !a.has("--no-refill");
-    for (const std::string& text : a.planes) {
-        std::string t = text;
-        for (char& c : t)
-            if (c == ',') c = ' ';
-        std::istringstream is(t);
-        mss::Plane p;
-        if (!(is >> p.point.x() >> p.point.y() >> p.point.z() >> p.normal.x() >> p.normal.y() >>
-              p.normal.z()))
-            throw std::invalid_argument("--plane: expected PX,PY,PZ,NX,NY,NZ, got '" + text + "'");
-        o.planes.push_back(p);
-    }
+    o.planes = planes(a);
     const std::string method = a.has("--method") ? a.opts.at("--method") : "optimized";
     if (method == "optimized")
         o.method = mss::Method::Optimized;
@@ -242,15 +249,16 @@ int cmdGenerate(const Args& a) {
 }
 
 int cmdCompare(const Args& a) {
+    const std::vector<mss::Plane> cuts = planes(a);
     if (a.positional.size() != 2) throw std::invalid_argument("compare needs INPUT and SPHERES files");
     const mss::SphereSet s = mss::readSpheres(a.positional[1]);
     mss::Score sc;
     if (isVoxelFile(a.positional[0])) {
-        sc = mss::scoreSpheres(readVoxels(a, a.positional[0]), s);
+        sc = mss::scoreSpheres(readVoxels(a, a.positional[0]), s, cuts);
     } else {
         const int res = integer(a, "--resolution", 100);
         sc = mss::scoreSpheres(mss::readMesh(a.positional[0]), s, res, number(a, "--offset", 0.37),
-                               integer(a, "--supersample", 1));
+                               integer(a, "--supersample", 1), cuts);
     }
     std::cout << std::setprecision(6);
     std::cout << "grid          " << sc.grid.dims[0] << " x " << sc.grid.dims[1] << " x " << sc.grid.dims[2]

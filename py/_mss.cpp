@@ -283,14 +283,17 @@ py::dict massSpheres(const py::object& centers, const py::object& radii, int res
 }
 
 py::dict scoreMesh(const py::object& vertices, const py::object& triangles, const py::object& centers,
-                   const py::object& radii, int resolution, double offset, int supersample) {
+                   const py::object& radii, int resolution, double offset, int supersample,
+                   const py::object& cuts) {
     return score(mss::scoreSpheres(mesh(vertices, triangles), spheres(centers, radii), resolution, offset,
-                                   supersample));
+                                   supersample, planes(cuts)));
 }
 
 py::dict scoreVoxels(const py::object& data, const py::object& shape, double voxelSize,
-                     const py::object& origin, const py::object& centers, const py::object& radii) {
-    return score(mss::scoreSpheres(voxels(data, shape, voxelSize, origin), spheres(centers, radii)));
+                     const py::object& origin, const py::object& centers, const py::object& radii,
+                     const py::object& cuts) {
+    return score(
+        mss::scoreSpheres(voxels(data, shape, voxelSize, origin), spheres(centers, radii), planes(cuts)));
 }
 
 py::tuple readSpheres(const std::string& path) {
@@ -336,10 +339,11 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("massSpheres", massSpheres, (py::arg("centers"), py::arg("radii"), py::arg("resolution") = 200));
     py::def("scoreMesh", scoreMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("centers"), py::arg("radii"),
-             py::arg("resolution") = 100, py::arg("offset") = 0.37, py::arg("supersample") = 1));
+             py::arg("resolution") = 100, py::arg("offset") = 0.37, py::arg("supersample") = 1,
+             py::arg("planes") = py::list()));
     py::def("scoreVoxels", scoreVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
-             py::arg("radii")));
+             py::arg("radii"), py::arg("planes") = py::list()));
     py::def("readSpheres", readSpheres, (py::arg("path")));
     py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
 }

@@ -23,7 +23,7 @@ Score fromMismatch(const Mismatch& m, const GridSpec& g) {
 } // namespace
 
 Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int resolution, double offset,
-                   int supersample) {
+                   int supersample, const std::vector<Plane>& planes) {
     validateMesh(target, "scoreSpheres");
     validateSpheres(spheres, "scoreSpheres");
     if (resolution < 1)
@@ -41,12 +41,13 @@ Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int res
     if (!(res.voxelSize > 0.0)) throw std::invalid_argument("scoreSpheres: the target mesh is flat");
     GridSpec g = gridForBox(lo, hi, res, "scoreSpheres");
     g.origin += Vec3::Constant(offset * g.h);
-    const VoxelGrid S = voxelizeMesh(target, g, supersample);
+    VoxelGrid S = voxelizeMesh(target, g, supersample);
+    if (!planes.empty()) S = cutVoxelsByPlanes(S, planes);
     const VoxelGrid St = voxelizeSpheres(spheres, g);
     return fromMismatch(mismatch(S, St), g);
 }
 
-Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres) {
+Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres, const std::vector<Plane>& planes) {
     validateSpheres(spheres, "scoreSpheres");
     if (target.size() == 0 || target.size() != target.spec.size())
         throw std::invalid_argument("scoreSpheres: the target volume is empty");
@@ -72,6 +73,7 @@ Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres) {
     for (int k = 0; k < t.dims[2]; ++k)
         for (int j = 0; j < t.dims[1]; ++j)
             for (int i = 0; i < t.dims[0]; ++i) S(i - lo[0], j - lo[1], k - lo[2]) = target(i, j, k) ? 1 : 0;
+    if (!planes.empty()) S = cutVoxelsByPlanes(S, planes);
     return fromMismatch(mismatch(S, voxelizeSpheres(spheres, g)), g);
 }
 

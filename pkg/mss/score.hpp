@@ -1,6 +1,7 @@
 // Scoring any sphere set against a target on a grid of its own (MSS paper section 4.1).
 #pragma once
 
+#include "mss/clip.hpp"
 #include "mss/grid.hpp"
 #include "mss/mesh.hpp"
 #include "mss/spheres.hpp"
@@ -21,11 +22,11 @@ struct Score {
 /// Scores spheres against a mesh on a grid of @p resolution voxels along the mesh's shortest bounding-box
 /// edge, covering the mesh and the spheres, shifted by @p offset voxels along each axis from the centred
 /// placement so that a result is not scored on the very voxel centres it was fitted to. @p supersample as in
-/// voxelizeMesh.
+/// voxelizeMesh. @p planes: the target is its part on their allowed side (a fragment, as generate makes it).
 Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int resolution = 100,
-                   double offset = 0.37, int supersample = 1);
+                   double offset = 0.37, int supersample = 1, const std::vector<Plane>& planes = {});
 
 /// Scores spheres against a binary volume on the volume's own grid (extended to hold the spheres).
-Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres);
+Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres, const std::vector<Plane>& planes = {});
 
 } // namespace mss

@@ -279,16 +279,19 @@ def readSpheres(path):
     return MssResult(c, r, source=os.path.basename(os.fspath(path)))
 
 
-def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=None, label=None):
+def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=None, label=None, planes=()):
     """Scores a sphere set (an :class:`MssResult` or a sphere file) against a target on a grid of its own.
+    With ``planes`` the target is its part on their allowed side (a fragment, as :func:`generate` makes it).
 
     :return: dict with dice (eq. 27), eta (eq. 7), volumeRatio, coverage, outside, and the grid
     """
     sp = spheres if isinstance(spheres, MssResult) else readSpheres(spheres)
     s = _source(target, voxelSize, origin, label)
+    cuts = [_plane(p) for p in planes]
     if isinstance(s, _Mesh):
-        return _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), int(resolution), float(offset))
-    return _mss.scoreVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist())
+        return _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), int(resolution), float(offset), 1,
+                              cuts)
+    return _mss.scoreVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist(), cuts)
 
 
 # ---------------------------------------------------------------- YADE

@@ -94,6 +94,9 @@ class Clipping(unittest.TestCase):
         self.assertLessEqual(r.metrics['dice'], 0.06)  # reachable: the whole grain would leave D near 0.5
         n = np.array([0.1, 0.2, 1.0]) / np.linalg.norm([0.1, 0.2, 1.0])
         self.assertTrue(np.all((r.centers - whole.centroid) @ n - r.radii >= -1e-9))
+        # scored against the same fragment on an independent grid, and against the whole grain
+        self.assertLess(score(FEMUR, r, planes=[up])['dice'], 0.08)
+        self.assertGreater(score(FEMUR, r)['dice'], 0.2)
         v = np.load(os.path.join(DATA, 'grain_voxels_155x157x167.npy'))
         g = massProperties(v)
         h = massProperties(v, planes=[(g.centroid, (1, 0, 0))])
