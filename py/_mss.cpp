@@ -265,17 +265,25 @@ py::dict generateVoxels(const py::object& data, const py::object& shape, double 
 }
 
 // with planes: the part of the solid on their allowed side (a fragment)
+const char* const kNothingLeft =
+    "massProperties: no part of the solid lies on the allowed side of the planes";
 py::dict massMesh(const py::object& vertices, const py::object& triangles, const py::object& cuts) {
     const std::vector<mss::Plane> p = planes(cuts);
     const mss::TriangleMesh m = mesh(vertices, triangles);
-    return mass(mss::meshMassProperties(p.empty() ? m : mss::clipMeshByPlanes(m, p)));
+    if (p.empty()) return mass(mss::meshMassProperties(m));
+    const mss::TriangleMesh part = mss::clipMeshByPlanes(m, p);
+    if (part.triangles.empty()) throw std::invalid_argument(kNothingLeft);
+    return mass(mss::meshMassProperties(part));
 }
 
 py::dict massVoxels(const py::object& data, const py::object& shape, double voxelSize,
                     const py::object& origin, const py::object& cuts) {
     const std::vector<mss::Plane> p = planes(cuts);
     const mss::VoxelGrid v = voxels(data, shape, voxelSize, origin);
-    return mass(mss::voxelMassProperties(p.empty() ? v : mss::cutVoxelsByPlanes(v, p)));
+    if (p.empty()) return mass(mss::voxelMassProperties(v));
+    const mss::VoxelGrid part = mss::cutVoxelsByPlanes(v, p);
+    if (mss::countSolid(part) == 0) throw std::invalid_argument(kNothingLeft);
+    return mass(mss::voxelMassProperties(part));
 }
 
 py::dict massSpheres(const py::object& centers, const py::object& radii, int resolution) {

@@ -95,11 +95,13 @@ VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& p
 
 double voxelClearance(const VoxelGrid& solid, const ScalarGrid& edt, const Vec3& c) {
     const auto& d = solid.spec.dims;
-    const std::array<int, 3> v{int(std::lround(c.x())), int(std::lround(c.y())), int(std::lround(c.z()))};
     auto background = [&](int i, int j, int k) {
         return i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2] || !solid(i, j, k);
     };
-    if (!std::isfinite(c.x() + c.y() + c.z()) || background(v[0], v[1], v[2])) return -1.0;
+    for (int a = 0; a < 3; ++a) // also false for NaN
+        if (!(c[a] > -0.5 && c[a] < d[a] - 0.5)) return -1.0;
+    const std::array<int, 3> v{int(std::lround(c.x())), int(std::lround(c.y())), int(std::lround(c.z()))};
+    if (background(v[0], v[1], v[2])) return -1.0;
     const double off = (c - Vec3(v[0], v[1], v[2])).norm();
     const double e = edt(v[0], v[1], v[2]);
     const double rin = std::max(0.0, e - off - 1e-6), rout = e + off + 0.8660254037844387 + 1e-6;

@@ -325,6 +325,8 @@ TEST(Clip, VoxelClearanceIsExact) {
         ++checked;
     }
     EXPECT_GT(checked, 50);
+    for (const Vec3& far : {Vec3(-3, 5, 5), Vec3(1e300, 5, 5), Vec3(std::nan(""), 5, 5)})
+        EXPECT_EQ(voxelClearance(v, E, far), -1.0);
 }
 
 // Clipped to a block of solid voxels, one sphere fills it to its faces: radius half the block's side.

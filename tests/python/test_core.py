@@ -106,6 +106,10 @@ class Clipping(unittest.TestCase):
         with self.assertRaises(ValueError) as ctx:
             generate(FEMUR, nSpheres=3, resolution=20, planes=[((0, 0, 1e6), (0, 0, 1))])
         self.assertIn('allowed side of the planes', str(ctx.exception))
+        for src in (FEMUR, v):
+            with self.assertRaises(ValueError) as ctx:
+                massProperties(src, planes=[((0, 0, 1e6), (0, 0, 1))])
+            self.assertIn('allowed side of the planes', str(ctx.exception))
 
     def test_open_mesh_warns(self):
         with warnings.catch_warnings(record=True) as w:
