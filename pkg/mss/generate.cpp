@@ -720,11 +720,11 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         const bool pruned = prune();
         if (pruned) refine();
         secondsRefine += secondsSince(t1);
-        if (placed == before && !pruned) break; // nothing new: converged
-        if (placed >= std::size_t(t.budget) || t.met(cov)) {
+        if (placed >= std::size_t(t.budget) || t.met(cov)) { // done (a warm start may begin so)
             ++m.iterations;
             break;
         }
+        if (placed == before && !pruned) break; // nothing new: converged
     }
     debug("main loop");
     // Symmetry repair: whole orbits can leave the budget short by one (say 10 = 1 sphere on all planes + 4
