@@ -65,7 +65,8 @@ void run(const uint8_t* data, size_t size) {
     }
 }
 #elif defined(MSS_FUZZ_GENERATE)
-// bytes: nx, ny, nz (3..14), sphere budget, flags (paper, clip, symmetry), then the voxels' bits
+// bytes: nx, ny, nz (3..14), sphere budget, flags (paper, clip, symmetry, a plane through the centre whose
+// normal the high bits pick), then the voxels' bits
 void run(const uint8_t* data, size_t size) {
     if (size < 5) return;
     mss::GridSpec g;
@@ -82,11 +83,21 @@ void run(const uint8_t* data, size_t size) {
     o.clip = (data[4] & 2) != 0;
     o.keepSymmetry = (data[4] & 4) != 0;
     o.maxIterations = 5;
+    if (data[4] & 8) {
+        mss::Plane p;
+        p.point = g.toWorld(0.5 * mss::Vec3(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1));
+        p.normal =
+            mss::Vec3((data[4] & 16) ? 1.0 : 0.3, (data[4] & 32) ? -1.0 : 0.0, (data[4] & 64) ? 0.5 : 0.0);
+        o.planes.push_back(p);
+    }
     try {
         const mss::Result r = mss::generate(v, o);
         if (r.spheres.size() > std::size_t(o.nSpheres)) __builtin_trap(); // the budget is a promise
-        for (std::size_t i = 0; i < r.spheres.size(); ++i)
+        for (std::size_t i = 0; i < r.spheres.size(); ++i) {
             if (!(r.spheres.radii[i] > 0) || !r.spheres.centers[i].allFinite()) __builtin_trap();
+            for (const mss::Plane& p : o.planes) // no sphere crosses a plane
+                if (mss::planeDistance(p, r.spheres.centers[i]) < r.spheres.radii[i] - 1e-9) __builtin_trap();
+        }
     } catch (const std::invalid_argument&) {
     }
 }
