@@ -185,7 +185,7 @@ TEST(Clip, ConstraintPlanes) {
 
 // A plane across a symmetric grain breaks the mirror symmetries it is not parallel to: an oblique cut
 // through the ellipsoid's centre used to leave no whole orbit on its side, and no sphere at all.
-TEST(Clip, PlanesBreakTheSymmetriesTheyCross) {
+TEST(Clip, ObliquePlaneAcrossMirrorSymmetryGaveNoSphere) {
     const TriangleMesh ell = readMesh(kData + "/ellipsoid_2_1_1.stl");
     Resolution res;
     res.resolution = 40;

@@ -140,7 +140,7 @@ TEST(Generate, EllipsoidTenSpheresMirrorSymmetric) {
 
 // More spheres must keep paying on a smooth grain. Before the refinement could slide a ball along the surface
 // (centre and radius together), D stalled at 0.0027 from 40 spheres on and 80 spheres scored worse than 40.
-TEST(Generate, EllipsoidKeepsImprovingWithMoreSpheres) {
+TEST(Generate, EllipsoidEightySpheresScoredWorseThanForty) {
     const TriangleMesh ell = readMesh(kData + "/ellipsoid_2_1_1.stl");
     Resolution res;
     res.resolution = 103;
