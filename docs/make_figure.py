@@ -1,0 +1,59 @@
+"""Draws docs/femur70.png, the README's picture: the femur mesh, its 70 spheres (optimized), and 70 spheres
+clipped so that none protrudes, with D (eq. 27) on an independent grid.
+usage: PYTHONPATH=build/py /usr/bin/python3 docs/make_figure.py   (build first; needs python3-matplotlib)"""
+import os
+
+import matplotlib
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt
+import numpy as np
+
+import yade_mss
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+FEMUR = os.path.join(ROOT, 'tests', 'data', 'human_femur.stl')
+
+
+def mesh_triangles(path):
+    """Vertices (n, 3, 3) of the triangles of a mesh file (our own reader)."""
+    v, t = yade_mss._mss.readMesh(path)[:2]
+    return np.asarray(v, float).reshape(-1, 3)[np.asarray(t, int).reshape(-1, 3)]
+
+
+def spheres(ax, r, color):
+    u, v = np.mgrid[0:2 * np.pi:16j, 0:np.pi:10j]
+    for c, rad in zip(r.centers, r.radii):
+        ax.plot_surface(c[0] + rad * np.cos(u) * np.sin(v), c[1] + rad * np.sin(u) * np.sin(v),
+                        c[2] + rad * np.cos(v), color=color, linewidth=0, shade=True)
+
+
+def main():
+    tris = mesh_triangles(FEMUR)
+    free = yade_mss.generate(FEMUR, nSpheres=70, resolution=103)
+    clipped = yade_mss.generate(FEMUR, nSpheres=70, resolution=103, clip=True)
+    fig = plt.figure(figsize=(12, 5.2))
+    lo, hi = tris.reshape(-1, 3).min(0), tris.reshape(-1, 3).max(0)
+    panels = [('femur mesh (X-ray CT), %d triangles' % len(tris), None),
+              ('70 spheres, D = %.4f' % yade_mss.score(FEMUR, free)['dice'], free),
+              ('70 spheres, none protrudes (clip), D = %.4f' % yade_mss.score(FEMUR, clipped)['dice'], clipped)]
+    for i, (title, r) in enumerate(panels):
+        ax = fig.add_subplot(1, 3, i + 1, projection='3d')
+        if r is None:
+            ax.plot_trisurf(tris[:, :, 0].ravel(), tris[:, :, 1].ravel(), tris[:, :, 2].ravel(),
+                            triangles=np.arange(3 * len(tris)).reshape(-1, 3), color='#c8b89a', linewidth=0)
+        else:
+            spheres(ax, r, '#4f7cac' if r is free else '#6a9f58')
+        for set_lim, a, b in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), lo, hi):
+            set_lim(a, b)
+        ax.set_box_aspect(tuple(hi - lo), zoom=1.0)
+        ax.view_init(elev=12, azim=-60)
+        ax.set_axis_off()
+        ax.set_title(title, fontsize=10)
+    fig.subplots_adjust(left=0, right=1, bottom=0, top=0.93, wspace=0)
+    out = os.path.join(ROOT, 'docs', 'femur70.png')
+    fig.savefig(out, dpi=90)
+    print('wrote', out)
+
+
+if __name__ == '__main__':
+    main()
