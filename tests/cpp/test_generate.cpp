@@ -174,6 +174,20 @@ TEST(Generate, SameOutputForAnyThreadCount) {
         EXPECT_EQ(a.spheres.centers[i], b.spheres.centers[i]);
         EXPECT_EQ(a.spheres.centers[i], c.spheres.centers[i]);
     }
+    // clipped, with a plane: two starts and the cached distance queries, same answer
+    res.resolution = 40;
+    o.clip = true;
+    Plane p;
+    p.point = Vec3(180, 230, -90);
+    p.normal = Vec3(0.2, 0, 1);
+    o.planes = {p};
+    o.threads = 1;
+    const Result d = generate(femur, res, o);
+    o.threads = 4;
+    const Result e = generate(femur, res, o);
+    ASSERT_GT(d.spheres.size(), 10u);
+    EXPECT_EQ(d.spheres.radii, e.spheres.radii);
+    for (std::size_t i = 0; i < d.spheres.size(); ++i) EXPECT_EQ(d.spheres.centers[i], e.spheres.centers[i]);
 }
 
 TEST(Generate, BadOptionsAreRefused) {
