@@ -44,6 +44,8 @@ d_frag=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,-90
 d_whole=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" | awk '/^dice/{print $2}')
 check "compare --plane scores the fragment ($d_frag), not the whole grain ($d_whole)" \
   awk -v a="$d_frag" -v b="$d_whole" 'BEGIN{exit !(a < 0.15 && b > 0.2)}'
+expect_error "bad plane in compare" "expected PX,PY,PZ,NX,NY,NZ" "$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,1
+expect_error "zero plane normal in compare" "non-zero normal" "$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,0,0,0,0
 expect_error "bad plane" "expected PX,PY,PZ,NX,NY,NZ" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --plane 1,2,3 -o "$TMP/x.csv"
 "$MSS" generate "$DATA/stanford_bunny_open.stl" --spheres 5 --resolution 30 -o "$TMP/bunny.csv" > /dev/null 2> "$TMP/bunny.err"
 check "open mesh: a warning, and spheres" grep -q "not closed" "$TMP/bunny.err"
