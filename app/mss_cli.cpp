@@ -47,6 +47,7 @@ voxel input (.npy) options:
 compare options:
   --resolution N       scoring grid: N voxels along the shortest edge (default 100)
   --offset F           shift of the scoring grid, in voxels (default 0.37)
+  --clump ID           the clump with this id, when SPHERES is a YADE text file of several
   --plane PX,PY,PZ,NX,NY,NZ   score against the part of the target on the normal's side (a fragment)
 )";
 
@@ -80,7 +81,8 @@ const std::map<std::string, bool> kOptions = {{"--spheres", true},
                                               {"-h", false},
                                               {"--clip", false},
                                               {"--no-refill", false},
-                                              {"--plane", true}};
+                                              {"--plane", true},
+                                              {"--clump", true}};
 
 Args parse(int argc, char** argv, int from) {
     Args a;
@@ -251,7 +253,8 @@ int cmdGenerate(const Args& a) {
 int cmdCompare(const Args& a) {
     const std::vector<mss::Plane> cuts = planes(a);
     if (a.positional.size() != 2) throw std::invalid_argument("compare needs INPUT and SPHERES files");
-    const mss::SphereSet s = mss::readSpheres(a.positional[1]);
+    const mss::SphereSet s =
+        mss::readSpheres(a.positional[1], a.has("--clump") ? integer(a, "--clump", -1) : -1);
     mss::Score sc;
     if (isVoxelFile(a.positional[0])) {
         sc = mss::scoreSpheres(readVoxels(a, a.positional[0]), s, cuts);

@@ -8,6 +8,7 @@
 
 #include <boost/python.hpp>
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -304,8 +305,8 @@ py::dict scoreVoxels(const py::object& data, const py::object& shape, double vox
         mss::scoreSpheres(voxels(data, shape, voxelSize, origin), spheres(centers, radii), planes(cuts)));
 }
 
-py::tuple readSpheres(const std::string& path) {
-    const mss::SphereSet s = mss::readSpheres(path);
+py::tuple readSpheres(const std::string& path, long long clumpId) {
+    const mss::SphereSet s = mss::readSpheres(path, clumpId);
     py::list c, r;
     for (std::size_t i = 0; i < s.size(); ++i) {
         for (int a = 0; a < 3; ++a) c.append(s.centers[i][a]);
@@ -318,11 +319,22 @@ void writeSpheres(const py::object& centers, const py::object& radii, const std:
     mss::writeSpheres(spheres(centers, radii), path);
 }
 
+// A message may quote bytes of a file that are not UTF-8 (0xB5...): decode with backslash escapes, so that
+// the Python exception always carries the message (PyErr_SetString would leave it empty).
+void setError(PyObject* type, const char* what) {
+    PyObject* msg = PyUnicode_DecodeUTF8(what, Py_ssize_t(std::strlen(what)), "backslashreplace");
+    if (!msg) {
+        PyErr_Clear();
+        msg = PyUnicode_FromString("(message not decodable)");
+    }
+    PyErr_SetObject(type, msg);
+    Py_XDECREF(msg);
+}
 void translateInvalid(const std::invalid_argument& e) {
-    PyErr_SetString(PyExc_ValueError, e.what());
+    setError(PyExc_ValueError, e.what());
 }
 void translateRuntime(const std::runtime_error& e) {
-    PyErr_SetString(PyExc_RuntimeError, e.what());
+    setError(PyExc_RuntimeError, e.what());
 }
 
 } // namespace
@@ -352,6 +364,6 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("scoreVoxels", scoreVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
              py::arg("radii"), py::arg("planes") = py::list()));
-    py::def("readSpheres", readSpheres, (py::arg("path")));
+    py::def("readSpheres", readSpheres, (py::arg("path"), py::arg("clumpId") = -1));
     py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
 }

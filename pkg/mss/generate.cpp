@@ -889,6 +889,18 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
         }
         if (radius >= rMin) r.spheres.add(c, radius);
     }
+    if (r.spheres.size() == 0) { // a criterion left nothing: say which, never return an empty set silently
+        const double inscribed = E.data.empty() ? 0.0 : h * *std::max_element(E.data.begin(), E.data.end());
+        std::ostringstream os;
+        if (opt.rMin > 0.0 && opt.rMin > inscribed)
+            os << "generate: rMin " << opt.rMin << " exceeds the largest inscribed radius " << inscribed
+               << " of the grain: no sphere can be placed";
+        else
+            os << "generate: no sphere is left" << (opt.rMin > 0.0 ? " at or above rMin" : "")
+               << (opt.clip || !opt.planes.empty() ? " under the clipping constraint" : "")
+               << " (largest inscribed radius " << inscribed << ")";
+        throw std::invalid_argument(os.str());
+    }
     const Mismatch mm = mismatch(S, voxelizeSpheres(r.spheres, S.spec));
     m.spheres = r.spheres.size();
     m.eta = mm.eta;
@@ -909,7 +921,7 @@ void validateOptions(const GenerateOptions& o) {
         throw std::invalid_argument(os.str());
     };
     if (o.nSpheres < 0) bad("sphere count must be >= 1 (or 0 for no limit)", o.nSpheres);
-    if (!(o.eta >= 0.0) || !std::isfinite(o.eta)) bad("eta must be >= 0", o.eta);
+    if (!(o.eta >= 0.0) || !(o.eta < 1.0)) bad("eta must be in [0, 1)", o.eta);
     if (!(o.dice >= 0.0) || !(o.dice < 1.0)) bad("dice must be in [0, 1)", o.dice);
     if (!(o.rMin >= 0.0) || !std::isfinite(o.rMin)) bad("rMin must be >= 0", o.rMin);
     if (o.maxIterations < 1) bad("maxIterations must be >= 1", o.maxIterations);

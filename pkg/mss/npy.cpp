@@ -4,6 +4,7 @@
 #include <cstring>
 #include <fstream>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -122,6 +123,8 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
         }
     };
     std::size_t solid = 0;
+    // without a label, a volume holding several labels would merge its grains into one solid: refuse it
+    std::set<long long> labels;
     for (long long a = 0; a < shape[0]; ++a)
         for (long long b = 0; b < shape[1]; ++b)
             for (long long c = 0; c < shape[2]; ++c) {
@@ -129,9 +132,24 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
                                               : static_cast<std::size_t>(c + shape[2] * (b + shape[1] * a));
                 const long long v = value(q);
                 const bool on = label >= 0 ? v == label : v != 0;
+                if (label < 0 && on && kind != 'b' && labels.size() < 64) labels.insert(v);
                 out(static_cast<int>(a), static_cast<int>(b), static_cast<int>(c)) = on;
                 solid += on;
             }
+    if (labels.size() > 1) {
+        std::ostringstream os;
+        os << "the volume holds " << (labels.size() < 64 ? "" : "at least ") << labels.size() << " labels (";
+        int k = 0;
+        for (long long l : labels) {
+            if (k == 20) {
+                os << ", ...";
+                break;
+            }
+            os << (k++ ? ", " : "") << l;
+        }
+        os << "): choose one grain with --label L (label= in Python)";
+        fail(path, os.str());
+    }
     if (solid == 0)
         fail(path,
              label >= 0 ? "no voxel has label " + std::to_string(label) : "the volume has no solid voxel");

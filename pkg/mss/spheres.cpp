@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <unistd.h>
@@ -71,10 +72,22 @@ void writeSpheres(const SphereSet& s, const std::string& path) {
     }
 }
 
-SphereSet readSpheres(const std::string& path) {
+namespace {
+/// The integer in @p tok (a clump id), or -1 when it is not one.
+long long clumpIdOf(const std::string& tok) {
+    char* end = nullptr;
+    const double v = std::strtod(tok.c_str(), &end);
+    if (end == tok.c_str() || *end != '\0' || !(v >= 0.0) || v > 9e15 || v != std::floor(v)) return -1;
+    return static_cast<long long>(v);
+}
+} // namespace
+
+SphereSet readSpheres(const std::string& path, long long clumpId) {
     std::ifstream in(path);
     if (!in) throw std::invalid_argument("readSpheres: " + path + ": cannot open file");
     SphereSet s;
+    std::vector<long long> ids; // clump id of each sphere read, -1 without one
+    std::set<long long> distinct;
     std::string line;
     std::size_t lineNo = 0;
     while (std::getline(in, line)) {
@@ -103,9 +116,39 @@ SphereSet readSpheres(const std::string& path) {
                 throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
                                             ": '" + tok + "' is not a number");
         }
+        std::string fifth;
+        const long long id = (all >> fifth) ? clumpIdOf(fifth) : -1;
+        if (id >= 0) distinct.insert(id);
         s.add(Vec3(v[0], v[1], v[2]), v[3]);
+        ids.push_back(id);
     }
     if (s.size() == 0) throw std::invalid_argument("readSpheres: " + path + ": no spheres in file");
+    auto idList = [&] {
+        std::ostringstream os;
+        int k = 0;
+        for (long long id : distinct) {
+            if (k++ == 20) {
+                os << ", ...";
+                break;
+            }
+            os << (k > 1 ? ", " : "") << id;
+        }
+        return os.str();
+    };
+    if (clumpId >= 0) {
+        SphereSet one;
+        for (std::size_t i = 0; i < s.size(); ++i)
+            if (ids[i] == clumpId) one.add(s.centers[i], s.radii[i]);
+        if (one.size() == 0)
+            throw std::invalid_argument(
+                "readSpheres: " + path + ": no clump with id " + std::to_string(clumpId) +
+                (distinct.empty() ? " (the file has no clump ids)" : " (clump ids: " + idList() + ")"));
+        s = std::move(one);
+    } else if (distinct.size() > 1) {
+        throw std::invalid_argument("readSpheres: " + path + ": the file holds " +
+                                    std::to_string(distinct.size()) + " clumps (ids " + idList() +
+                                    "): choose one (--clump ID; clumpId= in Python)");
+    }
     validateSpheres(s, "readSpheres: " + path);
     return s;
 }

@@ -32,8 +32,10 @@ void validateSpheres(const SphereSet& s, const std::string& where);
 void writeSpheres(const SphereSet& s, const std::string& path);
 
 /// Reads spheres from CSV (x,y,z,r with optional header; CLUMP's output), or a YADE text clump file
-/// (whitespace-separated x y z r [clumpId], '#' comments). Extra columns are ignored.
-/// @throws std::invalid_argument naming the file and line of the problem.
-SphereSet readSpheres(const std::string& path);
+/// (whitespace-separated x y z r [clumpId], '#' comments). An integer fifth column is the clump id: a file of
+/// several clumps is refused unless @p clumpId (>= 0) chooses one, so that clumps are never merged silently.
+/// Other extra columns are ignored.
+/// @throws std::invalid_argument naming the file and line of the problem, or the clump ids present.
+SphereSet readSpheres(const std::string& path, long long clumpId = -1);
 
 } // namespace mss

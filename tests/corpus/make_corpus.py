@@ -63,3 +63,9 @@ w('bad_magic.npy', b'NOTNUMPY' + b'\0' * 100, 'wb')
 w('bad_radius.csv', 'x,y,z,r\n0,0,0,-1\n')
 w('not_numbers.csv', 'x,y,z,r\n0,0,zero,1\n')
 w('no_spheres.csv', 'x,y,z,r\n')
+two = np.zeros((8, 8, 8), dtype=np.int16)
+two[1:4, 1:4, 1:4] = 1
+two[5:8, 5:8, 5:8] = 2
+np.save(os.path.join(D, 'two_labels.npy'), two)  # without --label the grains would merge
+w('bad_byte.csv', b'x,y,z,r\n0,0,\xb5,1\n', 'wb')  # not UTF-8: the message quotes it
+w('two_clumps.txt', '0 0 0 1 0\n1 0 0 1 0\n5 0 0 1 7\n')

@@ -216,6 +216,21 @@ TEST(Npy, ReadsCOrderAndFortranOrderAndLabels) {
             }
     writeNpy(p, "<i2", "2, 3, 4", f, true);
     EXPECT_EQ(readNpy(p, 1.0, Vec3::Zero(), 123)(1, 2, 3), 1);
+    // without a label these 23 grains would merge into one solid: refused, naming the labels present
+    expectError([&] { readNpy(p); }, "holds 23 labels (1, 2, 3,");
+    std::remove(p.c_str());
+}
+
+TEST(SpheresIo, SeveralClumpsAreNeverMerged) {
+    const std::string p = tempPath("clumps.txt");
+    {
+        std::ofstream o(p);
+        o << "#format x_y_z_r_clumpId\n0\t0\t0\t1\t4\n1\t0\t0\t1\t4\n9\t0\t0\t2\t12\n";
+    }
+    expectError([&] { readSpheres(p); }, "holds 2 clumps (ids 4, 12): choose one");
+    EXPECT_EQ(readSpheres(p, 4).size(), 2u);
+    EXPECT_EQ(readSpheres(p, 12).radii[0], 2.0);
+    expectError([&] { readSpheres(p, 5); }, "no clump with id 5 (clump ids: 4, 12)");
     std::remove(p.c_str());
 }
 

@@ -148,6 +148,58 @@ class Files(unittest.TestCase):
                 self.assertAlmostEqual(s.unionMass().volume, 8 * math.pi / 3 - 5 * math.pi / 12, delta=0.01)
 
 
+    def test_save_sphere_files_as_the_command_line_does(self):
+        r = generate(ELL, nSpheres=4, resolution=30)
+        with tempfile.TemporaryDirectory() as d:
+            for ext in ('.csv', '.txt'):
+                p = os.path.join(d, 'r' + ext)
+                r.save(p)
+                q = readSpheres(p)
+                np.testing.assert_array_equal(q.centers, r.centers)  # full precision
+                np.testing.assert_array_equal(q.radii, r.radii)
+            r.save(os.path.join(d, 'r.vtk'))
+            text = open(os.path.join(d, 'r.vtk')).read()
+            self.assertIn('POINTS 4 double', text)
+            self.assertIn('SCALARS radius', text)
+            with self.assertRaises(ValueError):
+                r.save(os.path.join(d, 'r.xyz'))
+            self.assertEqual(sorted(os.listdir(d)), ['r.csv', 'r.txt', 'r.vtk'])  # no temporary left
+
+    def test_yade_file_of_several_clumps_is_never_merged(self):
+        with tempfile.TemporaryDirectory() as d:
+            txt = os.path.join(d, 'clumps.txt')
+            with open(txt, 'w') as f:
+                f.write('#format x_y_z_r_clumpId\n0\t0\t0\t1\t4\n1\t0\t0\t1\t4\n9\t0\t0\t2\t12\n')
+            with self.assertRaises(ValueError) as ctx:
+                readSpheres(txt)
+            self.assertIn('holds 2 clumps (ids 4, 12)', str(ctx.exception))
+            self.assertEqual(len(readSpheres(txt, clumpId=4)), 2)
+            self.assertEqual(readSpheres(txt, clumpId=12).radii.tolist(), [2.0])
+            with self.assertRaises(ValueError) as ctx:
+                readSpheres(txt, clumpId=5)
+            self.assertIn('no clump with id 5', str(ctx.exception))
+
+    def test_error_messages_are_text_whatever_the_bytes(self):
+        with tempfile.TemporaryDirectory() as d:
+            p = os.path.join(d, 'mu.csv')
+            with open(p, 'wb') as f:
+                f.write(b'x,y,z,r\n0,0,\xb5,1\n')
+            with self.assertRaises(ValueError) as ctx:
+                readSpheres(p)
+            self.assertIn("'\\xb5' is not a number", str(ctx.exception))
+
+    def test_labelled_volume_needs_a_label(self):
+        a = np.zeros((10, 10, 10), dtype=np.uint16)
+        a[1:4, 1:4, 1:4] = 3
+        a[6:9, 6:9, 6:9] = 9
+        with self.assertRaises(ValueError) as ctx:
+            generate(a, nSpheres=2)
+        self.assertIn('2 labels (3, 9)', str(ctx.exception))
+        self.assertEqual(len(generate(a, nSpheres=1, label=9)), 1)
+        b = (a > 0).astype(np.uint8) * 255  # one value: a plain mask
+        self.assertEqual(len(generate(b, nSpheres=2)), 2)
+
+
 class Scoring(unittest.TestCase):
     def test_score_prefers_more_spheres(self):
         few = score(FEMUR, generate(FEMUR, nSpheres=5, resolution=40), resolution=50)

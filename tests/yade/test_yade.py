@@ -12,47 +12,10 @@ import yade.minieigenHP as me
 
 from yade_mss import generate, mssClump, mssTemplate, MssResult
 
-# yade -x runs the script with __file__ set to yade itself: take the data folder from the environment (ctest)
-DATA = os.environ.get('MSS_TEST_DATA', os.path.join('tests', 'data'))
-ELL = os.path.join(DATA, 'ellipsoid_2_1_1.stl')
-FEMUR = os.path.join(DATA, 'human_femur.stl')
+sys.path.insert(0, os.path.join(os.environ.get('MSS_TEST_DATA', 'tests/data'), '..', 'yade'))
+from clumptools import DATA, ELL, FEMUR, rot, tensor, unionByGrid  # noqa: E402,F401
+
 O = Omega()
-
-
-def rot(q):
-    m = q.toRotationMatrix()
-    return np.array([[m[i, j] for j in range(3)] for i in range(3)])
-
-
-def tensor(state):
-    R = rot(state.ori)
-    return R.dot(np.diag([state.inertia[0], state.inertia[1], state.inertia[2]])).dot(R.T)
-
-
-def unionByGrid(centers, radii, h):
-    """Volume, centroid and inertia tensor (unit density) of a union of spheres, by numpy on a grid of step h:
-    independent of the C++ code."""
-    lo = (centers - radii[:, None]).min(axis=0)
-    hi = (centers + radii[:, None]).max(axis=0)
-    xs, ys, zs = [np.arange(lo[a] + h / 2, hi[a], h) for a in range(3)]
-    Y, Z = np.meshgrid(ys, zs, indexing='ij')
-    n = 0
-    s1 = np.zeros(3)
-    s2 = np.zeros((3, 3))
-    for x in xs:
-        inside = np.zeros(Y.shape, dtype=bool)
-        for c, r in zip(centers, radii):
-            inside |= (x - c[0]) ** 2 + (Y - c[1]) ** 2 + (Z - c[2]) ** 2 <= r * r
-        y, z = Y[inside], Z[inside]
-        p = np.stack([np.full(y.shape, x), y, z], axis=1)
-        n += len(p)
-        s1 += p.sum(axis=0)
-        s2 += p.T.dot(p)
-    V = n * h ** 3
-    c = s1 / n
-    cov = s2 / n - np.outer(c, c) + np.eye(3) * h * h / 12.0
-    I = V * (np.trace(cov) * np.eye(3) - cov)
-    return V, c, I
 
 
 class Base(unittest.TestCase):

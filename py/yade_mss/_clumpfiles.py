@@ -1,0 +1,124 @@
+"""Sets of clumps to and from files with their exact mass properties (next to YADE's own textClumps)."""
+
+import os
+
+import numpy as np
+
+from ._clumps import _clumpIds, _yade, bodyOptions, buildClump, stateTensor
+from ._keywords import split
+
+HEADER = ('# yade-mss clumps: x y z r clumpId, one line per sphere (ymport.textClumps reads the spheres, with '
+          "YADE's own summed masses).\n# Each '#mss clump' line holds that clump's exact mass properties; "
+          'yade_mss.readClumps restores them.\n')
+
+
+def writeClumps(path, clumpIds=None):
+    """Writes clumps of spheres to a text file: YADE's ``x y z r clumpId`` lines (what ``export.textClumps``
+    writes, at full precision) and, per clump, a ``#mss clump`` line with its mass, centre of mass, inertia
+    tensor (world axes) and density, as the clump has them now. Written atomically.
+
+    :param clumpIds: default every clump in the scene
+    :return: (number of clumps, number of spheres)
+    """
+    utils, O, me = _yade()
+    from yade.wrapper import Sphere
+    ids = _clumpIds(O) if clumpIds is None else [int(i) for i in clumpIds]
+    lines = [HEADER]
+    spheres = 0
+    for cid in ids:
+        body = O.bodies[cid] if 0 <= cid < len(O.bodies) else None
+        if body is None or not body.isClump:
+            raise ValueError('writeClumps: body %d is not a clump' % cid)
+        members = [O.bodies[i] for i in sorted(body.shape.members.keys())]
+        if not all(isinstance(b.shape, Sphere) for b in members):
+            raise ValueError('writeClumps: clump %d has members that are not spheres' % cid)
+        st = body.state
+        I = stateTensor(st)
+        lines.append('#mss clump %d density %r mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
+                     % ((cid, members[0].material.density, st.mass) + tuple(float(v) for v in st.pos)
+                        + (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])))
+        for b in members:
+            lines.append('%r %r %r %r %d\n' % (b.state.pos[0], b.state.pos[1], b.state.pos[2], b.shape.radius, cid))
+            spheres += 1
+    path = os.fspath(path)
+    tmp = path + '.tmp%d' % os.getpid()
+    try:
+        with open(tmp, 'w') as f:
+            f.writelines(lines)
+        os.replace(tmp, path)
+    except OSError as e:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise RuntimeError('writeClumps: %s: cannot write (%s)' % (path, e))
+    return len(ids), spheres
+
+
+def _parse(path):
+    """{clumpId: [spheres (x, y, z, r)]} in file order, and {clumpId: header numbers}."""
+    groups, headers = {}, {}
+    try:
+        with open(path, 'rb') as f:
+            raw = f.read()
+    except OSError as e:
+        raise ValueError('readClumps: %s: cannot open file (%s)' % (path, e.strerror))
+    for n, line in enumerate(raw.decode('utf-8', 'backslashreplace').splitlines(), 1):
+        words = line.split()
+        if not words:
+            continue
+        try:
+            if words[:2] == ['#mss', 'clump']:
+                v = [float(w) for w in words[2:] if w not in ('density', 'mass', 'centroid', 'inertia')]
+                if len(v) != 12:
+                    raise ValueError
+                headers[int(v[0])] = v[1:]
+                continue
+            if words[0].startswith('#'):
+                continue
+            if len(words) < 5:
+                raise ValueError
+            x, y, z, r = (float(w) for w in words[:4])
+            cid = int(float(words[4]))
+        except ValueError:
+            raise ValueError('readClumps: %s: line %d: expected x y z r clumpId, got %r' % (path, n, line[:80]))
+        if not (r > 0 and np.isfinite([x, y, z, r]).all()):
+            raise ValueError('readClumps: %s: line %d: radius must be > 0 and numbers finite' % (path, n))
+        groups.setdefault(cid, []).append((x, y, z, r))
+    if not groups:
+        raise ValueError('readClumps: %s: no spheres in file' % path)
+    return groups, headers
+
+
+def readClumps(path, **body):
+    """Reads a file of :func:`writeClumps` (or YADE's ``export.textClumps``) and appends its clumps, each with
+    the mass properties written for it scaled to the density of the material used now (a file without them:
+    those of the union of its spheres, overlaps counted once).
+
+    :param body: keywords of ``utils.sphere`` (material, color, mask, fixed, ...)
+    :return: list of (clumpId, [memberIds]) in the order of the file; nothing is added if the file is bad
+    """
+    body, = split('readClumps', body, bodyOptions())
+    utils, O, me = _yade()
+    from . import _mss
+    path = os.fspath(path)
+    groups, headers = _parse(path)
+    out = []
+    for cid, rows in groups.items():
+        a = np.array(rows)
+        if cid in headers:
+            h = headers[cid]
+            rho, M = h[0], h[1]
+            if not (rho > 0 and M > 0):
+                raise ValueError('readClumps: %s: clump %d: density and mass must be > 0' % (path, cid))
+            xx, yy, zz, xy, xz, yz = h[5:]
+            V, C = M / rho, np.array(h[2:5])
+            I = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]) / rho
+        else:
+            u = _mss.massSpheres(a[:, :3].ravel().tolist(), a[:, 3].tolist(), 200)
+            V, C, I = u['volume'], np.array(u['centroid']), np.reshape(u['inertia'], (3, 3))
+        try:
+            out.append(buildClump(a[:, :3], a[:, 3], V, C, I, body))
+        except Exception:
+            for c, m in out:
+                O.bodies.erase(c, True)
+            raise
+    return out

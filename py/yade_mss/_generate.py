@@ -1,0 +1,97 @@
+"""Generation and scoring: :func:`generate` (MSS paper, sections 2-3) and :func:`score` (eq. 7, 27)."""
+
+import inspect
+import warnings
+
+from . import _mss
+from ._results import MassProperties, MssResult, readSpheres
+from ._sources import _Mesh, _flat, _plane, _source
+
+
+def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None,
+             method='optimized', supersample=1, keepSymmetry=True, maxIterations=100, deltaMin=1.0, threads=0,
+             origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=()):
+    """Generates the sphere set of a grain (MSS paper, sections 2-3).
+
+    :param source: mesh file (.stl .obj .off .ply), voxel file (.npy), 3-D numpy array (bool or int), a tuple
+        (vertices (n,3), triangles (m,3)) or a dict with those keys
+    :param int nSpheres: at most this many spheres (problem (i))
+    :param float eta: stop at relative mismatch eta (eq. 7; problem (ii): fewest spheres meeting it), in (0, 1)
+    :param float dice: stop at Dice mismatch (eq. 27), in (0, 1)
+    :param float rMin: no sphere smaller than this radius (world units)
+    :param float voxelSize: mesh: voxel edge of the generation grid; voxels: the array's voxel edge (default 1)
+    :param int resolution: mesh: voxels along the shortest bounding-box edge (default 100 when neither is given)
+    :param str method: 'optimized' (default) or 'paper' (the published procedure)
+    :param int supersample: mesh: k^3 samples per voxel in voxelisation (1 = voxel centres)
+    :param bool keepSymmetry: keep the grain's mirror symmetries (optimized method)
+    :param int maxIterations: iteration cap (paper section 3.5)
+    :param float deltaMin: paper method: least distance between sphere centres, in voxels
+    :param int threads: OpenMP threads (0: OpenMP's default); the result does not depend on it
+    :param origin: voxels: world position of the centre of voxel (0, 0, 0)
+    :param int label: voxels: solid where the array equals this label (labelled CT volumes; required when the
+        volume holds several labels)
+    :param float memoryLimit: mesh: refuse grids needing more than this many GiB (default 8), as ``--memory-limit``
+    :param bool clip: no sphere protrudes from the grain (mesh: exact distance to the surface; voxels: the faces
+        of the solid voxels)
+    :param bool refill: with clip, choose the spheres under the constraint to regain coverage (default)
+    :param planes: planes no sphere may cross, as ((px, py, pz), (nx, ny, nz)); spheres stay on the side the
+        normal points to. Planes that cut the grain make the target its part on that side (a fragment): the
+        mismatch, the quality targets and ``targetMass`` refer to it.
+    :return: :class:`MssResult`
+    """
+    if isinstance(source, MssResult):
+        return source
+    if method not in ('optimized', 'paper'):
+        raise ValueError("generate: method must be 'optimized' or 'paper', got %r" % (method,))
+    opts = {'maxIterations': int(maxIterations), 'deltaMin': float(deltaMin), 'keepSymmetry': bool(keepSymmetry),
+            'threads': int(threads), 'method': method, 'clip': bool(clip), 'refill': bool(refill),
+            'planes': [_plane(p) for p in planes]}
+    if nSpheres is not None:
+        if int(nSpheres) != nSpheres or nSpheres < 1:
+            raise ValueError('generate: nSpheres must be an integer >= 1, got %r' % (nSpheres,))
+        opts['nSpheres'] = int(nSpheres)
+    for key, val in (('eta', eta), ('dice', dice), ('rMin', rMin)):
+        if val is not None:
+            opts[key] = float(val)
+    s = _source(source, voxelSize, origin, label)
+    if isinstance(s, _Mesh):
+        res = {}
+        if voxelSize is not None and resolution is not None:
+            raise ValueError('generate: give voxelSize or resolution, not both')
+        if voxelSize is not None:
+            res['voxelSize'] = float(voxelSize)
+        else:
+            res['resolution'] = int(resolution) if resolution is not None else 100
+        if memoryLimit is not None:
+            if not (float(memoryLimit) > 0):
+                raise ValueError('generate: memoryLimit must be > 0 GiB, got %r' % (memoryLimit,))
+            res['memoryLimit'] = int(float(memoryLimit) * 2 ** 30)
+        d = _mss.generateMesh(*s.args(), res, opts, int(supersample))
+        target = MassProperties._fromDict(_mss.massMesh(*s.args(), opts['planes']))
+    else:
+        if resolution is not None:
+            raise ValueError('generate: resolution applies to meshes; voxels are used at their own resolution')
+        d = _mss.generateVoxels(*s.args(), opts)
+        target = MassProperties._fromDict(_mss.massVoxels(*s.args(), opts['planes']))
+    for w in d['metrics'].get('warnings', []):
+        warnings.warn('%s: %s' % (s.name, w))
+    return MssResult(d['centers'], d['radii'], d['metrics'], d['grid'], target, s.name)
+
+
+# the keywords generate() takes besides the source: what mssClump and friends pass through
+GENERATE_OPTIONS = tuple(p for p in inspect.signature(generate).parameters if p != 'source')
+
+
+def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=None, label=None, planes=()):
+    """Scores a sphere set (an :class:`MssResult` or a sphere file) against a target on a grid of its own.
+    With ``planes`` the target is its part on their allowed side (a fragment, as :func:`generate` makes it).
+
+    :return: dict with dice (eq. 27), eta (eq. 7), volumeRatio, coverage, outside, and the grid
+    """
+    sp = spheres if isinstance(spheres, MssResult) else readSpheres(spheres)
+    s = _source(target, voxelSize, origin, label)
+    cuts = [_plane(p) for p in planes]
+    if isinstance(s, _Mesh):
+        return _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), int(resolution), float(offset), 1,
+                              cuts)
+    return _mss.scoreVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist(), cuts)

@@ -1,0 +1,125 @@
+"""Results and sphere files: :class:`MassProperties`, :class:`MssResult`, :func:`readSpheres`."""
+
+import json
+import os
+
+import numpy as np
+
+from . import _mss
+
+
+class MassProperties(object):
+    """Volume, centroid and inertia tensor (about the centroid, world axes) of a solid of unit density."""
+
+    def __init__(self, volume, centroid, inertia):
+        self.volume = float(volume)
+        self.centroid = np.asarray(centroid, dtype=float).reshape(3)
+        self.inertia = np.asarray(inertia, dtype=float).reshape(3, 3)
+
+    @staticmethod
+    def _fromDict(d):
+        return MassProperties(d['volume'], d['centroid'], d['inertia'])
+
+    def principal(self):
+        """Principal moments (ascending) and axes (columns of a rotation matrix)."""
+        w, v = np.linalg.eigh(self.inertia)
+        if np.linalg.det(v) < 0:
+            v[:, 2] = -v[:, 2]
+        return w, v
+
+    def transformed(self, scale=1.0, rotation=None, center=None):
+        """The same solid scaled about its centroid, rotated by the matrix *rotation*, moved to *center*."""
+        R = np.eye(3) if rotation is None else np.asarray(rotation, dtype=float)
+        c = self.centroid if center is None else np.asarray(center, dtype=float)
+        return MassProperties(self.volume * scale ** 3, c, scale ** 5 * R.dot(self.inertia).dot(R.T))
+
+    def _toDict(self):
+        return {'volume': self.volume, 'centroid': self.centroid.tolist(), 'inertia': self.inertia.ravel().tolist()}
+
+
+class MssResult(object):
+    """A sphere set and where it came from: what :func:`generate` returns and :func:`mssClump` accepts.
+
+    :ivar centers: sphere centres, numpy array (n, 3), world units
+    :ivar radii: sphere radii, numpy array (n,)
+    :ivar metrics: dict of figures on the generation grid (spheres, eta, dice, iterations, seconds...)
+    :ivar grid: dict (dims, voxelSize, origin) of the generation grid, or None
+    :ivar targetMass: :class:`MassProperties` of the target solid (unit density), or None if unknown
+    :ivar source: description of the input (file name or 'array')
+    """
+
+    def __init__(self, centers, radii, metrics=None, grid=None, targetMass=None, source=''):
+        self.centers = np.asarray(centers, dtype=float).reshape(-1, 3)
+        self.radii = np.asarray(radii, dtype=float).reshape(-1)
+        if len(self.centers) != len(self.radii):
+            raise ValueError('MssResult: %d centres but %d radii' % (len(self.centers), len(self.radii)))
+        self.metrics = dict(metrics or {})
+        self.grid = grid
+        self.targetMass = targetMass
+        self.source = source
+        self._unionMass = None
+
+    def __len__(self):
+        return len(self.radii)
+
+    def __repr__(self):
+        return '<MssResult %d spheres from %s, dice %s>' % (len(self), self.source or '?', self.metrics.get('dice', '?'))
+
+    def unionMass(self, resolution=200):
+        """:class:`MassProperties` of the union of the spheres (overlaps counted once), unit density."""
+        if self._unionMass is None or self._unionMass[0] != resolution:
+            d = _mss.massSpheres(self.centers.ravel().tolist(), self.radii.tolist(), resolution)
+            self._unionMass = (resolution, MassProperties._fromDict(d))
+        return self._unionMass[1]
+
+    def boundingRadius(self, center=None):
+        """Radius of the smallest ball about *center* (default: the union's centre of mass) holding every sphere."""
+        c = self.unionMass().centroid if center is None else np.asarray(center, dtype=float)
+        return float(np.max(np.linalg.norm(self.centers - c, axis=1) + self.radii))
+
+    def save(self, path):
+        """Writes the result by extension: ``.npz`` (everything, for :meth:`load`), or the sphere files of the
+        command line: ``.csv`` (x,y,z,r), ``.txt`` (YADE text clump, ``ymport.textClumps``), ``.vtk`` (ParaView).
+        Written atomically."""
+        path = os.fspath(path)
+        ext = os.path.splitext(path)[1].lower()
+        if ext in ('.csv', '.txt', '.vtk'):
+            _mss.writeSpheres(self.centers.ravel().tolist(), self.radii.tolist(), path)
+            return
+        if ext != '.npz':
+            raise ValueError("MssResult.save: %s: unknown extension '%s' (expected .npz, .csv, .txt or .vtk)"
+                             % (path, ext))
+        meta = {'metrics': self.metrics, 'grid': self.grid, 'source': self.source,
+                'targetMass': self.targetMass._toDict() if self.targetMass is not None else None, 'version': 1}
+        tmp = path + '.tmp%d.npz' % os.getpid()
+        try:
+            np.savez_compressed(tmp, centers=self.centers, radii=self.radii, meta=np.array(json.dumps(meta)))
+            os.replace(tmp, path)
+        except OSError as e:
+            if os.path.exists(tmp):
+                os.remove(tmp)
+            raise RuntimeError('MssResult.save: %s: cannot write (%s)' % (path, e))
+
+    @staticmethod
+    def load(path):
+        """Reads a result written by :meth:`save` (.npz)."""
+        try:
+            with np.load(str(path), allow_pickle=False) as z:
+                meta = json.loads(str(z['meta']))
+                r = MssResult(z['centers'], z['radii'], meta.get('metrics'), meta.get('grid'), None, meta.get('source', ''))
+        except (OSError, KeyError, ValueError) as e:
+            raise ValueError('MssResult.load: %s: not a saved result (%s)' % (path, e))
+        if meta.get('targetMass'):
+            r.targetMass = MassProperties._fromDict(meta['targetMass'])
+        return r
+
+
+def readSpheres(path, clumpId=None):
+    """Reads a sphere file (CLUMP's ``x,y,z,r`` CSV, a YADE text clump ``x y z r id``, our .csv/.txt) as an
+    :class:`MssResult` without a target (use ``mass='union'`` with it).
+
+    :param int clumpId: of a YADE text file holding several clumps, the one to read; such a file is refused
+        without it (clumps are never merged silently). :func:`readClumps` reads them all, as clumps.
+    """
+    c, r = _mss.readSpheres(os.fspath(path), -1 if clumpId is None else int(clumpId))
+    return MssResult(c, r, source=os.path.basename(os.fspath(path)))

@@ -1,0 +1,110 @@
+"""Sources of a grain: a mesh file, a voxel file, an array, (vertices, triangles); their mass properties."""
+
+import math
+import os
+
+import numpy as np
+
+from . import _mss
+from ._results import MassProperties
+
+_MESH_EXT = ('.stl', '.obj', '.off', '.ply')
+
+
+def _flat(a):
+    return np.ascontiguousarray(a, dtype=float).ravel().tolist()
+
+
+class _Mesh(object):
+    def __init__(self, vertices, triangles, name):
+        self.vertices = np.asarray(vertices, dtype=float).reshape(-1, 3)
+        self.triangles = np.asarray(triangles).reshape(-1, 3)
+        if self.triangles.size and not np.issubdtype(self.triangles.dtype, np.integer):
+            if not np.all(np.mod(self.triangles, 1) == 0):
+                raise ValueError('mesh: triangle indices must be integers')
+        self.triangles = self.triangles.astype(np.int64)
+        self.name = name
+
+    def args(self):
+        return _flat(self.vertices), self.triangles.ravel().tolist()
+
+
+def _labelList(labels):
+    shown = ', '.join(str(int(x)) for x in labels[:20])
+    return shown + (', ...' if len(labels) > 20 else '')
+
+
+class _Voxels(object):
+    def __init__(self, array, voxelSize, origin, name, label=None):
+        a = np.asarray(array)
+        if a.ndim != 3:
+            raise ValueError('voxels: the array must be 3-D, got %d-D' % a.ndim)
+        if a.size == 0:
+            raise ValueError('voxels: the array is empty')
+        if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
+            raise ValueError('voxels: dtype %s is not boolean or integer (threshold a grey-level volume first)' % a.dtype)
+        if label is None and a.dtype != bool:
+            labels = np.unique(a[a != 0])
+            if len(labels) > 1:  # the grains would merge into one solid
+                raise ValueError('voxels: the volume holds %d labels (%s): choose one grain with label='
+                                 % (len(labels), _labelList(labels)))
+        solid = (a == label) if label is not None else (a != 0)
+        if not solid.any():
+            raise ValueError('voxels: no voxel has label %s' % label if label is not None else 'voxels: the volume has no solid voxel')
+        self.shape = solid.shape
+        self.data = np.asfortranarray(solid.astype(np.uint8)).tobytes(order='F')  # x fastest
+        self.voxelSize = 1.0 if voxelSize is None else float(voxelSize)
+        if not (self.voxelSize > 0 and math.isfinite(self.voxelSize)):
+            raise ValueError('voxels: voxel size must be > 0 and finite, got %s' % voxelSize)
+        self.origin = [float(x) for x in (origin if origin is not None else (0, 0, 0))]
+        if len(self.origin) != 3:
+            raise ValueError('voxels: origin must have 3 coordinates')
+        self.name = name
+
+    def args(self):
+        return self.data, tuple(int(n) for n in self.shape), self.voxelSize, self.origin
+
+
+def _source(source, voxelSize=None, origin=None, label=None):
+    """A mesh or voxel source from a file name, an array, (vertices, triangles) or a dict."""
+    if isinstance(source, (str, os.PathLike)):
+        path = os.fspath(source)
+        ext = os.path.splitext(path)[1].lower()
+        if ext in _MESH_EXT:
+            v, t = _mss.readMesh(path)
+            return _Mesh(v, t, os.path.basename(path))
+        if ext == '.npy':  # the C++ reader: its checks and messages, as in the mss command
+            data, shape = _mss.readNpy(path, -1 if label is None else int(label))
+            a = np.frombuffer(data, dtype=np.uint8).reshape(shape, order='F')
+            return _Voxels(a, voxelSize, origin, os.path.basename(path))
+        raise ValueError("readMesh: %s: unknown mesh extension '%s' (expected .stl, .obj, .off or .ply, or .npy voxels)" % (path, ext))
+    if isinstance(source, dict) and 'vertices' in source and 'triangles' in source:
+        return _Mesh(source['vertices'], source['triangles'], 'mesh')
+    if isinstance(source, tuple) and len(source) == 2:
+        return _Mesh(source[0], source[1], 'mesh')
+    if isinstance(source, np.ndarray):
+        return _Voxels(source, voxelSize, origin, 'array', label)
+    raise ValueError('source must be a mesh file, a .npy file, a 3-D numpy array, (vertices, triangles) or an '
+                     'MssResult; got %s' % type(source).__name__)
+
+
+def _plane(p):
+    try:
+        point, normal = p
+        v = [float(x) for x in point] + [float(x) for x in normal]
+    except (TypeError, ValueError):
+        raise ValueError('planes: each plane is ((px, py, pz), (nx, ny, nz)), got %r' % (p,))
+    if len(v) != 6:
+        raise ValueError('planes: each plane is ((px, py, pz), (nx, ny, nz)), got %r' % (p,))
+    return v
+
+
+def massProperties(source, voxelSize=None, origin=None, label=None, planes=()):
+    """:class:`MassProperties` (unit density) of a mesh (exact, divergence theorem) or voxels (exact voxel sums).
+    With ``planes`` (as in :func:`generate`): of the part on their allowed side, a fragment (a mesh cut and capped
+    exactly; voxels whose centre is on that side)."""
+    s = _source(source, voxelSize, origin, label)
+    cuts = [_plane(p) for p in planes]
+    if isinstance(s, _Mesh):
+        return MassProperties._fromDict(_mss.massMesh(*s.args(), cuts))
+    return MassProperties._fromDict(_mss.massVoxels(*s.args(), cuts))

@@ -1,0 +1,237 @@
+"""Clump templates and packings: :class:`MssTemplate`, :func:`mssTemplate`, :func:`mssClumpCloud`,
+:func:`mssReplaceByClumps`. Every clump is built by :func:`mssClump`: exact mass properties."""
+
+import math
+import warnings
+
+import numpy as np
+
+from ._clumps import _yade, bodyOptions, mssClump, randomRotation
+from ._generate import GENERATE_OPTIONS, generate
+from ._keywords import split
+from ._results import MssResult
+
+
+class MssTemplate(object):
+    """A grain as a clump template, generated once and reused for a packing.
+
+    :ivar result: the :class:`MssResult`
+    :ivar scale: the size factor applied to the file's units
+    :ivar equivalentRadius: radius of the sphere of the grain's volume (the union's without a target), scaled
+    :ivar boundingRadius: radius of the smallest ball about the union's centre of mass that holds every sphere,
+        scaled: the distance two of these clumps need between their centres never to overlap
+    :ivar clumpTemplate: ``utils.clumpTemplate`` for ``O.bodies.replaceByClumps`` (relative to the bounding
+        radius; YADE scales it to the volume of the sphere it replaces, see :func:`mssReplaceByClumps`)
+    :ivar spherePack: ``SpherePack`` for ``SpherePack.makeClumpCloud`` (file units times scale, centred at the
+        union's centre of mass)
+    """
+
+    def __init__(self, result, scale=1.0):
+        utils, O, me = _yade()
+        from yade import pack
+        self.result = result
+        self.scale = float(scale)
+        u = result.unionMass()
+        volume = result.targetMass.volume if result.targetMass is not None else u.volume
+        self.equivalentRadius = self.scale * (3.0 * volume / (4.0 * math.pi)) ** (1.0 / 3.0)
+        self.unionCentroid = u.centroid
+        rb = result.boundingRadius(u.centroid)
+        self.boundingRadius = self.scale * rb
+        rel = (result.centers - u.centroid) / rb
+        self.clumpTemplate = utils.clumpTemplate(relRadii=[float(x) for x in result.radii / rb],
+                                                 relPositions=[[float(x) for x in p] for p in rel])
+        self.spherePackCenters = self.scale * (result.centers - u.centroid)
+        self.spherePackRadii = self.scale * result.radii
+        self.spherePack = pack.SpherePack([(tuple(float(x) for x in p), float(rad))
+                                           for p, rad in zip(self.spherePackCenters, self.spherePackRadii)])
+
+    def __repr__(self):
+        return '<MssTemplate %d spheres, equivalent radius %.4g, bounding radius %.4g>' % (
+            len(self.result), self.equivalentRadius, self.boundingRadius)
+
+    def place(self, center, rotation, scale=1.0, mass='target', **body):
+        """Builds this grain as a clump whose union's centre of mass (the template's origin) goes to *center*,
+        turned by the matrix *rotation* and scaled by *scale* on top of the template's scale."""
+        t = self.result
+        props = t.targetMass if mass == 'target' and t.targetMass is not None else t.unionMass()
+        s = self.scale * scale
+        c = np.asarray(center, dtype=float) + s * rotation.dot(props.centroid - self.unionCentroid)
+        return mssClump(t, center=c, orientation=rotation, scale=s, mass=mass if t.targetMass is not None else 'union',
+                        **body)
+
+
+def mssTemplate(source, scale=1.0, **options):
+    """Generates a grain once as a template for packings; see :class:`MssTemplate`.
+
+    :param options: every keyword of :func:`generate` (unknown ones raise TypeError before any work)
+    """
+    gen, = split('mssTemplate', options, GENERATE_OPTIONS)
+    if not (float(scale) > 0 and math.isfinite(float(scale))):
+        raise ValueError('mssTemplate: scale must be > 0, got %r' % (scale,))
+    if isinstance(source, MssResult) and gen:
+        raise ValueError('mssTemplate: %s: generation options do nothing for an MssResult' % ', '.join(sorted(gen)))
+    return MssTemplate(generate(source, **gen), float(scale))
+
+
+def _templates(func, templates, gen):
+    templates = list(templates) if isinstance(templates, (list, tuple)) else [templates]
+    if not templates:
+        raise ValueError('%s: give at least one template' % func)
+    return [t if isinstance(t, MssTemplate) else mssTemplate(t, **gen) for t in templates]
+
+
+def _kabsch(Q, P):
+    """Rotation R and translation t with P ~ t + R Q (least squares; Kabsch 1976)."""
+    qc, pc = Q.mean(axis=0), P.mean(axis=0)
+    H = (Q - qc).T.dot(P - pc)
+    U, _, Vt = np.linalg.svd(H)
+    d = np.sign(np.linalg.det(Vt.T.dot(U.T))) or 1.0
+    R = Vt.T.dot(np.diag([1.0, 1.0, d])).dot(U.T)
+    return R, pc - R.dot(qc)
+
+
+def _psdSampler(psdSizes, psdCumm, distributeMass):
+    """Inverse-CDF sampler of sizes (diameters) from YADE's PSD convention: sieve sizes and cumulative
+    fractions (by number, or by mass with *distributeMass*, as in ``SpherePack.makeCloud``)."""
+    d = np.asarray(psdSizes, dtype=float)
+    F = np.asarray(psdCumm, dtype=float)
+    if d.ndim != 1 or len(d) < 2 or len(d) != len(F):
+        raise ValueError('mssClumpCloud: psdSizes and psdCumm must be lists of the same length (at least 2)')
+    if not (np.all(d > 0) and np.all(np.diff(d) > 0)):
+        raise ValueError('mssClumpCloud: psdSizes must be positive and increasing')
+    if not (np.all(np.diff(F) >= 0) and F[0] >= 0 and abs(F[-1] - 1) < 1e-9 and F[-1] > F[0]):
+        raise ValueError('mssClumpCloud: psdCumm must rise from >= 0 to 1')
+    frac = np.diff(F)
+    if distributeMass:  # a bin's number share is its mass share over a grain's mass there (~ d^3)
+        mid = 0.5 * (d[1:] + d[:-1])
+        frac = frac / mid ** 3
+    cum = np.concatenate([[0.0], np.cumsum(frac) / frac.sum()])
+
+    def sample(rng, n):
+        return np.interp(rng.random(n), cum, d)
+
+    return sample
+
+
+def _placeByBoundingBalls(rng, lo, hi, radii, periodic, tries=1000):
+    """Random sequential placement of balls (largest first) in the box, none overlapping (periodic: minimum
+    image). Returns the centres of the ones placed (in the order of *radii*) and their indices."""
+    L = hi - lo
+    placed, where = [], []
+    for i in np.argsort(-radii, kind='stable'):
+        r = radii[i]
+        if not periodic and np.any(2 * r > L):
+            continue
+        for _ in range(tries):
+            c = lo + (rng.random(3) * L if periodic else r + rng.random(3) * (L - 2 * r))
+            if placed:
+                P = np.array([p for p, _ in placed])
+                d = P - c
+                if periodic:
+                    d -= L * np.round(d / L)
+                if np.any(np.linalg.norm(d, axis=1) < np.array([q for _, q in placed]) + r):
+                    continue
+            placed.append((c, r))
+            where.append(i)
+            break
+    return [p for p, _ in placed], where
+
+
+def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=-1, psdSizes=None, psdCumm=None,
+                  distributeMass=False, mass='target', **options):
+    """A random loose packing of clumps, each with its grain's exact mass properties (:func:`mssClump`).
+
+    Without a size distribution, positions and orientations come from ``SpherePack.makeClumpCloud`` (same
+    parameters; the templates at their own scale). With ``psdSizes``/``psdCumm`` (YADE's convention: sizes are
+    diameters, here of the sphere of the grain's volume; cumulative fractions by number, or by mass with
+    ``distributeMass``), each grain gets a size drawn from the distribution, a template at random and a
+    uniformly random orientation; grains are placed largest first where their bounding balls overlap no other.
+
+    :param templates: :class:`MssTemplate` objects, or sources to make them from with the generate options
+    :param int num: number of clumps (-1: as many as fit; required with a size distribution)
+    :param int seed: random seed (-1: random)
+    :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
+    :return: list of (clumpId, [memberIds])
+    """
+    gen, body = split('mssClumpCloud', options, GENERATE_OPTIONS, bodyOptions())
+    utils, O, me = _yade()
+    from yade import pack
+    templates = _templates('mssClumpCloud', templates, gen)
+    lo = np.array([float(x) for x in minCorner])
+    hi = np.array([float(x) for x in maxCorner])
+    if lo.shape != (3,) or hi.shape != (3,) or not np.all(hi > lo):
+        raise ValueError('mssClumpCloud: maxCorner must exceed minCorner on every axis')
+    if (psdSizes is None) != (psdCumm is None):
+        raise ValueError('mssClumpCloud: give psdSizes and psdCumm together')
+    out = []
+    if psdSizes is not None:
+        sample = _psdSampler(psdSizes, psdCumm, distributeMass)
+        if not (int(num) == num and num >= 1):
+            raise ValueError('mssClumpCloud: num must be >= 1 with a size distribution, got %r' % (num,))
+        rng = np.random.default_rng(None if seed is None or seed < 0 else seed)
+        sizes = sample(rng, int(num))
+        which = rng.integers(len(templates), size=int(num))
+        scales = np.array([sizes[i] / (2 * templates[w].equivalentRadius) for i, w in enumerate(which)])
+        bounding = np.array([scales[i] * templates[w].boundingRadius for i, w in enumerate(which)])
+        centres, order = _placeByBoundingBalls(rng, lo, hi, bounding, periodic)
+        if len(order) < num:
+            warnings.warn('mssClumpCloud: placed %d of %d grains (the box is too full)' % (len(order), num))
+        for c, i in zip(centres, order):
+            out.append(templates[which[i]].place(c, randomRotation(rng), scales[i], mass, **body))
+        return out
+    sp = pack.SpherePack()
+    sp.makeClumpCloud(me.Vector3(*lo), me.Vector3(*hi), [t.spherePack for t in templates],
+                      periodic=periodic, num=num, seed=seed)
+    groups = {}
+    for c, r, cid in sp.toList():
+        groups.setdefault(cid, []).append((np.array([c[0], c[1], c[2]]), r))
+    for cid in sorted(groups):
+        P = np.array([c for c, r in groups[cid]])
+        radii = np.array([r for c, r in groups[cid]])
+        t = next((t for t in templates if len(t.spherePackRadii) == len(radii)
+                  and np.allclose(t.spherePackRadii, radii, rtol=1e-12)), None)
+        if t is None:
+            raise RuntimeError('mssClumpCloud: a clump of the cloud matches no template')
+        R, tr = _kabsch(t.spherePackCenters, P)
+        out.append(t.place(tr, R, 1.0, mass, **body))
+    return out
+
+
+def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target', **options):
+    """Replaces free spheres of the scene by clumps, as ``O.bodies.replaceByClumps`` does, but with exact mass
+    properties and without overlaps: with ``fit='inside'`` each clump's bounding ball is the sphere it replaces
+    (YADE's own gives the clump the sphere's volume, so clumps stick out by the ratio of bounding to equivalent
+    radius, often 1.3-1.5, and a packing starts overlapping); ``fit='volume'`` is YADE's rule.
+
+    :param templates: :class:`MssTemplate` objects (or sources, with generate options)
+    :param amounts: fraction of the free spheres replaced by each template (sum at most 1)
+    :param seed: random seed for which spheres and the orientations (uniform)
+    :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
+    :return: list of (clumpId, [memberIds])
+    """
+    gen, body = split('mssReplaceByClumps', options, GENERATE_OPTIONS, bodyOptions())
+    utils, O, me = _yade()
+    from yade.wrapper import Sphere
+    templates = _templates('mssReplaceByClumps', templates, gen)
+    amounts = [float(a) for a in (amounts if isinstance(amounts, (list, tuple)) else [amounts])]
+    if len(amounts) != len(templates) or min(amounts) < 0 or sum(amounts) > 1 + 1e-12:
+        raise ValueError('mssReplaceByClumps: one amount per template, each >= 0, adding up to at most 1')
+    if fit not in ('inside', 'volume'):
+        raise ValueError("mssReplaceByClumps: fit must be 'inside' or 'volume', got %r" % (fit,))
+    free = [b for b in O.bodies if b is not None and isinstance(b.shape, Sphere) and not b.isClumpMember]
+    rng = np.random.default_rng(seed)
+    order = rng.permutation(len(free))
+    out, k = [], 0
+    for t, a in zip(templates, amounts):
+        n = int(round(a * len(free)))
+        for i in order[k:k + n]:
+            b = free[i]
+            c = np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]])
+            r = b.shape.radius
+            s = r / (t.boundingRadius if fit == 'inside' else t.equivalentRadius)
+            opts = dict(body)
+            opts.setdefault('material', b.material)
+            out.append(t.place(c, randomRotation(rng), s, mass, **opts))
+            O.bodies.erase(b.id)
+        k += n
+    return out

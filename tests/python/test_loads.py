@@ -1,0 +1,68 @@
+"""The member loads that make YADE's clump sums exact (yade_mss._loads), checked without YADE."""
+import unittest
+
+import numpy as np
+
+from yade_mss._loads import memberLoads, sumsAsYade, tiltedShares
+
+
+def yadeSums(x, r, L):
+    """YADE's discretization-0 sum over non-spherical members: member 0 carries the tensor V diag(j) V^T."""
+    tensors = [L.V.dot(np.diag(L.j)).dot(L.V.T)] + [np.zeros((3, 3))] * (len(r) - 1)
+    return sumsAsYade(x, r, L.m, tensors)
+
+
+class Loads(unittest.TestCase):
+    def test_random_clumps_are_exact(self):
+        rng = np.random.default_rng(7)
+        for n in (4, 10, 70):
+            x = rng.normal(size=(n, 3))
+            r = 0.3 + rng.random(n)
+            M = 10 * rng.random() + 0.1
+            C = x.mean(axis=0) + 0.1 * rng.normal(size=3)
+            A = rng.normal(size=(3, 3))
+            I = A.dot(A.T) + np.eye(3)
+            L = memberLoads(x, r, M, C, I)
+            Ms, Cs, Is = yadeSums(x, r, L)
+            self.assertLess(abs(Ms - M) / M, 1e-13)
+            self.assertLess(np.linalg.norm(Cs - C), 1e-12)
+            self.assertLess(np.linalg.norm(Is - I) / np.linalg.norm(I), 1e-12)
+            # the members keep positive shares adding up to the mass
+            self.assertTrue(np.all(L.final > 0))
+            self.assertAlmostEqual(L.final.sum() / M, 1.0, places=13)
+            self.assertEqual(L.offset, 0.0)
+
+    def test_balls_double_count_overlaps(self):
+        # what YADE does with Sphere members: two unit balls one radius apart weigh 2 balls, not the union
+        M, C, I = sumsAsYade([[0, 0, 0], [1, 0, 0]], [1, 1], None, None, density=1.0)
+        self.assertAlmostEqual(M, 8 * np.pi / 3, places=12)
+
+    def test_tilted_shares_outside_the_hull_are_not_positive(self):
+        x = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+        m, ok = tiltedShares(x, np.ones(4), 1.0, np.array([0.2, 0.2, 0.2]))
+        self.assertTrue(ok)
+        self.assertTrue(np.all(m > 0))
+        np.testing.assert_allclose(m.dot(x), [0.2, 0.2, 0.2], atol=1e-12)
+        m, ok = tiltedShares(x, np.ones(4), 1.0, np.array([2.0, 2.0, 2.0]))
+        self.assertFalse(ok)
+        # the exact masses then exist with mixed signs: the clump is still exact, members share evenly
+        L = memberLoads(x, np.ones(4), 1.0, np.array([2.0, 2.0, 2.0]), np.eye(3))
+        Ms, Cs, Is = yadeSums(x, np.ones(4), L)
+        np.testing.assert_allclose(Cs, [2, 2, 2], atol=1e-12)
+        self.assertTrue(np.all(L.final > 0))
+
+    def test_centroid_off_the_line_of_collinear_spheres(self):
+        x = np.array([[0, 0, 0], [1, 0, 0], [2, 0, 0]], dtype=float)
+        L = memberLoads(x, np.ones(3), 3.0, np.array([1.0, 0.5, 0.0]), np.eye(3))
+        self.assertAlmostEqual(L.offset, 0.5, places=12)  # the nearest point of the line is taken
+        np.testing.assert_allclose(L.centroid, [1, 0, 0], atol=1e-12)
+        Ms, Cs, Is = yadeSums(x, np.ones(3), L)
+        np.testing.assert_allclose(Is, np.eye(3), atol=1e-12)  # the tensor is still exact
+
+    def test_bad_mass(self):
+        with self.assertRaises(ValueError):
+            memberLoads([[0, 0, 0]], [1], 0.0, [0, 0, 0], np.eye(3))
+
+
+if __name__ == '__main__':
+    unittest.main()

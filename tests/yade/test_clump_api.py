@@ -1,0 +1,294 @@
+"""YADE's clump API on mssClump clumps, side by side with a plain appendClumped clump of the same spheres.
+Run: yade -n -x tests/yade/test_clump_api.py"""
+import glob
+import math
+import os
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ.get('MSS_TEST_DATA', 'tests/data'), '..', 'yade'))
+from clumptools import ELL, FEMUR, ballSums, meshMass, readStlTriangles, relErr, rot, tensor, unionByGrid, vec  # noqa: E402
+
+from yade import utils, export, ymport  # noqa: E402
+from yade.wrapper import *  # noqa: F401,F403,E402
+import yade.minieigenHP as me  # noqa: E402
+
+from yade_mss import generate, mssClump, restoreClumpProperties, readClumps, writeClumps  # noqa: E402
+
+O = Omega()
+RHO = 2000.0
+_femur = []
+
+
+def femur20():
+    if not _femur:
+        _femur.append(generate(FEMUR, nSpheres=20, resolution=50))
+    return _femur[0]
+
+
+def exactFemur():
+    V, c, I = meshMass(readStlTriangles(FEMUR))
+    return RHO * V, c, RHO * I
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        O.reset()
+        self.mat = O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5, label='grain'))
+
+    def pair(self, r=None, shift=(300, 0, 0)):
+        """Our clump of result r and a plain appendClumped clump of the same spheres, shifted."""
+        r = r or femur20()
+        ours = mssClump(r, material=self.mat)
+        plain = O.bodies.appendClumped([utils.sphere(tuple(c + np.array(shift)), float(rad), material=self.mat)
+                                        for c, rad in zip(r.centers, r.radii)])
+        return ours, plain
+
+    def assertExact(self, cid, M, C, I, tol=1e-9):
+        st = O.bodies[cid].state
+        self.assertLess(abs(st.mass - M) / M, tol)
+        self.assertLess(np.linalg.norm(vec(st.pos) - C) / 100.0, tol)
+        self.assertLess(relErr(tensor(st), I), 100 * tol)
+
+    def members(self, cid):
+        return sorted(O.bodies[cid].shape.members.keys())
+
+
+class Exact(Base):
+    def test_members_are_exactly_the_spheres(self):
+        r = femur20()
+        (cid, ids), _ = self.pair()
+        self.assertEqual(self.members(cid), sorted(ids))
+        self.assertEqual(len(ids), len(r))
+        # the idiom users write works on every member
+        radii = [O.bodies[i].shape.radius for i in O.bodies[cid].shape.members]
+        self.assertEqual(sorted(radii), sorted(r.radii.tolist()))
+
+    def test_grain_mass_properties_against_independent_sums(self):
+        (cid, ids), _ = self.pair()
+        M, C, I = exactFemur()
+        self.assertExact(cid, M, C, I)
+        # the body frame is the principal frame: the tensor in it is diagonal (YADE stores three moments)
+        R = rot(O.bodies[cid].state.ori)
+        D = R.T.dot(I).dot(R)
+        self.assertLess(np.abs(D - np.diag(np.diag(D))).max() / np.abs(D).max(), 1e-9)
+
+    def test_member_masses_add_up_to_the_clump(self):
+        (cid, ids), (pc, pids) = self.pair()
+        masses = [O.bodies[i].state.mass for i in ids]
+        self.assertTrue(all(m > 0 for m in masses))
+        self.assertLess(abs(sum(masses) - O.bodies[cid].state.mass) / sum(masses), 1e-12)
+        # so utils.getSpheresMass() agrees with the clumps' masses, as with plain clumps
+        total = O.bodies[cid].state.mass + O.bodies[pc].state.mass
+        self.assertLess(abs(utils.getSpheresMass() - total) / total, 1e-12)
+
+    def test_union_mass_for_overlapping_spheres(self):
+        r = generate(ELL, nSpheres=10, resolution=60)
+        cid, ids = mssClump(r, mass='union')
+        V, c, I = unionByGrid(r.centers, r.radii, 0.01)
+        self.assertExact(cid, RHO * V, c, RHO * I, tol=0.005)
+
+
+class SideBySide(Base):
+    def test_release_down_to_two_members(self):
+        # the bug: releases drove the mass negative and the fourth aborted YADE (Clump.cpp:241 'M > 0')
+        r = generate(ELL, nSpheres=10, resolution=103)
+        (cid, ids), (pc, pids) = self.pair(r)
+        for k in range(len(ids) - 2):
+            O.bodies.releaseFromClump(ids[k], cid)
+            O.bodies.releaseFromClump(pids[k], pc)
+            self.assertEqual(len(self.members(cid)), len(ids) - k - 1)
+            # YADE recomputes both from the remaining spheres alike
+            a, b = O.bodies[cid].state, O.bodies[pc].state
+            self.assertGreater(a.mass, 0)
+            self.assertLess(abs(a.mass - b.mass) / b.mass, 1e-12)
+            self.assertLess(relErr(tensor(a), tensor(b)), 1e-9)
+        # the released spheres are free bodies with positive mass
+        self.assertTrue(all(O.bodies[i].state.mass > 0 and not O.bodies[i].isClumpMember for i in ids[:-2]))
+        # restoring gives the union of the two left, overlaps once
+        self.assertEqual(restoreClumpProperties([cid]), [(cid, 'union')])
+        left = self.members(cid)
+        c = np.array([vec(O.bodies[i].state.pos) for i in left])
+        rad = np.array([O.bodies[i].shape.radius for i in left])
+        V, cen, I = unionByGrid(c, rad, 0.005)
+        self.assertExact(cid, RHO * V, cen, RHO * I, tol=0.005)
+
+    def test_add_to_clump(self):
+        (cid, ids), (pc, pids) = self.pair()
+        extra = [O.bodies.append(utils.sphere(tuple(vec(O.bodies[b].state.pos) + (5, 0, 0)), 8.0, material=self.mat))
+                 for b in (ids[0], pids[0])]
+        O.bodies.addToClump([extra[0]], cid)
+        O.bodies.addToClump([extra[1]], pc)
+        self.assertEqual(len(self.members(cid)), len(ids) + 1)
+        self.assertLess(abs(O.bodies[cid].state.mass / O.bodies[pc].state.mass - 1), 1e-12)
+        self.assertEqual(restoreClumpProperties([cid]), [(cid, 'union')])
+        m = self.members(cid)
+        c = np.array([vec(O.bodies[i].state.pos) for i in m])
+        rad = np.array([O.bodies[i].shape.radius for i in m])
+        V, cen, I = unionByGrid(c, rad, 0.5)
+        self.assertExact(cid, RHO * V, cen, RHO * I, tol=0.01)
+
+    def test_erase_keeps_free_spheres_of_positive_mass(self):
+        (cid, ids), (pc, pids) = self.pair()
+        M = O.bodies[cid].state.mass
+        O.bodies.erase(cid)
+        O.bodies.erase(pc)
+        for i in ids + pids:
+            b = O.bodies[i]
+            self.assertFalse(b.isClumpMember)
+            self.assertGreater(b.state.mass, 0)
+        self.assertLess(abs(sum(O.bodies[i].state.mass for i in ids) - M) / M, 1e-12)
+        O.engines = [ForceResetter(), NewtonIntegrator(damping=0, gravity=(0, 0, -9.81))]
+        O.dt = 1e-3
+        O.run(100, True)
+        ek = utils.kineticEnergy()
+        self.assertTrue(math.isfinite(ek) and ek > 0)
+        # free fall: every sphere moves at g t, nothing falls faster or stays behind
+        for i in ids + pids:
+            self.assertAlmostEqual(O.bodies[i].state.vel[2], -9.81 * 0.1, places=9)
+
+    def test_erase_with_members(self):
+        (cid, ids), (pc, pids) = self.pair()
+        O.bodies.erase(cid, True)
+        O.bodies.erase(pc, True)
+        self.assertEqual(len([b for b in O.bodies if b is not None]), 0)
+        self.assertEqual(restoreClumpProperties(), [])  # the erased clump is forgotten
+
+    def test_update_clump_properties_then_restore(self):
+        (cid, ids), (pc, pids) = self.pair()
+        M, C, I = exactFemur()
+        r = femur20()
+        for disc in (0, 5, 10):
+            O.bodies.updateClumpProperties(discretization=disc)
+            a, b = O.bodies[cid].state, O.bodies[pc].state
+            self.assertLess(abs(a.mass - b.mass) / b.mass, 1e-12)  # YADE treats both alike
+            if disc == 0:  # overlaps counted twice, for both
+                Mb, Cb, Ib = ballSums(r.centers, r.radii, RHO)
+                self.assertLess(abs(a.mass - Mb) / Mb, 1e-12)
+            self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
+            self.assertExact(cid, M, C, I)
+
+    def test_density_change_then_update_and_restore(self):
+        (cid, ids), (pc, pids) = self.pair()
+        M, C, I = exactFemur()
+        O.materials[self.mat].density /= 10
+        for i in ids + pids:
+            O.bodies[i].state.mass /= 10
+        O.bodies.updateClumpProperties(discretization=0)  # aborted YADE before
+        a, b = O.bodies[cid].state, O.bodies[pc].state
+        self.assertLess(abs(a.mass - b.mass) / b.mass, 1e-12)
+        restoreClumpProperties()
+        self.assertExact(cid, M / 10, C, I / 10)
+        self.assertLess(abs(sum(O.bodies[i].state.mass for i in ids) - M / 10) / M, 1e-12)
+
+    def test_restore_keeps_the_motion(self):
+        (cid, ids), _ = self.pair()
+        st = O.bodies[cid].state
+        st.vel = me.Vector3(1, 2, 3)
+        st.angVel = me.Vector3(0.1, -0.2, 0.3)
+        O.bodies.updateClumpProperties(discretization=0)
+        self.assertEqual(vec(st.vel).tolist(), [0, 0, 0])  # YADE's update stops a clump
+        st.vel, st.angVel = me.Vector3(1, 2, 3), me.Vector3(0.1, -0.2, 0.3)
+        p0 = vec(st.pos)
+        restoreClumpProperties()
+        w = np.array([0.1, -0.2, 0.3])
+        np.testing.assert_allclose(vec(st.angVel), w, rtol=1e-12)
+        np.testing.assert_allclose(vec(st.vel), np.array([1, 2, 3]) + np.cross(w, vec(st.pos) - p0), rtol=1e-9)
+        np.testing.assert_allclose(vec(st.angMom), tensor(st).dot(w), rtol=1e-9)
+
+    def test_save_load_and_tmp(self):
+        (cid, ids), (pc, pids) = self.pair()
+        M, C, I = exactFemur()
+        with tempfile.TemporaryDirectory() as d:
+            f = os.path.join(d, 'scene.yade.gz')
+            O.save(f)
+            O.reset()
+            O.load(f)
+            self.assertExact(cid, M, C, I)
+            self.assertEqual(len(self.members(cid)), len(ids))
+            O.bodies.updateClumpProperties(discretization=0)
+            self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])  # the record travels with the scene
+            self.assertExact(cid, M, C, I)
+        O.saveTmp('t')
+        O.bodies.updateClumpProperties(discretization=0)
+        O.loadTmp('t')
+        self.assertExact(cid, M, C, I)
+
+    def test_vtk_recorder_and_exporter(self):
+        (cid, ids), (pc, pids) = self.pair()
+        with tempfile.TemporaryDirectory() as d:
+            # every recorder but 'intr' (so not 'all'): in YADE 2023.02a here it never returns, plain scenes too
+            recorders = ['spheres', 'facets', 'boxes', 'colors', 'mask', 'ids', 'mass', 'clumpId', 'materialId',
+                         'velocity', 'stress', 'force']
+            O.engines = [ForceResetter(), VTKRecorder(fileName=os.path.join(d, 'rec-'), recorders=recorders,
+                                                      iterPeriod=1), NewtonIntegrator(gravity=(0, 0, 0))]
+            O.dt = 1e-4
+            O.run(1, True)
+            files = sorted(os.path.basename(f) for f in glob.glob(os.path.join(d, '*')))
+            self.assertTrue(any('spheres' in f for f in files), files)
+            boxes = open(glob.glob(os.path.join(d, '*boxes*'))[0]).read()  # written, but empty: no helper body
+            self.assertIn('NumberOfCells="0"', boxes)
+            spheres = open(glob.glob(os.path.join(d, '*spheres*'))[0]).read()
+            self.assertIn('NumberOfPoints="%d"' % (len(ids) + len(pids)), spheres)
+            ex = export.VTKExporter(os.path.join(d, 'exp'))
+            ex.exportSpheres(what=dict(mass='b.state.mass'))
+            text = open(glob.glob(os.path.join(d, 'exp*'))[0]).read()
+            self.assertIn('POINTS %d' % (len(ids) + len(pids)), text)
+
+    def test_text_clumps_round_trip(self):
+        (cid, ids), (pc, pids) = self.pair()
+        M, C, I = exactFemur()
+        with tempfile.TemporaryDirectory() as d:
+            f = os.path.join(d, 'c.txt')
+            export.textClumps(f)
+            O.bodies.clear()
+            back = ymport.textClumps(f, material=self.mat)
+            self.assertEqual(len(back), 2)
+            # YADE's own reader sums the spheres again, for both alike
+            self.assertLess(abs(O.bodies[back[0][0]].state.mass / O.bodies[back[1][0]].state.mass - 1), 1e-6)
+            # ours keeps the exact properties
+            O.reset()
+            self.mat = O.materials.append(FrictMat(density=RHO, label='grain'))
+            (cid, ids), (pc, pids) = self.pair()
+            n = writeClumps(f)
+            self.assertEqual(n, (2, 2 * len(ids)))
+            plainMass = O.bodies[pc].state.mass
+            O.reset()
+            heavy = O.materials.append(FrictMat(density=2 * RHO))
+            back = readClumps(f, material=heavy)
+            self.assertEqual(len(back), 2)
+            self.assertExact(back[0][0], 2 * M, C, 2 * I)  # scaled to the density used when reading
+            self.assertLess(abs(O.bodies[back[1][0]].state.mass / (2 * plainMass) - 1), 1e-12)
+            # YADE's reader takes our file too (the '#mss' lines are comments to it)
+            O.reset()
+            O.materials.append(FrictMat(density=RHO))
+            self.assertEqual(len(ymport.textClumps(f)), 2)
+
+    def test_periodic_cell(self):
+        O.periodic = True
+        O.cell.hSize = Matrix3(500, 0, 0, 0, 500, 0, 0, 0, 500)
+        (cid, ids), (pc, pids) = self.pair(shift=(200, 0, 0))
+        M, C, I = exactFemur()
+        O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                     NewtonIntegrator(gravity=(0, 0, 0))]
+        O.bodies[cid].state.vel = me.Vector3(1000, 0, 0)  # it crosses the cell's face
+        O.dt = 1e-3
+        O.run(400, True)
+        st = O.bodies[cid].state
+        self.assertLess(abs(st.mass - M) / M, 1e-12)
+        self.assertLess(relErr(tensor(st), rot(st.ori).dot(rot(st.ori).T).dot(tensor(st))), 1e-12)
+        self.assertGreater(st.pos[0], C[0] + 350)
+        self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
+        self.assertLess(abs(O.bodies[cid].state.mass - M) / M, 1e-9)
+
+
+if __name__ == '__main__':
+    result = unittest.main(exit=False, verbosity=2).result
+    print('%d passed, %d failed' % (result.testsRun - len(result.failures) - len(result.errors),
+                                   len(result.failures) + len(result.errors)))
+    sys.exit(0 if result.wasSuccessful() else 1)

@@ -1,0 +1,174 @@
+"""mssClump, mssTemplate, mssClumpCloud, mssReplaceByClumps: strict keywords, bad input, packing helpers.
+Run: yade -n -x tests/yade/test_clump_options.py"""
+import math
+import os
+import sys
+import unittest
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ.get('MSS_TEST_DATA', 'tests/data'), '..', 'yade'))
+from clumptools import DATA, ELL, FEMUR, rot, vec  # noqa: E402
+
+from yade import utils, pack  # noqa: E402
+from yade.wrapper import *  # noqa: F401,F403,E402
+import yade.minieigenHP as me  # noqa: E402
+
+from yade_mss import (generate, mssClump, mssTemplate, mssClumpCloud, mssReplaceByClumps,  # noqa: E402
+                      restoreClumpProperties)
+
+O = Omega()
+LABELS = os.path.join(DATA, 'two_grains_labels.npy')
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        O.reset()
+        self.mat = O.materials.append(FrictMat(density=2000, young=1e7, poisson=0.3, frictionAngle=0.5, label='grain'))
+
+
+class Keywords(Base):
+    def test_typo_names_the_closest_keyword_before_generating(self):
+        # a missing file would be a ValueError: the TypeError proves nothing was read or generated
+        for func, kw, near in ((mssClump, 'nSphere', 'nSpheres'), (mssClump, 'colour', 'color'),
+                               (mssClump, 'resolutoin', 'resolution'), (mssTemplate, 'nsphere', 'nSpheres'),
+                               (mssClumpCloud, 'materail', 'material')):
+            with self.subTest(kw):
+                args = ([('missing.stl')], (0, 0, 0), (1, 1, 1)) if func is mssClumpCloud else ('missing.stl',)
+                with self.assertRaises(TypeError) as ctx:
+                    func(*args, **{kw: 3})
+                self.assertIn("'%s'" % kw, str(ctx.exception))
+                self.assertIn("did you mean '%s'?" % near, str(ctx.exception))
+        self.assertEqual(len(O.bodies), 0)
+
+    def test_every_generate_option_by_name(self):
+        planes = [((0, 0, -0.5), (0, 0, 1))]
+        cid, ids = mssClump(ELL, nSpheres=6, resolution=30, method='paper', supersample=2, threads=1,
+                            memoryLimit=1, maxIterations=50, deltaMin=1.0, keepSymmetry=False, planes=planes,
+                            clip=True, refill=True, material=self.mat)
+        self.assertGreater(len(ids), 0)
+        for i in ids:  # clipped and above the plane
+            b = O.bodies[i]
+            self.assertGreaterEqual(b.state.pos[2] - b.shape.radius, -0.5 - 1e-9)
+        a = np.zeros((20, 20, 20), dtype=np.int32)
+        a[4:16, 4:16, 4:10] = 7
+        cid, ids = mssClump(a, label=7, voxelSize=0.5, origin=(1, 2, 3), nSpheres=4, rMin=0.1)
+        st = O.bodies[cid].state
+        np.testing.assert_allclose(vec(st.pos), np.array([1, 2, 3]) + 0.5 * np.array([9.5, 9.5, 6.5]), atol=1e-9)
+
+    def test_body_options_by_name(self):
+        cid, ids = mssClump(ELL, nSpheres=4, resolution=30, material='grain', color=(0, 1, 0), mask=5, fixed=True,
+                            wire=True, highlight=True)
+        for i in ids:
+            b = O.bodies[i]
+            self.assertEqual(tuple(b.shape.color), (0, 1, 0))
+            self.assertEqual(b.mask, 5)
+            self.assertTrue(b.shape.wire and b.shape.highlight)
+            self.assertFalse(b.dynamic)
+
+    def test_generation_options_with_a_result_are_refused(self):
+        r = generate(ELL, nSpheres=4, resolution=30)
+        with self.assertRaises(ValueError) as ctx:
+            mssClump(r, nSpheres=8)
+        self.assertIn('nSpheres', str(ctx.exception))
+        self.assertEqual(len(O.bodies), 0)
+
+
+class BadInput(Base):
+    def test_labelled_volume_needs_a_label(self):
+        for src in (LABELS, np.load(LABELS)):
+            with self.assertRaises(ValueError) as ctx:
+                mssClump(src, nSpheres=4)
+            self.assertIn('labels (1, 2)', str(ctx.exception))
+        self.assertEqual(len(O.bodies), 0)
+        cid, ids = mssClump(LABELS, label=2, nSpheres=4)
+        self.assertEqual(len(ids), 4)
+
+    def test_eta_range(self):
+        for eta in (-0.1, 1.0, 2.0, float('nan')):
+            with self.assertRaises(ValueError) as ctx:
+                mssClump(ELL, eta=eta, resolution=20)
+            self.assertIn('eta must be in [0, 1)', str(ctx.exception))
+
+    def test_rmin_above_the_inscribed_radius_says_so(self):
+        with self.assertRaises(ValueError) as ctx:
+            mssClump(ELL, rMin=1.5, resolution=30)
+        msg = str(ctx.exception)
+        self.assertIn('largest inscribed radius', msg)
+        inscribed = float(msg.split('largest inscribed radius ')[1].split()[0])
+        self.assertAlmostEqual(inscribed, 1.0, delta=0.05)  # the ellipsoid's semi-axes are 2, 1, 1
+        self.assertEqual(len(O.bodies), 0)
+
+
+class Packing(Base):
+    def test_template_radii(self):
+        t = mssTemplate(ELL, nSpheres=10, resolution=40, scale=2.0)
+        # equivalent radius: of the grain's volume (the ellipsoid 2, 1, 1: (2)^(1/3)), scaled
+        self.assertAlmostEqual(t.equivalentRadius, 2.0 * 2 ** (1 / 3.0), delta=0.01)
+        # bounding radius: every sphere lies inside it, one touches it
+        d = np.linalg.norm(t.spherePackCenters, axis=1) + t.spherePackRadii
+        self.assertAlmostEqual(d.max(), t.boundingRadius, places=12)
+        self.assertGreater(t.boundingRadius / t.equivalentRadius, 1.3)  # why replaceByClumps overlaps
+
+    def test_random_orientation_is_seeded(self):
+        r = generate(FEMUR, nSpheres=8, resolution=30)
+        oris = []
+        for seed in (1, 1, 2):
+            cid, ids = mssClump(r, orientation='random', seed=seed)
+            oris.append(np.array([vec(O.bodies[i].state.pos) for i in ids]))
+        np.testing.assert_allclose(oris[0], oris[1], atol=1e-12)
+        self.assertGreater(np.abs(oris[0] - oris[2]).max(), 1.0)
+        with self.assertRaises(ValueError):
+            mssClump(r, orientation='randm')
+
+    def test_cloud_with_a_size_distribution(self):
+        t1 = mssTemplate(ELL, nSpheres=6, resolution=30)
+        t2 = mssTemplate(FEMUR, nSpheres=6, resolution=30)
+        sizes, cumm = [0.002, 0.003, 0.004], [0.0, 0.5, 1.0]
+        out = mssClumpCloud([t1, t2], (0, 0, 0), (0.05, 0.05, 0.05), num=40, seed=5, psdSizes=sizes, psdCumm=cumm,
+                            material='grain')
+        self.assertEqual(len(out), 40)
+        d = []
+        for cid, ids in out:
+            V = O.bodies[cid].state.mass / 2000.0
+            d.append(2 * (3 * V / (4 * math.pi)) ** (1 / 3.0))
+            for i in ids:  # inside the box
+                p, r = vec(O.bodies[i].state.pos), O.bodies[i].shape.radius
+                self.assertTrue(np.all(p - r >= -1e-9) and np.all(p + r <= 0.05 + 1e-9))
+        d = np.array(d)
+        self.assertTrue(np.all(d >= 0.002 * (1 - 1e-6)) and np.all(d <= 0.004 * (1 + 1e-6)), d)
+        self.assertLess(abs(np.median(d) - 0.003), 0.0006)  # half below 3 mm
+        # no two clumps touch: no sphere of one overlaps a sphere of another
+        members = [(np.array([vec(O.bodies[i].state.pos) for i in ids]),
+                    np.array([O.bodies[i].shape.radius for i in ids])) for cid, ids in out]
+        for a in range(len(members)):
+            for b in range(a):
+                gap = (np.linalg.norm(members[a][0][:, None] - members[b][0][None], axis=2)
+                       - members[a][1][:, None] - members[b][1][None])
+                self.assertGreater(gap.min(), 0)
+        with self.assertRaises(ValueError):
+            mssClumpCloud([t1], (0, 0, 0), (1, 1, 1), num=5, psdSizes=[1, 2], psdCumm=[0, 0.5])
+
+    def test_replace_by_clumps_without_overlaps(self):
+        t = mssTemplate(ELL, nSpheres=8, resolution=30)
+        sp = pack.SpherePack()
+        sp.makeCloud((0, 0, 0), (0.1, 0.1, 0.1), rMean=0.008, rRelFuzz=0.2, num=40, seed=2)
+        sp.toSimulation(material='grain')
+        n = len(O.bodies)
+        out = mssReplaceByClumps([t], [1.0], seed=3)
+        self.assertEqual(len(out), n)
+        members = [(np.array([vec(O.bodies[i].state.pos) for i in ids]),
+                    np.array([O.bodies[i].shape.radius for i in ids])) for cid, ids in out]
+        for a in range(len(members)):
+            for b in range(a):
+                gap = (np.linalg.norm(members[a][0][:, None] - members[b][0][None], axis=2)
+                       - members[a][1][:, None] - members[b][1][None])
+                self.assertGreater(gap.min(), -1e-12)
+        self.assertEqual(sorted(k for c, k in restoreClumpProperties()), ['grain'] * n)
+
+
+if __name__ == '__main__':
+    result = unittest.main(exit=False, verbosity=2).result
+    print('%d passed, %d failed' % (result.testsRun - len(result.failures) - len(result.errors),
+                                   len(result.failures) + len(result.errors)))
+    sys.exit(0 if result.wasSuccessful() else 1)
