@@ -1,6 +1,6 @@
 # Triaxial compression of realistic grains: three grains from CT volumes as MSS templates, a periodic packing
 # of their clumps (exact mass and inertia each), isotropic compaction, then axial compression at constant
-# lateral stress. Prints the stress path.
+# lateral stress up to the goal strain. Prints the stress path from the start of shearing.
 # Run: yade -n -x examples/triaxial.py        (MSS_SHORT=1 for a short run)
 import os
 
@@ -34,6 +34,7 @@ clumps = mssClumpCloud(templates, (0, 0, 0), (L, L, L), num=60 if short else 200
 print('packing      %d clumps, %d spheres, cell %.1f mm' % (len(clumps), sum(len(m) for c, m in clumps), L * 1e3))
 
 p0 = 100e3  # confining stress, Pa
+goal = 0.02 if short else 0.15  # axial strain at which shearing stops
 O.engines = [
     ForceResetter(),
     InsertionSortCollider([Bo1_Sphere_Aabb()]),
@@ -42,10 +43,9 @@ O.engines = [
     PeriTriaxController(label='triax', goal=(-p0, -p0, -p0), stressMask=7, dynCell=True, maxStrainRate=(200, 200, 200),
                         maxUnbalanced=0.05, relStressTol=0.05, doneHook='compacted()'),
     NewtonIntegrator(damping=0.3),
-    PyRunner(command='record()', iterPeriod=200, label='recorder', dead=True),
 ]
 O.dt = 0.5 * utils.PWaveTimeStep()
-path = []
+state = {'compacted': False}
 
 
 def porosity():
@@ -55,30 +55,48 @@ def porosity():
 
 
 def compacted():
-    print('compacted    at iteration %d, porosity %.3f' % (O.iter, porosity()))
-    # axial compression along z at constant lateral stress
-    triax.goal = (-p0, -p0, -0.2)
-    triax.stressMask = 3
-    triax.maxStrainRate = (200, 200, 20)
+    state['compacted'] = True
     triax.doneHook = ''
-    recorder.dead = False
-    O.cell.trsf = Matrix3.Identity
 
 
-def record():
+def stresses():
     s = triax.stress
     p = -(s[0] + s[1] + s[2]) / 3
     q = -(s[2] - 0.5 * (s[0] + s[1]))
-    path.append((-triax.strain[2], p, q))
-    print('strain %6.4f  p %9.1f Pa  q %9.1f Pa  q/p %.3f' % (path[-1][0], p, q, q / p if p > 0 else float('nan')))
+    return p, q
 
 
+# 1. isotropic compaction to p0, in chunks until the controller says it is done
 stepsCompact = 4000 if short else 40000
-O.run(stepsCompact, True)
-if recorder.dead:
-    print('not compacted after %d steps (short run); compressing anyway' % stepsCompact)
-    compacted()
-O.run(2000 if short else 20000, True)
+while not state['compacted'] and O.iter < stepsCompact:
+    O.run(200, True)
+print('compacted%s at iteration %d, porosity %.3f, p %.1f Pa'
+      % ('' if state['compacted'] else ' NOT (short run; shearing anyway)', O.iter, porosity(), stresses()[0]))
+
+# 2. axial compression along z at constant lateral stress, from a fresh strain origin, until the goal strain
+O.cell.trsf = Matrix3.Identity
+triax.goal = (-p0, -p0, -goal)
+triax.stressMask = 3
+triax.maxStrainRate = (200, 200, 20)
+path = []
+print('%8s %12s %12s %7s' % ('strain', 'p (Pa)', 'q (Pa)', 'q/p'))
+stepsShear = 20000 if short else 200000
+start = O.iter
+while O.iter - start < stepsShear:
+    O.run(100, True)
+    strain = -triax.strain[2]
+    p, q = stresses()
+    path.append((strain, p, q))
+    if len(path) % 5 == 1 or strain >= goal:
+        print('%8.4f %12.1f %12.1f %7.3f' % (strain, p, q, q / p if p > 0 else float('nan')))
+    if strain >= goal:
+        break
 if not path or not all(np.isfinite(v) for row in path for v in row):
     raise SystemExit('no stress path recorded')
-print('stress path: %d points, final strain %.4f, p %.1f Pa, q %.1f Pa' % (len(path), path[-1][0], path[-1][1], path[-1][2]))
+if path[-1][0] < goal:
+    raise SystemExit('the goal strain %.3f was not reached in %d steps (strain %.4f)' % (goal, stepsShear, path[-1][0]))
+strains = [row[0] for row in path]
+if len(set(strains)) != len(strains):
+    raise SystemExit('the stress path repeats a state')
+print('stress path: %d points from the start of shearing to strain %.4f, p %.1f Pa, q %.1f Pa, peak q/p %.3f'
+      % (len(path), path[-1][0], path[-1][1], path[-1][2], max(q / p for e, p, q in path if p > 0)))
