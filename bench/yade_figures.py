@@ -182,3 +182,51 @@ for name, r in (('ellipsoid 10', ell), ('femur 70', generate(FEMUR, nSpheres=70,
         parts.append('%d: %+.3f%% %.0f ms' % (disc, 100 * (O.bodies[cid].state.mass / (RHO * u.volume) - 1), 1e3 * dt))
     print('%-13s %s' % (name, ' | '.join(parts)))
     print('%-13s the grain (mass=target) differs from the union by %+.2f%%' % ('', 100 * (target / u.volume - 1)))
+
+print('\n== 5. packings: kinetic energy at step 1000 of a loose packing, no gravity, periodic 0.1 m cell '
+      '(overlapping starts explode)')
+from yade import pack  # noqa: E402
+from yade_mss import mssTemplate, mssClumpCloud, mssReplaceByClumps  # noqa: E402
+tpl = mssTemplate(ell, scale=0.004)
+
+
+def run1000(build):
+    O.reset()
+    O.periodic = True
+    O.cell.hSize = me.Matrix3(0.1, 0, 0, 0, 0.1, 0, 0, 0, 0.1)
+    O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5))
+    n = build()
+    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                 [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(damping=0.2, gravity=(0, 0, 0))]
+    O.dt = 0.5 * utils.PWaveTimeStep()
+    O.run(1000, True)
+    return n, utils.kineticEnergy()
+
+
+def spheres():
+    sp = pack.SpherePack()
+    sp.makeCloud((0, 0, 0), (0.1, 0.1, 0.1), rMean=tpl.boundingRadius, num=100, periodic=True, seed=1)
+    sp.toSimulation()
+
+
+def yadeReplace():
+    spheres()
+    return len(O.bodies.replaceByClumps([tpl.clumpTemplate], [1.0]))
+
+
+def ourReplace():
+    spheres()
+    return len(mssReplaceByClumps([tpl], [1.0], seed=1))
+
+
+def cloud():
+    return len(mssClumpCloud([tpl], (0, 0, 0), (0.1, 0.1, 0.1), num=100, periodic=True, seed=1))
+
+
+print('bounding radius / equivalent radius of the template: %.3f' % (tpl.boundingRadius / tpl.equivalentRadius))
+for label, f in (('O.bodies.replaceByClumps (volume of the sphere)', yadeReplace),
+                 ('mssReplaceByClumps (inside the sphere)', ourReplace), ('mssClumpCloud', cloud)):
+    n, ek = run1000(f)
+    print('%-48s %3d clumps, kinetic energy %.3g J' % (label, n, ek))

@@ -43,10 +43,15 @@ def _yade():
     return utils, Omega(), me
 
 
+_bodyOptions = []
+
+
 def bodyOptions():
     """The body keywords of ``utils.sphere`` (material, color, mask, fixed, wire, highlight, ...)."""
-    utils, O, me = _yade()
-    return tuple(p for p in inspect.signature(utils.sphere).parameters if p not in ('center', 'radius'))
+    if not _bodyOptions:
+        utils, O, me = _yade()
+        _bodyOptions.extend(p for p in inspect.signature(utils.sphere).parameters if p not in ('center', 'radius'))
+    return tuple(_bodyOptions)
 
 
 def matrix(q):

@@ -107,7 +107,8 @@ def memberLoads(centers, radii, M, C, I):
     m, positive = tiltedShares(x, base, M, reach) if len(r) > 1 else (np.array([float(M)]), True)
     out.m = _polish(x, m, M, reach)
     out.final = out.m if (positive and np.all(out.m > 0)) else M * base / base.sum()
-    J = I - sum(mi * parallelAxis(xi - out.centroid) for mi, xi in zip(out.m, x))
+    d = x - out.centroid
+    J = I - (out.m.dot((d * d).sum(axis=1)) * np.eye(3) - (out.m[:, None] * d).T.dot(d))  # sum m_i T(d_i)
     J = 0.5 * (J + J.T)
     out.j, out.V = np.linalg.eigh(J)
     if np.linalg.det(out.V) < 0:
