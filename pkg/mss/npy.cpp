@@ -16,17 +16,18 @@ namespace {
 }
 } // namespace
 
-VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin, long long label) {
-    if (!(voxelSize > 0.0) || !std::isfinite(voxelSize)) {
-        std::ostringstream os;
-        os << "voxel size must be > 0 and finite, got " << voxelSize;
-        fail(path, os.str());
-    }
-    if (!origin.allFinite()) fail(path, "origin is not finite");
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) fail(path, "cannot open file");
-    const std::streamoff size = in.tellg();
-    in.seekg(0);
+namespace {
+
+/// What a .npy header says (NumPy format versions 1-3), checked: a 3-D boolean or integer array.
+struct NpyHeader {
+    std::vector<long long> shape;
+    bool fortran = false;
+    char kind = 0;
+    int width = 0;
+    std::size_t dataOffset = 0; ///< bytes before the data
+};
+
+NpyHeader readNpyHeader(const std::string& path, std::ifstream& in, std::streamoff size) {
     char magic[10] = {};
     in.read(magic, 10);
     if (in.gcount() < 10 || std::memcmp(magic, "\x93NUMPY", 6) != 0)
@@ -84,12 +85,39 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
         !(width == 1 || width == 2 || width == 4 || width == 8))
         fail(path, "dtype '" + descr + "' is not boolean or integer (threshold a grey-level volume first)");
     if (endian == '>' && width > 1) fail(path, "big-endian arrays are not supported");
+    NpyHeader h;
+    h.shape = shape;
+    h.fortran = fortran;
+    h.kind = kind;
+    h.width = width;
+    h.dataOffset = pre + headerLen;
+    return h;
+}
+
+} // namespace
+
+VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin, long long label) {
+    if (!(voxelSize > 0.0) || !std::isfinite(voxelSize)) {
+        std::ostringstream os;
+        os << "voxel size must be > 0 and finite, got " << voxelSize;
+        fail(path, os.str());
+    }
+    if (!origin.allFinite()) fail(path, "origin is not finite");
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) fail(path, "cannot open file");
+    const std::streamoff size = in.tellg();
+    in.seekg(0);
+    const NpyHeader h = readNpyHeader(path, in, size);
+    const std::vector<long long>& shape = h.shape;
+    const bool fortran = h.fortran;
+    const char kind = h.kind;
+    const int width = h.width;
     checkGridSize("readNpy", {shape[0], shape[1], shape[2]}, 1, std::size_t(1) << 40);
     const std::size_t count = static_cast<std::size_t>(shape[0] * shape[1] * shape[2]);
-    if (static_cast<std::uintmax_t>(size) < pre + headerLen + count * static_cast<std::size_t>(width))
+    if (static_cast<std::uintmax_t>(size) < h.dataOffset + count * static_cast<std::size_t>(width))
         fail(path, "truncated data: expected " + std::to_string(count * width) +
                        " bytes after the header, file has " +
-                       std::to_string(size - static_cast<std::streamoff>(pre + headerLen)));
+                       std::to_string(size - static_cast<std::streamoff>(h.dataOffset)));
     std::vector<char> raw(count * static_cast<std::size_t>(width));
     in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
     if (static_cast<std::size_t>(in.gcount()) != raw.size()) fail(path, "truncated data");

@@ -108,41 +108,13 @@ inline double edgeFunction(double ay, double az, double by, double bz, double py
     return swapped ? -w : w;
 }
 
-} // namespace
-
-VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample,
-                       std::vector<std::string>* warnings) {
-    validateMesh(mesh, "voxelizeMesh");
-    if (supersample < 1 || supersample > 8)
-        throw std::invalid_argument("voxelizeMesh: supersample must be 1..8, got " +
-                                    std::to_string(supersample));
-    if (!(grid.h > 0.0) || grid.size() == 0) throw std::invalid_argument("voxelizeMesh: empty grid");
-    const MeshInfo info = analyzeMesh(mesh);
-    if (info.degenerateTriangles == info.triangles)
-        throw std::invalid_argument("voxelizeMesh: all " + std::to_string(info.triangles) +
-                                    " triangles are degenerate (zero area): the mesh encloses nothing");
-    const bool parity = !info.consistentlyOriented;
-    std::unique_ptr<MeshQuery> winding;
-    if (!info.closed) {
-        winding = std::make_unique<MeshQuery>(mesh);
-        if (warnings)
-            warnings->push_back("the mesh is not closed (" + std::to_string(info.boundaryEdges) +
-                                " boundary edges, " + std::to_string(info.nonManifoldEdges) +
-                                " non-manifold edges): inside decided by the generalised winding number");
-    } else if (parity && warnings) {
-        warnings->push_back("the triangles are not consistently oriented (" +
-                            std::to_string(info.inconsistentEdges) +
-                            " edges): inside decided by the parity of crossings");
-    }
-    const int s = supersample;
-    const int NY = grid.dims[1] * s, NZ = grid.dims[2] * s;
+/// The crossings of the x-rays through every sub-sample (J, K) of the (y, z) plane with the triangles
+/// (voxel coordinates @p v of the mesh's vertices), sorted by column; @p start: each column's first hit.
+/// O(triangles + rays crossed).
+std::vector<Hit> rayHits(const TriangleMesh& mesh, const std::vector<Vec3>& v, int s, int NY, int NZ,
+                         std::vector<std::uint32_t>& start) {
     const std::size_t nColumns = static_cast<std::size_t>(NY) * NZ;
-    // sub-sample coordinate of sub-index J: (J + 0.5) / s - 0.5 (voxel units); inverse below
     auto subCoord = [s](long long J) { return (J + 0.5) / s - 0.5; };
-
-    std::vector<Vec3> v(mesh.vertices.size());
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = grid.toVoxel(mesh.vertices[i]);
-
     std::vector<Hit> hits;
     hits.reserve(nColumns * 2 + 1024);
     for (const auto& t : mesh.triangles) {
@@ -175,7 +147,7 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
         }
     }
     // counting sort by column
-    std::vector<std::uint32_t> start(nColumns + 1, 0);
+    start.assign(nColumns + 1, 0);
     for (const Hit& h : hits) ++start[h.column + 1];
     for (std::size_t c = 0; c < nColumns; ++c) start[c + 1] += start[c];
     std::vector<Hit> sorted(hits.size());
@@ -183,8 +155,45 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
         std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
         for (const Hit& h : hits) sorted[fill[h.column]++] = h;
     }
-    hits.clear();
-    hits.shrink_to_fit();
+    return sorted;
+}
+
+} // namespace
+
+VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample,
+                       std::vector<std::string>* warnings) {
+    validateMesh(mesh, "voxelizeMesh");
+    if (supersample < 1 || supersample > 8)
+        throw std::invalid_argument("voxelizeMesh: supersample must be 1..8, got " +
+                                    std::to_string(supersample));
+    if (!(grid.h > 0.0) || grid.size() == 0) throw std::invalid_argument("voxelizeMesh: empty grid");
+    const MeshInfo info = analyzeMesh(mesh);
+    if (info.degenerateTriangles == info.triangles)
+        throw std::invalid_argument("voxelizeMesh: all " + std::to_string(info.triangles) +
+                                    " triangles are degenerate (zero area): the mesh encloses nothing");
+    const bool parity = !info.consistentlyOriented;
+    std::unique_ptr<MeshQuery> winding;
+    if (!info.closed) {
+        winding = std::make_unique<MeshQuery>(mesh);
+        if (warnings)
+            warnings->push_back("the mesh is not closed (" + std::to_string(info.boundaryEdges) +
+                                " boundary edges, " + std::to_string(info.nonManifoldEdges) +
+                                " non-manifold edges): inside decided by the generalised winding number");
+    } else if (parity && warnings) {
+        warnings->push_back("the triangles are not consistently oriented (" +
+                            std::to_string(info.inconsistentEdges) +
+                            " edges): inside decided by the parity of crossings");
+    }
+    const int s = supersample;
+    const int NY = grid.dims[1] * s, NZ = grid.dims[2] * s;
+    // sub-sample coordinate of sub-index J: (J + 0.5) / s - 0.5 (voxel units); inverse below
+    auto subCoord = [s](long long J) { return (J + 0.5) / s - 0.5; };
+
+    std::vector<Vec3> v(mesh.vertices.size());
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = grid.toVoxel(mesh.vertices[i]);
+
+    std::vector<std::uint32_t> start;
+    std::vector<Hit> sorted = rayHits(mesh, v, s, NY, NZ, start);
 
     VoxelGrid out(grid, 0);
     const int nx = grid.dims[0], ny = grid.dims[1], nz = grid.dims[2];

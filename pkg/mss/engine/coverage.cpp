@@ -1,0 +1,161 @@
+#include "mss/engine/coverage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mss::engine {
+
+using mss::detail::ceilInt;
+using mss::detail::floorInt;
+
+Coverage::Coverage(const VoxelGrid& target)
+    : S_(target), cover_(target.size(), 0), prefix_(target.size()), nx_(target.nx()) {
+    solid_ = countSolid(target);
+    mismatch_ = static_cast<long long>(solid_);
+    const long long rows = static_cast<long long>(target.size() / std::size_t(nx_));
+#pragma omp parallel for schedule(static)
+    for (long long row = 0; row < rows; ++row) rebuildRow(std::size_t(row) * std::size_t(nx_), 0);
+}
+
+long long Coverage::gain(const std::vector<Ball>& balls, bool mirrored) const {
+    bool independent = true;
+    for (std::size_t p = 0; p < balls.size() && independent; ++p)
+        for (std::size_t q = p + 1; q < balls.size(); ++q)
+            if ((balls[p].c - balls[q].c).norm() <= balls[p].r + balls[q].r + 1.0) {
+                independent = false;
+                break;
+            }
+    if (independent && mirrored) return gain(balls[0]) * static_cast<long long>(balls.size());
+    if (independent) {
+        long long total = 0;
+        for (const Ball& b : balls) total += gain(b);
+        return total;
+    }
+    // Images that differ only in x (mirror plane normal to x) share their rows: one root per row.
+    bool sameRows = true;
+    for (const Ball& b : balls)
+        sameRows = sameRows && b.r == balls[0].r && b.c.y() == balls[0].c.y() && b.c.z() == balls[0].c.z();
+    if (sameRows && balls.size() == 2) return gainRowPair(balls, mirrored);
+    return gainMerged(balls, mirrored);
+}
+
+long long Coverage::gainRowPair(const std::vector<Ball>& balls, bool mirrored) const {
+    const auto& d = S_.spec.dims;
+    const double xa = std::min(balls[0].c.x(), balls[1].c.x()), xb = std::max(balls[0].c.x(), balls[1].c.x());
+    const Ball& b = balls[0];
+    const double r2 = b.r * b.r;
+    long long total = 0;
+    const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
+              k1 = std::min(halfEnd(mirrored, 2), floorInt(b.c.z() + b.r));
+    for (int k = k0; k <= k1; ++k) {
+        const double dz = k - b.c.z();
+        const double rz2 = r2 - dz * dz;
+        if (rz2 < 0) continue;
+        const double ry = std::sqrt(rz2);
+        const int j0 = std::max(0, ceilInt(b.c.y() - ry)),
+                  j1 = std::min(halfEnd(mirrored, 1), floorInt(b.c.y() + ry));
+        for (int j = j0; j <= j1; ++j) {
+            const long long w = weight(mirrored, j, k);
+            const double dy = j - b.c.y();
+            const double rx2 = rz2 - dy * dy;
+            if (rx2 < 0) continue;
+            const double rx = std::sqrt(rx2);
+            const int a0 = std::max(0, ceilInt(xa - rx)), a1 = std::min(d[0] - 1, floorInt(xa + rx));
+            const int b0 = std::max(0, ceilInt(xb - rx)), b1 = std::min(d[0] - 1, floorInt(xb + rx));
+            const std::size_t row = S_.spec.index(0, j, k);
+            const bool hasA = a0 <= a1, hasB = b0 <= b1;
+            if (hasA && hasB && b0 <= a1 + 1)
+                total += w * sum(row, a0, std::max(a1, b1));
+            else
+                total += w * ((hasA ? sum(row, a0, a1) : 0) + (hasB ? sum(row, b0, b1) : 0));
+        }
+    }
+    return total;
+}
+
+long long Coverage::gainMerged(const std::vector<Ball>& balls, bool mirrored) const {
+    const auto& d = S_.spec.dims;
+    // Overlapping images: per row of the union's bounding box, merge the balls' intervals (at most 8).
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (const Ball& b : balls) {
+        lo = lo.cwiseMin(b.c - Vec3::Constant(b.r));
+        hi = hi.cwiseMax(b.c + Vec3::Constant(b.r));
+    }
+    const int k0 = std::max(0, ceilInt((lo.z()))), k1 = std::min(halfEnd(mirrored, 2), floorInt((hi.z())));
+    const int j0 = std::max(0, ceilInt((lo.y()))), j1 = std::min(halfEnd(mirrored, 1), floorInt((hi.y())));
+    long long total = 0;
+    std::array<std::pair<int, int>, 8> iv;
+    for (int k = k0; k <= k1; ++k)
+        for (int j = j0; j <= j1; ++j) {
+            int n = 0;
+            for (const Ball& b : balls) {
+                const double dz = k - b.c.z(), dy = j - b.c.y();
+                const double rx2 = b.r * b.r - dz * dz - dy * dy;
+                if (rx2 < 0) continue;
+                const double rx = std::sqrt(rx2);
+                const int i0 = std::max(0, ceilInt((b.c.x() - rx))),
+                          i1 = std::min(d[0] - 1, floorInt((b.c.x() + rx)));
+                if (i0 > i1) continue;
+                int p = n++;
+                for (; p > 0 && iv[p - 1].first > i0; --p) iv[p] = iv[p - 1];
+                iv[p] = {i0, i1};
+            }
+            if (n == 0) continue;
+            const std::size_t row = S_.spec.index(0, j, k);
+            long long rowTotal = 0;
+            int a = iv[0].first, e = iv[0].second;
+            for (int p = 1; p < n; ++p) {
+                if (iv[p].first <= e + 1) {
+                    e = std::max(e, iv[p].second);
+                } else {
+                    rowTotal += sum(row, a, e);
+                    a = iv[p].first;
+                    e = iv[p].second;
+                }
+            }
+            rowTotal += sum(row, a, e);
+            total += weight(mirrored, j, k) * rowTotal;
+        }
+    return total;
+}
+
+void Coverage::rebuildRow(std::size_t row, int from) {
+    std::int32_t acc = from > 0 ? prefix_[row + from - 1] : 0;
+    for (int i = from; i < nx_; ++i) {
+        if (cover_[row + i] == 0) acc += S_.data[row + i] ? 1 : -1;
+        prefix_[row + i] = acc;
+    }
+}
+
+void Coverage::change(const Ball& b, int delta) {
+    forColumns(b, [&](std::size_t row, int i0, int i1) {
+        std::uint16_t* c = cover_.data() + row;
+        const std::uint8_t* s = S_.data.data() + row;
+        const std::uint16_t flipAt = delta > 0 ? 0 : 1; // coverage before a flip
+        int flips = 0, inside = 0;
+        for (int i = i0; i <= i1; ++i) { // vectorised
+            const bool flip = c[i] == flipAt;
+            flips += flip;
+            inside += flip & (s[i] != 0);
+        }
+        for (int i = i0; i <= i1; ++i) c[i] = static_cast<std::uint16_t>(c[i] + delta);
+        if (flips == 0) return; // no voxel changes between covered and uncovered: prefix unchanged
+        int first = i0;
+        while (c[first] != flipAt + delta) ++first;
+        // from the first flip: prefix recomputed to the end of the ball's interval, then shifted
+        std::int32_t* p = prefix_.data() + row;
+        std::int32_t acc = first > 0 ? p[first - 1] : 0;
+        const std::int32_t old = p[i1];
+        for (int i = first; i <= i1; ++i) {
+            acc += c[i] == 0 ? (s[i] ? 1 : -1) : 0;
+            p[i] = acc;
+        }
+        const std::int32_t shift = acc - old;
+        for (int i = i1 + 1; i < nx_; ++i) p[i] += shift;
+        // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
+        mismatch_ -= delta * (2LL * inside - flips);
+        covered_ += static_cast<std::size_t>(static_cast<long long>(delta) * flips);
+    });
+}
+
+} // namespace mss::engine

@@ -1,0 +1,78 @@
+// Coverage of the target by a union of balls, with the exact mismatch gains (MSS paper eq. 2 on voxels).
+#pragma once
+
+#include "mss/ball_rows.hpp"
+#include "mss/engine/ball.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace mss::engine {
+
+/// Coverage of the target by a union of balls, with the exact change of the mismatch |S Δ S~| (eq. 2 on
+/// voxels) that adding balls would make. Per voxel: the number of balls covering it; per x-row the prefix sum
+/// of g = (S ? 1 : -1) over the uncovered voxels. The gain of a ball is then a sum over its (y, z) columns of
+/// O(1) interval sums: O(r^2) for radius r in voxels. Adding or removing a ball rebuilds the prefix of a row
+/// from its first voxel whose coverage flips.
+class Coverage {
+public:
+    explicit Coverage(const VoxelGrid& target);
+
+    /// Decrease of the mismatch if @p b were added (negative if it would add more outside than inside).
+    long long gain(const Ball& b) const {
+        long long total = 0;
+        forColumns(b, [&](std::size_t row, int i0, int i1) { total += sum(row, i0, i1); });
+        return total;
+    }
+    /// Decrease of the mismatch if all @p balls were added together (they may overlap each other).
+    /// @p mirrored: the balls are mirror images of the first under planes that map the target and the
+    /// coverage onto themselves, so apart from each other they all gain the same.
+    long long gain(const std::vector<Ball>& balls, bool mirrored = false) const;
+    /// Mirror planes (normal to x, y, z, through the grid centre) that map the target onto itself exactly.
+    void setMirrorPlanes(const std::array<bool, 3>& planes) { mirror_ = planes; }
+    void add(const Ball& b) { change(b, +1); }
+    void remove(const Ball& b) { change(b, -1); }
+
+    long long mismatch() const { return mismatch_; }
+    std::size_t solid() const { return solid_; }
+    std::size_t covered() const { return covered_; }
+    double eta() const { return solid_ ? double(mismatch_) / double(solid_) : 0.0; }
+    double dice() const { return (solid_ + covered_) ? double(mismatch_) / double(solid_ + covered_) : 0.0; }
+
+private:
+    // A mirrored union of images under a symmetric coverage gains the same in rows (j, k) and their mirror
+    // images under the y and z planes: only the lower half is visited, rows off the plane counted twice.
+    int halfEnd(bool mirrored, int axis) const {
+        const int n = S_.spec.dims[axis];
+        return mirrored && mirror_[axis] ? (n - 1) / 2 : n - 1;
+    }
+    long long weight(bool mirrored, int j, int k) const {
+        long long w = 1;
+        if (mirrored && mirror_[1] && 2 * j != S_.spec.dims[1] - 1) w *= 2;
+        if (mirrored && mirror_[2] && 2 * k != S_.spec.dims[2] - 1) w *= 2;
+        return w;
+    }
+    long long sum(std::size_t row, int i0, int i1) const {
+        return prefix_[row + i1] - (i0 > 0 ? prefix_[row + i0 - 1] : 0);
+    }
+    void rebuildRow(std::size_t row, int from);
+    template <class F> void forColumns(const Ball& b, F&& f) const {
+        mss::detail::forBallRows(b.c, b.r, S_.spec.dims, 0, S_.spec.dims[2] - 1,
+                                 [&](int j, int k, int i0, int i1) { f(S_.spec.index(0, j, k), i0, i1); });
+    }
+    void change(const Ball& b, int delta);
+    // gain() of two images that differ only in x (they share rows), and of any overlapping images
+    long long gainRowPair(const std::vector<Ball>& balls, bool mirrored) const;
+    long long gainMerged(const std::vector<Ball>& balls, bool mirrored) const;
+
+    const VoxelGrid& S_;
+    std::vector<std::uint16_t> cover_;
+    std::vector<std::int32_t> prefix_;
+    std::array<bool, 3> mirror_{false, false, false};
+    int nx_;
+    std::size_t solid_ = 0, covered_ = 0;
+    long long mismatch_ = 0;
+};
+
+} // namespace mss::engine

@@ -1,0 +1,105 @@
+#include "mss/engine/optimized.hpp"
+#include "mss/engine/refine.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace mss::engine {
+
+namespace {
+
+void debug(Clock::time_point tStart, const char* what) {
+    if (std::getenv("MSS_DEBUG")) std::fprintf(stderr, "%8.4f %s\n", secondsSince(tStart), what);
+}
+
+void unplaceAll(Selection& s) {
+    for (const Orbit& o : s.chosen)
+        for (const Ball& b : s.sym.images(o)) s.cov.remove(b);
+}
+
+/// Symmetry repair: whole orbits can leave the budget short by one (say 10 = 1 sphere on all planes + 4 pairs
+/// + 1 free). Tries trading a sphere that lies on all planes for a whole orbit; keeps the trade when it fills
+/// more of the budget with at most 5% more mismatch.
+void repairSymmetry(Selection& s, Clock::time_point tStart) {
+    for (int attempt = 0; attempt < 4 && s.sym.planes() > 0 && !s.full() && !s.met(); ++attempt) {
+        std::ptrdiff_t centre = -1;
+        for (std::size_t q = 0; q < s.chosen.size(); ++q)
+            if (s.sym.images(s.chosen[q]).size() == 1) centre = std::ptrdiff_t(q);
+        if (centre < 0) break;
+        const std::vector<Orbit> saved = s.chosen;
+        const std::size_t savedPlaced = s.placed;
+        const long long before = s.cov.mismatch();
+        std::vector<Orbit> touched{s.chosen[std::size_t(centre)]};
+        for (const Ball& b : s.sym.images(s.chosen[std::size_t(centre)])) s.cov.remove(b);
+        s.placed -= 1;
+        s.chosen.erase(s.chosen.begin() + centre);
+        const std::size_t kept = s.chosen.size();
+        debug(tStart, "repair: removed");
+        s.greedy();
+        debug(tStart, "repair: greedy");
+        touched.insert(touched.end(), s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
+        refine(s, &touched, 2);
+        debug(tStart, "repair: refine");
+        if (s.placed > savedPlaced && double(s.cov.mismatch()) <= 1.05 * double(before)) continue;
+        unplaceAll(s);
+        s.chosen = saved;
+        s.placed = savedPlaced;
+        for (const Orbit& o : s.chosen)
+            for (const Ball& b : s.sym.images(o)) s.cov.add(b);
+        break;
+    }
+}
+
+/// What whole orbits could not fill: spheres alone.
+void fillAlone(Selection& s) {
+    if (s.allowBreak || s.full() || s.met()) return;
+    s.allowBreak = true;
+    const std::size_t before = s.placed, kept = s.chosen.size();
+    s.greedy();
+    const std::vector<Orbit> touched(s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
+    if (s.placed > before) refine(s, &touched);
+}
+
+} // namespace
+
+std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
+                               const BoundVox& bound, Metrics& m, double& secondsRefine,
+                               const std::vector<Orbit>& start, std::vector<Orbit>* orbitsOut,
+                               long long* mismatchOut) {
+    const auto tStart = Clock::now();
+    Selection s(S, E, opt, bound);
+    m.symmetryPlanes = s.sym.planes();
+    debug(tStart, "candidates");
+    s.warmStart(start);
+    for (m.iterations = 0; m.iterations < opt.maxIterations; ++m.iterations) {
+        const std::size_t before = s.placed;
+        const auto t0 = Clock::now();
+        s.greedy();
+        m.secondsSelect += secondsSince(t0);
+        const auto t1 = Clock::now();
+        refine(s);
+        const bool pruned = s.prune();
+        if (pruned) refine(s);
+        secondsRefine += secondsSince(t1);
+        if (s.full() || s.met()) { // done (a warm start may begin so)
+            ++m.iterations;
+            break;
+        }
+        if (s.placed == before && !pruned) break; // nothing new: converged
+    }
+    debug(tStart, "main loop");
+    repairSymmetry(s, tStart);
+    fillAlone(s);
+    debug(tStart, "repair");
+    if (std::getenv("MSS_DEBUG"))
+        std::fprintf(stderr, "candidates %zu ridge %zu evaluations %zu\n", s.cands.size(), s.ridge,
+                     s.evaluations);
+    if (orbitsOut) *orbitsOut = s.chosen;
+    if (mismatchOut) *mismatchOut = s.cov.mismatch();
+    std::vector<Ball> out;
+    for (const Orbit& o : s.chosen)
+        for (const Ball& b : s.sym.images(o)) out.push_back(b);
+    return out;
+}
+
+} // namespace mss::engine

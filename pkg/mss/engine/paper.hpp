@@ -1,0 +1,18 @@
+// The MSS paper's procedure as published (sections 3.3-3.5): Method::Paper.
+#pragma once
+
+#include "mss/engine/ball.hpp"
+#include "mss/generate.hpp"
+
+#include <vector>
+
+namespace mss::engine {
+
+/// MSS paper, sections 3.3-3.4 as published: spheres at the sub-voxel maxima of E (eq. 23-24), then per
+/// iteration at the maxima of E* = 2E - E~ (eq. 25) with radius from E, the minimal distance rule (section
+/// 3.4) and the termination criteria (section 3.5). Under a sphere budget the largest values go first.
+/// @p bound: the constraint on radii (voxel units), or empty. Cost per iteration: one EDT of the grid.
+std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, Metrics& m,
+                           const BoundVox& bound);
+
+} // namespace mss::engine

@@ -1,0 +1,154 @@
+#include "mss/engine/selection.hpp"
+#include "mss/engine/candidates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <queue>
+
+namespace mss::engine {
+
+namespace {
+Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const GenerateOptions& opt, bool& exact) {
+    std::array<bool, 3> axes{false, false, false};
+    if (opt.keepSymmetry) axes = mirrorAxes(S, solid, exact);
+    // a constraint plane is mirrored onto itself only if it is parallel to the mirror's normal; any other
+    // breaks that symmetry (an oblique cut through a symmetric grain would leave no orbit on its side)
+    for (const Plane& p : opt.planes)
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(p.normal[a]) > 1e-12 * p.normal.norm()) axes[a] = false;
+    return Symmetry(S.spec, axes);
+}
+} // namespace
+
+Selection::Selection(const VoxelGrid& S_, const ScalarGrid& E_, const GenerateOptions& opt_,
+                     const BoundVox& bound_)
+    : S(S_), E(E_), opt(opt_), bound(bound_), rMinVox(std::max(0.5, opt_.rMin / S_.spec.h)), cov(S_),
+      sym(detectSymmetry(S_, cov.solid(), opt_, exactSymmetry)), t{opt_.nSpheres > 0 ? opt_.nSpheres
+                                                                                     : INT32_MAX,
+                                                                   opt_.eta, opt_.dice} {
+    if (exactSymmetry) cov.setMirrorPlanes(sym.axes());
+    cands = candidateOrbits(E, sym, rMinVox, &ridge);
+    used.assign(cands.size(), 0);
+    // heap keys: first an upper bound (a ball fully inside), later the last evaluated gain per sphere, kept
+    // between greedy rounds so that a later round starts from good estimates
+    key.resize(cands.size());
+    for (std::size_t q = 0; q < cands.size(); ++q) key[q] = 4.18879 * std::pow(cands[q].r, 3) + 10.0;
+    // with mirror planes, orbits are placed whole first; spheres alone only fill what whole orbits cannot
+    allowBreak = sym.planes() == 0;
+}
+
+double Selection::orbitBound(const Orbit& o) const {
+    double b = std::numeric_limits<double>::infinity();
+    if (bound)
+        for (const Ball& x : sym.images(o)) b = std::min(b, bound(x.c));
+    return b;
+}
+
+// While the target is exactly mirror symmetric and every placed orbit is whole, the coverage is symmetric
+// too: images apart from each other gain the same, so one is counted (the ellipsoid's orbits have up to 8).
+long long Selection::orbitGain(const Orbit& o) const {
+    const std::vector<Ball> imgs = sym.images(o);
+    const bool mirrored = exactSymmetry && imgs.size() > 1 &&
+                          std::none_of(chosen.begin(), chosen.end(), [](const Orbit& c) { return c.broken; });
+    return cov.gain(imgs, mirrored);
+}
+
+void Selection::place(const Orbit& o) {
+    for (const Ball& b : sym.images(o)) cov.add(b);
+    placed += sym.images(o).size();
+    chosen.push_back(o);
+}
+
+void Selection::warmStart(const std::vector<Orbit>& start) {
+    for (Orbit o : start) {
+        o.r = std::min(o.r, orbitBound(o));
+        o.bounded = true;
+        if (o.r < rMinVox || sym.images(o).size() > std::size_t(t.budget) - placed) continue;
+        place(o);
+    }
+}
+
+void Selection::greedy() {
+    using Entry = std::pair<double, long long>; // (key, -index): ties go to the lower index
+    std::priority_queue<Entry> heap;
+    std::vector<std::size_t> stamp(cands.size(), SIZE_MAX);
+    for (std::size_t q = 0; q < cands.size(); ++q)
+        if (!used[q]) heap.push({key[q], -static_cast<long long>(q)});
+    // Stale entries are re-evaluated in batches of kBatch, in parallel; the batch size does not depend on
+    // the thread count, so neither does the result.
+    constexpr int kBatch = 8;
+    std::vector<long long> batch;
+    std::vector<double> gains;
+    while (!heap.empty() && placed < std::size_t(t.budget) && !met()) {
+        const auto [topKey, negIdx] = heap.top();
+        const std::size_t q = static_cast<std::size_t>(-negIdx);
+        if (sym.images(cands[q]).size() > std::size_t(t.budget) - placed && !cands[q].broken) {
+            if (!allowBreak) { // strict: an orbit that does not fit is not placed
+                heap.pop();
+                continue;
+            }
+            cands[q].broken = true; // keep orbits whole while the budget allows, then place spheres alone
+            stamp[q] = SIZE_MAX;
+        }
+        if (stamp[q] == placed) { // fresh: the best there is
+            heap.pop();
+            if (topKey <= 0.0) break; // nothing left that lowers the mismatch
+            place(cands[q]);
+            used[q] = 1;
+            continue;
+        }
+        batch.clear();
+        while (!heap.empty() && int(batch.size()) < kBatch) {
+            const std::size_t p = static_cast<std::size_t>(-heap.top().second);
+            if (stamp[p] == placed) break;
+            if (!cands[p].bounded) { // the constraints, looked up only for candidates the greedy reaches
+                cands[p].bounded = true;
+                cands[p].r = std::min(cands[p].r, orbitBound(cands[p]));
+                if (cands[p].r < rMinVox) {
+                    heap.pop();
+                    used[p] = 1;
+                    continue;
+                }
+            }
+            if (sym.images(cands[p]).size() > std::size_t(t.budget) - placed) {
+                if (!allowBreak) break;
+                cands[p].broken = true;
+            }
+            batch.push_back(heap.top().second);
+            heap.pop();
+        }
+        gains.assign(batch.size(), 0.0);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (int e = 0; e < int(batch.size()); ++e) {
+            const Orbit& o = cands[std::size_t(-batch[e])];
+            gains[e] = double(orbitGain(o)) / double(sym.images(o).size());
+        }
+        evaluations += batch.size();
+        for (std::size_t e = 0; e < batch.size(); ++e) {
+            stamp[std::size_t(-batch[e])] = placed;
+            key[std::size_t(-batch[e])] = gains[e];
+            heap.push({gains[e], batch[e]});
+        }
+    }
+}
+
+bool Selection::prune() {
+    if (!t.hasQuality() || !met()) return false;
+    bool any = false;
+    for (std::size_t q = chosen.size(); q-- > 0;) {
+        const auto imgs = sym.images(chosen[q]);
+        for (const Ball& b : imgs) cov.remove(b);
+        if (met()) {
+            placed -= imgs.size();
+            chosen.erase(chosen.begin() + static_cast<std::ptrdiff_t>(q));
+            any = true;
+        } else {
+            for (const Ball& b : imgs) cov.add(b);
+        }
+    }
+    return any;
+}
+
+} // namespace mss::engine

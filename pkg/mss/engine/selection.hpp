@@ -1,0 +1,54 @@
+// The state of the optimised method (Method::Optimized) and its greedy selection.
+#pragma once
+
+#include "mss/engine/coverage.hpp"
+#include "mss/engine/symmetry.hpp"
+#include "mss/generate.hpp"
+
+#include <vector>
+
+namespace mss::engine {
+
+/// What the optimised method works on, shared by its steps (candidates, greedy, refinement, pruning,
+/// symmetry repair): the target and its coverage by the orbits chosen so far, the mirror symmetry, the
+/// candidate orbits with their greedy keys, and the constraint on radii.
+struct Selection {
+    /// Detects the mirror symmetry of @p S (kept only for planes parallel to every constraint plane's normal)
+    /// and takes the candidates of candidateOrbits().
+    Selection(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, const BoundVox& bound);
+
+    const VoxelGrid& S;
+    const ScalarGrid& E;
+    const GenerateOptions& opt;
+    const BoundVox& bound;
+    const double rMinVox;       ///< smallest radius (voxels): rMin, and never under half a voxel
+    Coverage cov;               ///< coverage of S by the chosen orbits' balls
+    bool exactSymmetry = false; ///< S is exactly invariant under the mirror planes
+    const Symmetry sym;
+    const Targets t;
+    std::vector<Orbit> cands;  ///< candidates (radius cut to the constraint once bounded)
+    std::vector<double> key;   ///< greedy key per candidate: an upper bound, then its last gain per ball
+    std::vector<char> used;    ///< candidate placed or dropped
+    std::vector<Orbit> chosen; ///< the orbits placed
+    std::size_t placed = 0;    ///< balls placed (orbits count with all their images)
+    bool allowBreak;           ///< orbits may be broken up into spheres alone (always without symmetry)
+    std::size_t evaluations = 0, ridge = 0;
+
+    /// The largest radius the constraints allow for all images of an orbit (+inf without constraint).
+    double orbitBound(const Orbit& o) const;
+    /// Mismatch removed by adding all images of @p o to the coverage (exact, eq. 2 on voxels).
+    long long orbitGain(const Orbit& o) const;
+    bool met() const { return t.met(cov.eta(), cov.dice()); }
+    bool full() const { return placed >= std::size_t(t.budget); }
+    void place(const Orbit& o);
+    /// Starts from @p start (spheres found without the constraints), each cut down to the constraints.
+    void warmStart(const std::vector<Orbit>& start);
+    /// Lazy greedy: places the candidate that removes most mismatch per ball until the budget or a quality
+    /// target is met or nothing gains. Keys are re-evaluated in batches of 8 in parallel (independent of the
+    /// thread count). O(candidates log candidates) heap work plus the gains evaluated.
+    void greedy();
+    /// Problem (ii): drops orbits whose removal still meets the quality target, last placed first.
+    bool prune();
+};
+
+} // namespace mss::engine

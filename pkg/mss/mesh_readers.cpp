@@ -1,0 +1,564 @@
+// Mesh files: STL (ASCII, binary), OBJ, OFF, PLY (ASCII, binary); our own readers (CGAL's gave OOM and UB
+// under fuzzing), with a clear error naming the file and the problem for every bad input.
+#include "mss/mesh.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <unordered_map>
+
+namespace mss {
+
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+    throw std::invalid_argument("readMesh: " + path + ": " + what);
+}
+
+/// Merges identical vertex positions (STL stores each triangle's corners separately).
+class VertexMerger {
+public:
+    explicit VertexMerger(TriangleMesh& m) : mesh_(m) {}
+    int operator()(const Vec3& p) {
+        auto [it, inserted] =
+            index_.emplace(Key{p.x(), p.y(), p.z()}, static_cast<int>(mesh_.vertices.size()));
+        if (inserted) mesh_.vertices.push_back(p);
+        return it->second;
+    }
+
+private:
+    struct Key {
+        double x, y, z;
+        bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+    };
+    struct Hash {
+        std::size_t operator()(const Key& k) const {
+            std::uint64_t h = 1469598103934665603ull, w;
+            for (double v : {k.x, k.y, k.z}) {
+                v = v == 0.0 ? 0.0 : v; // -0 == +0
+                std::memcpy(&w, &v, 8);
+                h = (h ^ w) * 1099511628211ull;
+                h ^= h >> 29;
+            }
+            return static_cast<std::size_t>(h);
+        }
+    };
+    TriangleMesh& mesh_;
+    std::unordered_map<Key, int, Hash> index_;
+};
+
+void addTriangle(TriangleMesh& mesh, VertexMerger& merge, const Vec3 (&p)[3]) {
+    mesh.triangles.push_back({merge(p[0]), merge(p[1]), merge(p[2])});
+}
+
+/// Binary STL: 80-byte header, uint32 count, then 50 bytes per triangle (normal, 3 corners, attribute).
+TriangleMesh readBinaryStl(const std::string& path, const std::vector<char>& buf) {
+    std::uint32_t n = 0;
+    std::memcpy(&n, buf.data() + 80, 4);
+    TriangleMesh mesh;
+    mesh.triangles.reserve(n);
+    VertexMerger merge(mesh);
+    for (std::uint32_t t = 0; t < n; ++t) {
+        const char* rec = buf.data() + 84 + 50ull * t + 12;
+        Vec3 p[3];
+        for (int c = 0; c < 3; ++c) {
+            float xyz[3];
+            std::memcpy(xyz, rec + 12 * c, 12);
+            p[c] = Vec3(xyz[0], xyz[1], xyz[2]);
+            if (!p[c].allFinite())
+                fail(path, "triangle " + std::to_string(t) + " has a non-finite coordinate");
+        }
+        addTriangle(mesh, merge, p);
+    }
+    return mesh;
+}
+
+/// ASCII STL: "solid ... facet normal ... outer loop / vertex x y z (x3) / endloop endfacet ... endsolid".
+TriangleMesh readAsciiStl(const std::string& path, const std::vector<char>& buf) {
+    TriangleMesh mesh;
+    VertexMerger merge(mesh);
+    const char* p = buf.data();
+    const char* end = p + buf.size();
+    std::size_t line = 1;
+    auto skipSpace = [&]() {
+        while (p < end && std::isspace(static_cast<unsigned char>(*p))) line += (*p++ == '\n');
+    };
+    auto word = [&]() {
+        skipSpace();
+        const char* b = p;
+        while (p < end && !std::isspace(static_cast<unsigned char>(*p))) ++p;
+        return std::string_view(b, static_cast<std::size_t>(p - b));
+    };
+    auto bad = [&](const std::string& what) {
+        fail(path, "ASCII STL line " + std::to_string(line) + ": " + what);
+    };
+    auto number = [&]() {
+        const std::string_view w = word();
+        double v = 0.0;
+        const char* b = w.data() + (!w.empty() && w[0] == '+');
+        const auto r = std::from_chars(b, w.data() + w.size(), v);
+        if (w.empty() || r.ec != std::errc() || r.ptr != w.data() + w.size())
+            bad("expected a number, got '" + std::string(w) + "'");
+        if (!std::isfinite(v)) bad("non-finite coordinate '" + std::string(w) + "'");
+        return v;
+    };
+    if (word() != "solid") bad("does not start with 'solid'");
+    while (p < end && *p != '\n') ++p; // the solid's name
+    Vec3 corner[3];
+    int count = 0;
+    for (;;) {
+        const std::string_view w = word();
+        if (w.empty()) break;
+        if (w == "endsolid") {
+            while (p < end && *p != '\n') ++p;
+            continue;
+        }
+        if (w == "solid") { // several solids in one file
+            while (p < end && *p != '\n') ++p;
+            continue;
+        }
+        if (w == "facet") {
+            if (word() != "normal") bad("expected 'normal'");
+            number(), number(), number();
+            count = 0;
+        } else if (w == "outer") {
+            if (word() != "loop") bad("expected 'loop'");
+        } else if (w == "vertex") {
+            if (count == 3) bad("more than three vertices in a facet");
+            const double x = number(), y = number(), z = number();
+            corner[count++] = Vec3(x, y, z);
+        } else if (w == "endloop") {
+            if (count != 3) bad("facet with " + std::to_string(count) + " vertices");
+        } else if (w == "endfacet") {
+            if (count != 3) bad("facet with " + std::to_string(count) + " vertices");
+            addTriangle(mesh, merge, corner);
+            count = 0;
+        } else {
+            bad("unexpected '" + std::string(w) + "'");
+        }
+    }
+    if (mesh.triangles.empty()) fail(path, "ASCII STL has no facets");
+    return mesh;
+}
+
+/// Reads an STL file, ASCII or binary. A file is binary when its size matches the triangle count in its
+/// header (a binary header may itself start with "solid"); else it must be ASCII text.
+TriangleMesh readStl(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t size = buf.size();
+    const bool startsSolid = size >= 5 && std::string(buf.data(), 5) == "solid";
+    if (size >= 84) {
+        std::uint32_t n = 0;
+        std::memcpy(&n, buf.data() + 80, 4);
+        const std::uint64_t expected = 84 + 50ull * n;
+        if (expected == size) {
+            if (n == 0) fail(path, "binary STL has no triangles");
+            return readBinaryStl(path, buf);
+        }
+        if (!startsSolid)
+            fail(path, "binary STL header says " + std::to_string(n) + " triangles (" +
+                           std::to_string(expected) + " bytes) but the file has " + std::to_string(size) +
+                           " bytes");
+    } else if (!startsSolid) {
+        fail(path, "file too short for binary STL (" + std::to_string(size) + " bytes, need at least 84)");
+    }
+    for (std::size_t i = 0; i < std::min<std::size_t>(size, 1 << 16); ++i) {
+        const unsigned char c = static_cast<unsigned char>(buf[i]);
+        if (!(std::isprint(c) || std::isspace(c)))
+            fail(path,
+                 "neither binary STL (size does not match its triangle count) nor ASCII STL (binary bytes)");
+    }
+    return readAsciiStl(path, buf);
+}
+
+/// Faces with more than three corners become triangle fans; indices are checked against the vertex count.
+void addPolygon(TriangleMesh& mesh, const std::vector<long long>& poly, const std::string& path,
+                const std::string& where) {
+    if (poly.size() < 3) fail(path, where + ": a face needs at least 3 vertices");
+    for (long long c : poly)
+        if (c < 0 || c >= static_cast<long long>(mesh.vertices.size()))
+            fail(path, where + ": a face refers to vertex " + std::to_string(c) + " of " +
+                           std::to_string(mesh.vertices.size()));
+    for (std::size_t c = 2; c < poly.size(); ++c)
+        mesh.triangles.push_back(
+            {static_cast<int>(poly[0]), static_cast<int>(poly[c - 1]), static_cast<int>(poly[c])});
+}
+
+bool parseDouble(std::string_view w, double& v) {
+    const char* b = w.data() + (!w.empty() && w[0] == '+');
+    const auto r = std::from_chars(b, w.data() + w.size(), v);
+    return !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+}
+
+bool parseInt(std::string_view w, long long& v) {
+    const char* b = w.data() + (!w.empty() && w[0] == '+');
+    const auto r = std::from_chars(b, w.data() + w.size(), v);
+    return !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+}
+
+/// Splits a line into whitespace-separated words.
+std::vector<std::string_view> words(std::string_view line) {
+    std::vector<std::string_view> out;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        const std::size_t b = i;
+        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        if (i > b) out.push_back(line.substr(b, i - b));
+    }
+    return out;
+}
+
+/// Line by line, with its number, '#' comments removed.
+template <class F> void forLines(const std::vector<char>& buf, F&& f) {
+    std::size_t i = 0, lineNo = 0;
+    while (i < buf.size()) {
+        std::size_t e = i;
+        while (e < buf.size() && buf[e] != '\n') ++e;
+        std::string_view line(buf.data() + i, e - i);
+        const auto hash = line.find('#');
+        if (hash != std::string_view::npos) line = line.substr(0, hash);
+        if (!f(line, ++lineNo)) return;
+        i = e + 1;
+    }
+}
+
+// Our own OBJ, OFF and PLY readers: CGAL 5.5's, fuzzed (fuzz/), reserved gigabytes on the say-so of an OFF
+// header and ran into undefined behaviour on malformed OFF and PLY files (fuzz/regressions keeps those
+// inputs).
+
+/// Wavefront OBJ: "v x y z [w]" and "f a b c ..." (each index "i", "i/t", "i//n" or "i/t/n"; negative: from
+/// the end); everything else (vt, vn, g, o, s, usemtl, l, ...) is ignored.
+TriangleMesh readObj(const std::string& path, const std::vector<char>& buf) {
+    TriangleMesh mesh;
+    std::vector<long long> poly;
+    forLines(buf, [&](std::string_view line, std::size_t no) {
+        const auto w = words(line);
+        if (w.empty()) return true;
+        const std::string at = "OBJ line " + std::to_string(no);
+        if (w[0] == "v") {
+            double x, y, z;
+            if (w.size() < 4 || !parseDouble(w[1], x) || !parseDouble(w[2], y) || !parseDouble(w[3], z))
+                fail(path, at + ": a vertex needs three numbers");
+            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+                fail(path, at + ": non-finite coordinate");
+            mesh.vertices.emplace_back(x, y, z);
+        } else if (w[0] == "f") {
+            poly.clear();
+            for (std::size_t k = 1; k < w.size(); ++k) {
+                long long idx;
+                if (!parseInt(w[k].substr(0, w[k].find('/')), idx) || idx == 0)
+                    fail(path, at + ": '" + std::string(w[k]) + "' is not a vertex index");
+                poly.push_back(idx > 0 ? idx - 1 : static_cast<long long>(mesh.vertices.size()) + idx);
+            }
+            addPolygon(mesh, poly, path, at);
+        }
+        return true;
+    });
+    if (mesh.triangles.empty()) fail(path, "OBJ file has no faces");
+    return mesh;
+}
+
+/// Object File Format: "OFF" (or COFF, NOFF, ...: extra per-vertex data is skipped), counts, vertex lines,
+/// face lines "n i1 ... in [colour]". Binary OFF is refused.
+TriangleMesh readOff(const std::string& path, const std::vector<char>& buf) {
+    TriangleMesh mesh;
+    long long nv = -1, nf = -1, seenV = 0, seenF = 0;
+    bool magic = false;
+    std::vector<long long> poly;
+    forLines(buf, [&](std::string_view line, std::size_t no) {
+        auto w = words(line);
+        if (w.empty()) return true;
+        const std::string at = "OFF line " + std::to_string(no);
+        if (!magic) {
+            if (w[0].size() < 3 || w[0].substr(w[0].size() - 3) != "OFF")
+                fail(path, "not an OFF file (it must start with OFF)");
+            magic = true;
+            if (w.size() > 1 && w[1] == "BINARY") fail(path, "binary OFF is not supported");
+            w.erase(w.begin());
+            if (w.empty()) return true;
+        }
+        if (nv < 0) {
+            if (w.size() < 2 || !parseInt(w[0], nv) || !parseInt(w[1], nf) || nv < 0 || nf < 0)
+                fail(path, at + ": expected the vertex and face counts");
+            // every vertex takes at least 6 characters ("0 0 0\n"), every face at least 8 ("3 0 1 2\n")
+            const long long size = static_cast<long long>(buf.size()); // compared so that nothing overflows
+            if (nv > size / 6 || nf > size / 8 || nv * 6 + nf * 8 > size)
+                fail(path, "OFF header announces " + std::to_string(nv) + " vertices and " +
+                               std::to_string(nf) + " faces, more than the file holds");
+            mesh.vertices.reserve(static_cast<std::size_t>(nv));
+            return true;
+        }
+        if (seenV < nv) {
+            double x, y, z;
+            if (w.size() < 3 || !parseDouble(w[0], x) || !parseDouble(w[1], y) || !parseDouble(w[2], z))
+                fail(path, at + ": a vertex needs three numbers");
+            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+                fail(path, at + ": non-finite coordinate");
+            mesh.vertices.emplace_back(x, y, z);
+            ++seenV;
+            return true;
+        }
+        if (seenF < nf) {
+            long long n;
+            if (!parseInt(w[0], n) || n < 3 || static_cast<long long>(w.size()) < n + 1)
+                fail(path, at + ": a face is a count n >= 3 and n vertex indices");
+            poly.clear();
+            for (long long k = 1; k <= n; ++k) {
+                long long idx;
+                if (!parseInt(w[static_cast<std::size_t>(k)], idx)) fail(path, at + ": bad vertex index");
+                poly.push_back(idx);
+            }
+            addPolygon(mesh, poly, path, at);
+            ++seenF;
+            return true;
+        }
+        return false;
+    });
+    if (!magic || nv < 0) fail(path, "malformed OFF file (no header)");
+    if (seenV < nv || seenF < nf)
+        fail(path, "OFF file ends early: " + std::to_string(seenV) + " of " + std::to_string(nv) +
+                       " vertices, " + std::to_string(seenF) + " of " + std::to_string(nf) + " faces");
+    if (mesh.triangles.empty()) fail(path, "OFF file has no faces");
+    return mesh;
+}
+
+/// Polygon File Format (PLY), ASCII and binary of either byte order: "vertex" elements give x, y, z; "face"
+/// elements a list property (vertex_indices); other elements and properties are skipped.
+/// A PLY file's header: its elements and their properties (Turk's PLY format, ASCII and binary).
+struct PlyProperty {
+    std::string name, type, countType; // countType non-empty: a list
+};
+struct PlyElement {
+    std::string name;
+    long long count;
+    std::vector<PlyProperty> props;
+};
+struct PlyHeader {
+    std::vector<PlyElement> elements;
+    std::string format;
+};
+
+int plyTypeSize(const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32")
+        return 4;
+    if (t == "double" || t == "float64") return 8;
+    return 0;
+}
+
+/// One header line's property: a scalar or a list.
+void addPlyProperty(const std::string& path, const std::string& at, const std::vector<std::string_view>& w,
+                    std::vector<PlyElement>& elements) {
+    if (elements.empty()) fail(path, at + "property before any element");
+    if (w.size() >= 5 && w[1] == "list") {
+        if (!plyTypeSize(std::string(w[2])) || !plyTypeSize(std::string(w[3])))
+            fail(path, at + "unknown type in list property");
+        elements.back().props.push_back({std::string(w[4]), std::string(w[3]), std::string(w[2])});
+    } else if (w.size() >= 3 && plyTypeSize(std::string(w[1]))) {
+        elements.back().props.push_back({std::string(w[2]), std::string(w[1]), ""});
+    } else {
+        fail(path, at + "malformed property");
+    }
+}
+
+/// Reads the header from @p buf; @p pos: where the data begin, afterwards. Checks that the counts announced
+/// fit in the file before anything is allocated.
+PlyHeader readPlyHeader(const std::string& path, const std::vector<char>& buf, std::size_t& pos) {
+    PlyHeader h;
+    std::size_t lineNo = 0;
+    bool end = false;
+    auto nextLine = [&]() {
+        std::size_t e = pos;
+        while (e < buf.size() && buf[e] != '\n') ++e;
+        std::string_view line(buf.data() + pos, e - pos);
+        pos = std::min(buf.size(), e + 1);
+        ++lineNo;
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        return line;
+    };
+    if (nextLine() != "ply") fail(path, "not a PLY file (it must start with ply)");
+    while (pos < buf.size()) {
+        const auto w = words(nextLine());
+        if (w.empty()) continue;
+        const std::string at = "PLY header line " + std::to_string(lineNo) + ": ";
+        if (w[0] == "format") {
+            if (w.size() < 2 ||
+                (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+                fail(path, at + "unknown format");
+            h.format = std::string(w[1]);
+        } else if (w[0] == "comment" || w[0] == "obj_info") {
+        } else if (w[0] == "element") {
+            long long n;
+            if (w.size() < 3 || !parseInt(w[2], n) || n < 0)
+                fail(path, at + "element needs a name and a count");
+            if (n > static_cast<long long>(buf.size()))
+                fail(path, at + "element count " + std::to_string(n) + " is more than the file holds");
+            h.elements.push_back({std::string(w[1]), n, {}});
+        } else if (w[0] == "property") {
+            addPlyProperty(path, at, w, h.elements);
+        } else if (w[0] == "end_header") {
+            end = true;
+            break;
+        } else {
+            fail(path, at + "unexpected '" + std::string(w[0]) + "'");
+        }
+    }
+    if (h.format.empty() || !end) fail(path, "malformed PLY header (format or end_header missing)");
+    long long items = 0;
+    bool hasVertex = false, hasFace = false;
+    for (const PlyElement& e : h.elements) {
+        items += e.count;
+        hasVertex = hasVertex || e.name == "vertex";
+        hasFace = hasFace || e.name == "face";
+    }
+    if (!hasVertex || !hasFace) fail(path, "PLY file without vertex or face element");
+    if (items * (h.format == "ascii" ? 2 : 1) > static_cast<long long>(buf.size() - pos))
+        fail(path, "PLY header announces " + std::to_string(items) + " elements, more than the file holds");
+    return h;
+}
+
+/// Reads one value after another from the PLY data, ASCII or binary (either byte order).
+class PlyValues {
+public:
+    PlyValues(const std::string& path, const std::vector<char>& buf, std::size_t pos,
+              const std::string& format)
+        : path_(path), buf_(buf), pos_(pos), ascii_(format == "ascii"), swap_(format == "binary_big_endian") {
+        if (ascii_) tokens_ = words(std::string_view(buf.data() + pos, buf.size() - pos));
+    }
+    double operator()(const std::string& type) {
+        if (ascii_) {
+            if (tok_ >= tokens_.size()) fail(path_, "PLY data ends early");
+            double v;
+            if (!parseDouble(tokens_[tok_++], v))
+                fail(path_, "PLY data: '" + std::string(tokens_[tok_ - 1]) + "' is not a number");
+            return v;
+        }
+        const int n = plyTypeSize(type);
+        if (pos_ + static_cast<std::size_t>(n) > buf_.size()) fail(path_, "PLY data ends early");
+        unsigned char b[8];
+        std::memcpy(b, buf_.data() + pos_, static_cast<std::size_t>(n));
+        pos_ += static_cast<std::size_t>(n);
+        if (swap_) std::reverse(b, b + n);
+        return binary(type, b);
+    }
+
+private:
+    template <class T> static double as(const unsigned char* b) {
+        T v;
+        std::memcpy(&v, b, sizeof(T));
+        return static_cast<double>(v);
+    }
+    static double binary(const std::string& type, const unsigned char* b) {
+        if (type == "char" || type == "int8") return as<std::int8_t>(b);
+        if (type == "uchar" || type == "uint8") return as<std::uint8_t>(b);
+        if (type == "short" || type == "int16") return as<std::int16_t>(b);
+        if (type == "ushort" || type == "uint16") return as<std::uint16_t>(b);
+        if (type == "int" || type == "int32") return as<std::int32_t>(b);
+        if (type == "uint" || type == "uint32") return as<std::uint32_t>(b);
+        if (type == "float" || type == "float32") return as<float>(b);
+        return as<double>(b);
+    }
+    const std::string& path_;
+    const std::vector<char>& buf_;
+    std::size_t pos_;
+    bool ascii_, swap_;
+    std::vector<std::string_view> tokens_;
+    std::size_t tok_ = 0;
+};
+
+/// The elements' data: vertices (x, y, z) and faces (a list of vertex indices); other elements and
+/// properties are read past.
+void readPlyElement(const std::string& path, const PlyElement& e, PlyValues& value, TriangleMesh& mesh) {
+    int ix = -1, iy = -1, iz = -1, il = -1;
+    for (int k = 0; k < static_cast<int>(e.props.size()); ++k) {
+        const PlyProperty& p = e.props[static_cast<std::size_t>(k)];
+        if (p.name == "x") ix = k;
+        if (p.name == "y") iy = k;
+        if (p.name == "z") iz = k;
+        if (!p.countType.empty() && (il < 0 || p.name == "vertex_indices" || p.name == "vertex_index"))
+            il = k;
+    }
+    if (e.name == "vertex" && (ix < 0 || iy < 0 || iz < 0)) fail(path, "PLY vertex element without x, y, z");
+    if (e.name == "face" && il < 0) fail(path, "PLY face element without a list of vertex indices");
+    std::vector<long long> poly;
+    for (long long n = 0; n < e.count; ++n) {
+        Vec3 v = Vec3::Zero();
+        poly.clear();
+        for (int k = 0; k < static_cast<int>(e.props.size()); ++k) {
+            const PlyProperty& p = e.props[static_cast<std::size_t>(k)];
+            if (p.countType.empty()) {
+                const double x = value(p.type);
+                if (k == ix) v.x() = x;
+                if (k == iy) v.y() = x;
+                if (k == iz) v.z() = x;
+                continue;
+            }
+            const double len = value(p.countType);
+            if (!(len >= 0 && len <= 1e6) || len != std::floor(len)) fail(path, "PLY data: bad list length");
+            for (long long q = 0; q < static_cast<long long>(len); ++q) {
+                const double idx = value(p.type);
+                if (k == il) {
+                    if (idx != std::floor(idx) || std::abs(idx) > 9e18)
+                        fail(path, "PLY data: bad vertex index");
+                    poly.push_back(static_cast<long long>(idx));
+                }
+            }
+        }
+        if (e.name == "vertex") {
+            if (!v.allFinite())
+                fail(path, "PLY vertex " + std::to_string(n) + " has a non-finite coordinate");
+            mesh.vertices.push_back(v);
+        } else if (e.name == "face") {
+            addPolygon(mesh, poly, path, "PLY face " + std::to_string(n));
+        }
+    }
+}
+
+TriangleMesh readPly(const std::string& path, const std::vector<char>& buf) {
+    std::size_t pos = 0;
+    const PlyHeader h = readPlyHeader(path, buf, pos);
+    PlyValues value(path, buf, pos, h.format);
+    TriangleMesh mesh;
+    for (const PlyElement& e : h.elements) readPlyElement(path, e, value, mesh);
+    if (mesh.triangles.empty()) fail(path, "PLY file has no faces");
+    return mesh;
+}
+
+} // namespace
+
+TriangleMesh readMesh(const std::string& path) {
+    const std::string ext = fileExtension(path);
+    if (ext != ".stl" && ext != ".obj" && ext != ".off" && ext != ".ply")
+        fail(path, "unknown mesh extension '" + ext + "' (expected .stl, .obj, .off or .ply)");
+    std::ifstream probe(path, std::ios::binary | std::ios::ate);
+    if (!probe) fail(path, "cannot open file");
+    const auto end = probe.tellg();
+    if (end <= 0) fail(path, "file is empty");
+    probe.close();
+    if (ext == ".stl") {
+        TriangleMesh mesh = readStl(path);
+        validateMesh(mesh, "readMesh: " + path);
+        return mesh;
+    }
+
+    std::ifstream in(path, std::ios::binary);
+    const std::vector<char> buf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    TriangleMesh mesh = ext == ".obj"   ? readObj(path, buf)
+                        : ext == ".off" ? readOff(path, buf)
+                                        : readPly(path, buf);
+    validateMesh(mesh, "readMesh: " + path);
+    return mesh;
+}
+
+} // namespace mss
