@@ -1,0 +1,60 @@
+// pkg/mss/engine/coverage: exact mismatch gains against brute force.
+#include "engine_fixtures.hpp"
+#include "mss/engine/coverage.hpp"
+#include "mss/engine/symmetry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace mss;
+using namespace mss::engine;
+using namespace mss::testing;
+
+TEST(Coverage, GainsAreTheExactMismatchChange) {
+    const VoxelGrid S = ellipsoid(24, 10, 7, 5);
+    Coverage cov(S);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(2, 21), rr(1, 6);
+    std::vector<Ball> placed;
+    for (int t = 0; t < 12; ++t) {
+        const Ball b{Vec3(u(rng), u(rng), u(rng)), rr(rng)};
+        const long long before = cov.mismatch();
+        const long long g = cov.gain(b);
+        cov.add(b);
+        placed.push_back(b);
+        EXPECT_EQ(before - cov.mismatch(), g);
+        EXPECT_EQ(cov.mismatch(), bruteMismatch(S, placed));
+    }
+    // removing in another order gives every state back
+    for (int t = 11; t >= 0; t -= 2) {
+        cov.remove(placed[std::size_t(t)]);
+        placed.erase(placed.begin() + t);
+        EXPECT_EQ(cov.mismatch(), bruteMismatch(S, placed));
+    }
+}
+
+TEST(Coverage, OverlappingImagesCountedOnce) {
+    const VoxelGrid S = ellipsoid(24, 10, 7, 5);
+    Coverage cov(S);
+    const std::vector<Ball> pair{{Vec3(10, 11.5, 11.5), 4.0}, {Vec3(13, 11.5, 11.5), 4.0}}; // rows shared
+    const std::vector<Ball> three{{Vec3(8, 9, 11.5), 3.0}, {Vec3(11, 10, 12), 3.5}, {Vec3(9, 12, 10), 2.5}};
+    for (const auto& balls : {pair, three}) {
+        const long long g = cov.gain(balls);
+        EXPECT_EQ(g, bruteMismatch(S, {}) - bruteMismatch(S, balls));
+    }
+}
+
+TEST(Coverage, MirroredGainEqualsTheFullSum) {
+    const VoxelGrid S = ellipsoid(24, 10, 7, 5);
+    Coverage cov(S);
+    cov.setMirrorPlanes({true, true, true});
+    const Symmetry sym(S.spec, {true, true, true});
+    const Orbit o = sym.make(Vec3(7.2, 8.1, 9.3), 2.5);
+    const std::vector<Ball> imgs = sym.images(o);
+    ASSERT_EQ(imgs.size(), 8u);
+    EXPECT_EQ(cov.gain(imgs, true), cov.gain(imgs, false));
+    const Orbit wide = sym.make(Vec3(10.0, 10.0, 11.0), 3.0); // images overlap each other
+    EXPECT_EQ(cov.gain(sym.images(wide), true), cov.gain(sym.images(wide), false));
+    EXPECT_EQ(cov.gain(sym.images(wide), false), bruteMismatch(S, {}) - bruteMismatch(S, sym.images(wide)));
+}
