@@ -1,6 +1,9 @@
 // mss: command-line front end of the yade-mss core.
 #include "mss.hpp"
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,98 +18,12 @@
 
 namespace {
 
-const char* kUsage = R"(mss: multi-sphere shape generator (MSS) for DEM clumps
-
-usage:
-  mss generate INPUT [options] -o OUT     spheres for a mesh (.stl .obj .off .ply) or voxels (.npy)
-  mss compare INPUT SPHERES [options]     score a sphere file against the target
-  mss info INPUT                          what was read
-
-generate options (termination: give at least one of --spheres, --eta, --dice, --rmin):
-  --spheres N          at most N spheres (problem (i) of the paper)
-  --eta X              stop at relative mismatch eta <= X (eq. 7; problem (ii))
-  --dice X             stop at Dice mismatch D <= X (eq. 27)
-  --rmin R             no sphere of radius below R (world units)
-  --voxel-size H       voxel edge in world units, or
-  --resolution N       N voxels along the shortest bounding-box edge (default 100; the paper uses 205)
-  --supersample K      K^3 samples per voxel when voxelising a mesh (default 1: voxel centres)
-  --method M           optimized (default) or paper (the published procedure)
-  --delta-min D        minimal centre distance in voxels, paper mode (default 1)
-  --no-symmetry        do not detect and keep mirror planes
-  --clip               no sphere protrudes from the grain (exact distance to the mesh; voxel faces for .npy)
-  --no-refill          with --clip: shrink the spheres afterwards instead of choosing them under the constraint
-  --plane P,N          PX,PY,PZ,NX,NY,NZ: no sphere crosses this plane (spheres stay on the normal's side);
-                       may repeat
-  --max-iterations N   iteration cap (default 100)
-  --threads T          OpenMP threads (result is the same for any T)
-  --memory-limit GIB   refuse grids needing more (default 8)
-  -o, --output OUT     .csv (x,y,z,r), .txt (YADE text clump: x y z r clumpId) or .vtk (ParaView)
-voxel input (.npy) options:
-  --npy-voxel-size H   voxel edge of the array (default 1)     --origin X,Y,Z  centre of voxel (0,0,0)
-  --label L            solid = voxels equal to L (labelled volumes; default: non-zero)
-compare options:
-  --resolution N       scoring grid: N voxels along the shortest edge (default 100)
-  --offset F           shift of the scoring grid, in voxels (default 0.37)
-  --clump ID           the clump with this id, when SPHERES is a YADE text file of several
-  --plane PX,PY,PZ,NX,NY,NZ   score against the part of the target on the normal's side (a fragment)
-)";
-
 struct Args {
     std::vector<std::string> positional;
     std::vector<std::string> planes; // --plane may repeat
     std::map<std::string, std::string> opts;
     bool has(const std::string& k) const { return opts.count(k) != 0; }
 };
-
-const std::map<std::string, bool> kOptions = {{"--spheres", true},
-                                              {"--eta", true},
-                                              {"--dice", true},
-                                              {"--rmin", true},
-                                              {"--voxel-size", true},
-                                              {"--resolution", true},
-                                              {"--supersample", true},
-                                              {"--method", true},
-                                              {"--delta-min", true},
-                                              {"--no-symmetry", false},
-                                              {"--max-iterations", true},
-                                              {"--threads", true},
-                                              {"--memory-limit", true},
-                                              {"-o", true},
-                                              {"--output", true},
-                                              {"--npy-voxel-size", true},
-                                              {"--origin", true},
-                                              {"--label", true},
-                                              {"--offset", true},
-                                              {"--help", false},
-                                              {"-h", false},
-                                              {"--clip", false},
-                                              {"--no-refill", false},
-                                              {"--plane", true},
-                                              {"--clump", true}};
-
-Args parse(int argc, char** argv, int from) {
-    Args a;
-    for (int i = from; i < argc; ++i) {
-        std::string s = argv[i];
-        if (s.size() > 1 && s[0] == '-' &&
-            !(s.size() > 1 && (std::isdigit(static_cast<unsigned char>(s[1])) || s[1] == '.'))) {
-            auto it = kOptions.find(s);
-            if (it == kOptions.end()) throw std::invalid_argument("unknown option '" + s + "'");
-            if (it->second) {
-                if (i + 1 >= argc) throw std::invalid_argument("option " + s + " needs a value");
-                if (s == "--plane")
-                    a.planes.push_back(argv[++i]);
-                else
-                    a.opts[s == "-o" ? "--output" : s] = argv[++i];
-            } else {
-                a.opts[s] = "";
-            }
-        } else {
-            a.positional.push_back(s);
-        }
-    }
-    return a;
-}
 
 double number(const Args& a, const std::string& key, double fallback) {
     auto it = a.opts.find(key);
@@ -305,29 +222,166 @@ int cmdInfo(const Args& a) {
     return 0;
 }
 
+// ---- the command line (CLI11): subcommands, per-subcommand help; values are kept as text and converted by
+// the helpers above, so that every bad value gets the same message as before
+
+/// Edit distance, for "did you mean" on unknown options.
+std::size_t distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diag = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+/// "unknown option '--sphere': did you mean '--spheres'?" for what CLI11 did not expect.
+std::string unknownOption(const CLI::App* sub, const std::vector<std::string>& extras) {
+    const std::string bad = extras.empty() ? "" : extras.front();
+    std::string best;
+    std::size_t bestD = 4; // suggest only what is close
+    for (const CLI::Option* o : sub->get_options())
+        for (const std::string& name : o->get_lnames()) {
+            const std::string cand = "--" + name;
+            const std::size_t d = distance(bad, cand);
+            if (d < bestD || (bad.size() > 2 && cand.rfind(bad, 0) == 0 && d < bestD + 4)) {
+                bestD = std::min(d, bestD);
+                best = cand;
+            }
+        }
+    if (bad.empty() || bad[0] != '-') return "unexpected argument '" + bad + "'";
+    return "unknown option '" + bad + "'" + (best.empty() ? "" : ": did you mean '" + best + "'?");
+}
+
+void value(CLI::App* sub, Args& a, const std::string& names, const std::string& key, const std::string& help,
+           const std::string& type) {
+    sub->add_option_function<std::string>(
+           names, [&a, key](const std::string& v) { a.opts[key] = v; }, help)
+        ->type_name(type);
+}
+
+void flag(CLI::App* sub, Args& a, const std::string& name, const std::string& help) {
+    sub->add_flag_callback(
+        name, [&a, name] { a.opts[name] = ""; }, help);
+}
+
+void voxelOptions(CLI::App* sub, Args& a) {
+    value(sub, a, "--npy-voxel-size", "--npy-voxel-size", "voxel edge of a .npy array (default 1)", "H");
+    value(sub, a, "--origin", "--origin", "centre of voxel (0,0,0) of a .npy array", "X,Y,Z");
+    value(sub, a, "--label", "--label", "solid = voxels equal to L (labelled volumes: required when several)",
+          "L");
+}
+
+void planeOption(CLI::App* sub, Args& a, const std::string& help) {
+    sub->add_option("--plane", a.planes, help)
+        ->type_name("PX,PY,PZ,NX,NY,NZ")
+        ->type_size(1)
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+}
+
+CLI::App* generateCommand(CLI::App& app, Args& a) {
+    CLI::App* g = app.add_subcommand("generate", "spheres for a mesh (.stl .obj .off .ply) or voxels (.npy)");
+    g->footer("Termination (paper section 3.5): give at least one of --spheres, --eta, --dice, --rmin.");
+    g->add_option_function<std::string>(
+         "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
+        ->required();
+    value(g, a, "-o,--output", "--output", ".csv (x,y,z,r), .txt (YADE text clump x y z r clumpId) or .vtk",
+          "OUT");
+    value(g, a, "--spheres", "--spheres", "at most N spheres (problem (i) of the paper)", "N");
+    value(g, a, "--eta", "--eta", "stop at relative mismatch eta <= X (eq. 7; problem (ii))", "X");
+    value(g, a, "--dice", "--dice", "stop at Dice mismatch D <= X (eq. 27)", "X");
+    value(g, a, "--rmin", "--rmin", "no sphere of radius below R (world units)", "R");
+    value(g, a, "--voxel-size", "--voxel-size", "voxel edge in world units (meshes), or", "H");
+    value(g, a, "--resolution", "--resolution", "N voxels along the shortest bounding-box edge (default 100)",
+          "N");
+    value(g, a, "--supersample", "--supersample", "K^3 samples per voxel when voxelising a mesh (default 1)",
+          "K");
+    value(g, a, "--method", "--method", "optimized (default) or paper (the published procedure)", "M");
+    value(g, a, "--delta-min", "--delta-min", "minimal centre distance in voxels, paper mode (default 1)",
+          "D");
+    flag(g, a, "--no-symmetry", "do not detect and keep mirror planes");
+    flag(g, a, "--clip",
+         "no sphere protrudes from the grain (exact distance to the mesh; voxel faces for .npy)");
+    flag(g, a, "--no-refill", "with --clip: shrink the spheres afterwards instead of choosing them under it");
+    planeOption(g, a, "no sphere crosses this plane (spheres stay on the normal's side); may repeat");
+    value(g, a, "--max-iterations", "--max-iterations", "iteration cap (default 100)", "N");
+    value(g, a, "--threads", "--threads", "OpenMP threads (the result is the same for any T)", "T");
+    value(g, a, "--memory-limit", "--memory-limit", "refuse grids needing more (default 8)", "GIB");
+    voxelOptions(g, a);
+    return g;
+}
+
+CLI::App* compareCommand(CLI::App& app, Args& a) {
+    CLI::App* c =
+        app.add_subcommand("compare", "score a sphere file against the target on a grid of its own");
+    c->add_option_function<std::string>(
+         "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
+        ->required();
+    c->add_option_function<std::string>(
+         "SPHERES", [&a](const std::string& v) { a.positional.push_back(v); },
+         ".csv, .txt (YADE text clumps) or CLUMP output")
+        ->required();
+    value(c, a, "--resolution", "--resolution",
+          "scoring grid: N voxels along the shortest edge (default 100)", "N");
+    value(c, a, "--offset", "--offset", "shift of the scoring grid, in voxels (default 0.37)", "F");
+    value(c, a, "--supersample", "--supersample", "K^3 samples per voxel of the target (default 1)", "K");
+    value(c, a, "--clump", "--clump", "the clump with this id, when SPHERES is a YADE text file of several",
+          "ID");
+    planeOption(c, a, "score against the part of the target on the normal's side (a fragment)");
+    voxelOptions(c, a);
+    return c;
+}
+
+CLI::App* infoCommand(CLI::App& app, Args& a) {
+    CLI::App* i = app.add_subcommand("info", "what was read: mesh closedness, defects, volume; voxel counts");
+    i->add_option_function<std::string>(
+         "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
+        ->required();
+    voxelOptions(i, a);
+    return i;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::cerr << kUsage;
+    CLI::App app{"mss: multi-sphere shape generator (MSS) for DEM clumps"};
+    app.require_subcommand(1, 1);
+    Args a;
+    CLI::App* gen = generateCommand(app, a);
+    CLI::App* cmp = compareCommand(app, a);
+    CLI::App* inf = infoCommand(app, a);
+    const std::string first = argc > 1 ? argv[1] : "";
+    if (!first.empty() && first[0] != '-' && first != "generate" && first != "compare" && first != "info") {
+        std::cerr << "mss: unknown command '" << argv[1] << "' (generate, compare or info; mss --help)\n";
         return 2;
-    }
-    const std::string cmd = argv[1];
-    if (cmd == "-h" || cmd == "--help" || cmd == "help") {
-        std::cout << kUsage;
-        return 0;
     }
     try {
-        const Args a = parse(argc, argv, 2);
-        if (a.has("--help") || a.has("-h")) {
-            std::cout << kUsage;
-            return 0;
-        }
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::ExtrasError& e) {
+        CLI::App* sub = gen->parsed() ? gen : cmp->parsed() ? cmp : inf->parsed() ? inf : &app;
+        std::vector<std::string> extras = sub->remaining();
+        std::cerr << "mss " << sub->get_name() << ": error: " << unknownOption(sub, extras) << "\n"
+                  << "run 'mss " << sub->get_name() << " --help' for the options\n";
+        return 2;
+    } catch (const CLI::ParseError& e) {
+        if (e.get_exit_code() == 0) return app.exit(e);
+        std::cerr << "mss: error: " << e.what() << "\nrun 'mss --help' or 'mss COMMAND --help'\n";
+        return 2;
+    }
+    const std::string cmd = gen->parsed() ? "generate" : cmp->parsed() ? "compare" : "info";
+    try {
         if (cmd == "generate") return cmdGenerate(a);
         if (cmd == "compare") return cmdCompare(a);
-        if (cmd == "info") return cmdInfo(a);
-        std::cerr << "mss: unknown command '" << cmd << "'\n" << kUsage;
-        return 2;
+        return cmdInfo(a);
     } catch (const std::exception& e) {
         std::cerr << "mss " << cmd << ": error: " << e.what() << "\n";
         return 1;

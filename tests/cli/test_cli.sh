@@ -75,7 +75,13 @@ expect_error "resolution 0" "resolution must be >= 1" "$MSS" generate "$DATA/ell
 expect_error "absurd resolution" "would need" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 200000 -o "$TMP/x.csv"
 expect_error "bad output extension" "unknown output extension" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 -o "$TMP/x.doc"
 expect_error "unwritable output" "cannot write" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 -o /nonexistent-dir/x.csv
-expect_error "unknown option" "unknown option" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --sphere 3 -o "$TMP/x.csv"
+expect_error "unknown option names the closest" "unknown option '--sphere': did you mean '--spheres'?" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --sphere 3 -o "$TMP/x.csv"
+expect_error "unknown compare option" "did you mean '--offset'" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" --ofset 0.3
+expect_error "unknown command" "unknown command 'generat'" "$MSS" generat "$DATA/ellipsoid_2_1_1.stl"
+expect_error "missing output" "generate needs -o OUT" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3
+"$MSS" generate --help > "$TMP/help.log"
+check "generate --help lists its options, exit 0" grep -q -- "--clip" "$TMP/help.log"
+check "compare --help lists --clump, not generate's --spheres" bash -c "\"$MSS\" compare --help | grep -q -- --clump && ! \"$MSS\" compare --help | grep -q -- --spheres"
 expect_error "bad number" "not an integer" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres abc -o "$TMP/x.csv"
 check "no file left by failed runs" [ ! -e "$TMP/x.csv" ]
 
