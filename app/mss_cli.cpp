@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -71,6 +72,20 @@ mss::Vec3 vec3(const Args& a, const std::string& key) {
     mss::Vec3 v;
     if (!(is >> v.x() >> v.y() >> v.z())) throw std::invalid_argument(key + ": expected X,Y,Z");
     return v;
+}
+
+/// Writes @p text to @p path through a temporary file and a rename.
+void writeTextAtomically(const std::string& path, const std::string& text) {
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream f(tmp);
+        f << text;
+        if (!f.flush()) throw std::invalid_argument(path + ": cannot write");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw std::invalid_argument(path + ": cannot write");
+    }
 }
 
 bool isVoxelFile(const std::string& path) {
@@ -167,28 +182,91 @@ int cmdGenerate(const Args& a) {
     return 0;
 }
 
-int cmdCompare(const Args& a) {
-    const std::vector<mss::Plane> cuts = planes(a);
-    if (a.positional.size() != 2) throw std::invalid_argument("compare needs INPUT and SPHERES files");
-    const mss::SphereSet s =
-        mss::readSpheres(a.positional[1], a.has("--clump") ? integer(a, "--clump", -1) : -1);
-    mss::Score sc;
-    if (isVoxelFile(a.positional[0])) {
-        sc = mss::scoreSpheres(readVoxels(a, a.positional[0]), s, cuts);
-    } else {
-        const int res = integer(a, "--resolution", 100);
-        sc = mss::scoreSpheres(mss::readMesh(a.positional[0]), s, res, number(a, "--offset", 0.37),
-                               integer(a, "--supersample", 1), cuts);
-    }
+void printComparison(const mss::Comparison& c) {
+    const mss::Score& sc = c.score;
     std::cout << std::setprecision(6);
     std::cout << "grid          " << sc.grid.dims[0] << " x " << sc.grid.dims[1] << " x " << sc.grid.dims[2]
               << "  voxel size " << sc.grid.h << "\n";
-    std::cout << "spheres       " << s.size() << "\n";
+    if (c.transform.translation.norm() > 0 || !c.transform.rotation.isIdentity()) {
+        const Eigen::Matrix3d& R = c.transform.rotation;
+        const mss::Vec3& t = c.transform.translation;
+        std::cout << "aligned       x' = R x + t, t = " << t.x() << " " << t.y() << " " << t.z()
+                  << ", R rows " << R(0, 0) << " " << R(0, 1) << " " << R(0, 2) << " | " << R(1, 0) << " "
+                  << R(1, 1) << " " << R(1, 2) << " | " << R(2, 0) << " " << R(2, 1) << " " << R(2, 2)
+                  << "\n";
+    }
+    std::cout << "spheres       " << c.spheres << "\n";
     std::cout << "dice          " << sc.dice << "\n";
     std::cout << "eta           " << sc.eta << "\n";
     std::cout << "volume_ratio  " << sc.volumeRatio << "\n";
     std::cout << "coverage      " << sc.coverage << "\n";
     std::cout << "outside       " << sc.outside << "\n";
+    std::cout << "protrusion    " << c.protrusion << "   (largest, world units)\n";
+    std::cout << "smallest_r    " << c.smallestRadius << "\n";
+    std::cout << "mass_error    " << c.massError << "   (union of the spheres vs the grain)\n";
+    std::cout << "centroid_error " << c.centroidError << "   (of the grain's bounding-box diagonal)\n";
+    std::cout << "inertia_error " << c.inertiaError << "\n";
+}
+
+/// One table (text, and CSV with --csv) for several sphere files.
+void printTable(const std::vector<std::string>& files, const std::vector<mss::Comparison>& rows,
+                const std::string& csv) {
+    std::size_t w = 4;
+    for (const std::string& f : files) w = std::max(w, f.size());
+    w = std::min<std::size_t>(w, 48);
+    std::cout << std::left << std::setw(int(w)) << "file" << std::right << std::setw(6) << "n" << std::setw(9)
+              << "D" << std::setw(9) << "eta" << std::setw(9) << "vol" << std::setw(11) << "protr"
+              << std::setw(10) << "r_min" << std::setw(11) << "mass" << std::setw(11) << "centroid"
+              << std::setw(11) << "inertia"
+              << "\n";
+    std::ostringstream out;
+    out << std::setprecision(10)
+        << "file,n,dice,eta,volume_ratio,protrusion,smallest_radius,mass_error,centroid_error,inertia_"
+           "error\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const mss::Comparison& c = rows[i];
+        std::string name = files[i];
+        if (name.size() > w) name = "..." + name.substr(name.size() - w + 3);
+        std::cout << std::left << std::setw(int(w)) << name << std::right << std::setw(6) << c.spheres
+                  << std::fixed << std::setprecision(4) << std::setw(9) << c.score.dice << std::setw(9)
+                  << c.score.eta << std::setw(9) << c.score.volumeRatio << std::defaultfloat
+                  << std::setprecision(4) << std::setw(11) << c.protrusion << std::setw(10)
+                  << c.smallestRadius << std::setw(11) << c.massError << std::setw(11) << c.centroidError
+                  << std::setw(11) << c.inertiaError << "\n";
+        out << '"' << files[i] << "\"," << c.spheres << ',' << c.score.dice << ',' << c.score.eta << ','
+            << c.score.volumeRatio << ',' << c.protrusion << ',' << c.smallestRadius << ',' << c.massError
+            << ',' << c.centroidError << ',' << c.inertiaError << '\n';
+    }
+    std::cout << "D: Dice mismatch (eq. 27) on the scoring grid; vol: |spheres| / |grain|; protr: largest "
+                 "protrusion (world units); mass, centroid, inertia: the union's errors against the grain\n";
+    if (!csv.empty()) writeTextAtomically(csv, out.str());
+}
+
+int cmdCompare(const Args& a) {
+    mss::CompareOptions o;
+    o.planes = planes(a);
+    if (a.positional.size() < 2)
+        throw std::invalid_argument("compare needs INPUT and at least one SPHERES file");
+    o.resolution = integer(a, "--resolution", 100);
+    o.offset = number(a, "--offset", 0.37);
+    o.supersample = integer(a, "--supersample", 1);
+    o.align = mss::parseAlign(a.has("--align") ? a.opts.at("--align") : "none");
+    o.checkFrame = !a.has("--align"); // an explicit --align none scores the file as written
+    const long long clump = a.has("--clump") ? integer(a, "--clump", -1) : -1;
+    const std::string in = a.positional[0];
+    const bool voxels = isVoxelFile(in);
+    const mss::VoxelGrid v = voxels ? readVoxels(a, in) : mss::VoxelGrid();
+    const mss::TriangleMesh mesh = voxels ? mss::TriangleMesh() : mss::readMesh(in);
+    const std::vector<std::string> files(a.positional.begin() + 1, a.positional.end());
+    std::vector<mss::Comparison> rows;
+    for (const std::string& f : files) {
+        const mss::SphereSet s = mss::readSpheres(f, clump);
+        rows.push_back(voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o));
+    }
+    if (rows.size() == 1 && !a.has("--csv"))
+        printComparison(rows[0]);
+    else
+        printTable(files, rows, a.has("--csv") ? a.opts.at("--csv") : "");
     return 0;
 }
 
@@ -324,10 +402,17 @@ CLI::App* compareCommand(CLI::App& app, Args& a) {
     c->add_option_function<std::string>(
          "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
         ->required();
-    c->add_option_function<std::string>(
-         "SPHERES", [&a](const std::string& v) { a.positional.push_back(v); },
-         ".csv, .txt (YADE text clumps) or CLUMP output")
+    c->add_option_function<std::vector<std::string>>(
+         "SPHERES",
+         [&a](const std::vector<std::string>& v) {
+             a.positional.insert(a.positional.end(), v.begin(), v.end());
+         },
+         "sphere files (.csv, .txt, CLUMP's and YADE's, legacy VTK); several give one table")
         ->required();
+    value(c, a, "--align", "--align",
+          "register the spheres first: centroid, bbox or principal; none: as written, even in another frame",
+          "MODE");
+    value(c, a, "--csv", "--csv", "also write the rows as CSV", "OUT");
     value(c, a, "--resolution", "--resolution",
           "scoring grid: N voxels along the shortest edge (default 100)", "N");
     value(c, a, "--offset", "--offset", "shift of the scoring grid, in voxels (default 0.37)", "F");

@@ -14,7 +14,7 @@
 namespace {
 
 #if defined(MSS_FUZZ_STL) || defined(MSS_FUZZ_OBJ) || defined(MSS_FUZZ_OFF) || defined(MSS_FUZZ_PLY) ||      \
-    defined(MSS_FUZZ_NPY)
+    defined(MSS_FUZZ_NPY) || defined(MSS_FUZZ_SPHERES)
 std::string scratch(const char* ext) {
     const char* dir = std::getenv("TMPDIR");
     return std::string(dir ? dir : "/tmp") + "/mss_fuzz_" + std::to_string(::getpid()) + ext;
@@ -62,6 +62,19 @@ void run(const uint8_t* data, size_t size) {
         o.nSpheres = 2;
         (void)mss::generate(v, o);
     } catch (const std::invalid_argument&) {
+    }
+}
+#elif defined(MSS_FUZZ_SPHERES)
+// sphere files: legacy VTK (ASCII, binary), CSV and YADE text; all clumps, then clump 0
+void run(const uint8_t* data, size_t size) {
+    static const std::string path = scratch(".vtk");
+    writeFile(path, data, size);
+    for (long long clump : {-1LL, 0LL}) {
+        try {
+            const mss::SphereSet s = mss::readSpheres(path, clump);
+            mss::validateSpheres(s, "fuzz");
+        } catch (const std::invalid_argument&) {
+        }
     }
 }
 #elif defined(MSS_FUZZ_GENERATE)

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "mss/clip.hpp"     // distances to meshes, winding numbers, constraint planes
+#include "mss/compare.hpp"  // comparing any generator's spheres with a grain: frames, one table row
 #include "mss/edt.hpp"      // exact Euclidean distance transform (eq. 8)
 #include "mss/generate.hpp" // the generator (sections 3.3-3.5)
 #include "mss/grid.hpp"     // voxel grids

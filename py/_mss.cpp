@@ -305,6 +305,49 @@ py::dict scoreVoxels(const py::object& data, const py::object& shape, double vox
         mss::scoreSpheres(voxels(data, shape, voxelSize, origin), spheres(centers, radii), planes(cuts)));
 }
 
+mss::CompareOptions compareOptions(const py::dict& d) {
+    mss::CompareOptions o;
+    if (d.has_key("resolution")) o.resolution = py::extract<int>(d["resolution"]);
+    if (d.has_key("offset")) o.offset = py::extract<double>(d["offset"]);
+    if (d.has_key("planes")) o.planes = planes(d["planes"]);
+    if (d.has_key("align")) {
+        o.align = mss::parseAlign(py::extract<std::string>(d["align"]));
+        o.checkFrame = false;
+    }
+    if (d.has_key("protrusionSamples")) o.protrusionSamples = py::extract<int>(d["protrusionSamples"]);
+    return o;
+}
+
+py::dict comparison(const mss::Comparison& c) {
+    py::dict d = score(c.score);
+    d["spheres"] = c.spheres;
+    d["protrusion"] = c.protrusion;
+    d["smallestRadius"] = c.smallestRadius;
+    d["massError"] = c.massError;
+    d["centroidError"] = c.centroidError;
+    d["inertiaError"] = c.inertiaError;
+    d["insideBox"] = c.insideBox;
+    py::list R;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) R.append(c.transform.rotation(i, j));
+    d["rotation"] = R;
+    d["translation"] = list(c.transform.translation);
+    return d;
+}
+
+py::dict compareMesh(const py::object& vertices, const py::object& triangles, const py::object& centers,
+                     const py::object& radii, const py::dict& opts) {
+    return comparison(
+        mss::compareSpheres(mesh(vertices, triangles), spheres(centers, radii), compareOptions(opts)));
+}
+
+py::dict compareVoxels(const py::object& data, const py::object& shape, double voxelSize,
+                       const py::object& origin, const py::object& centers, const py::object& radii,
+                       const py::dict& opts) {
+    return comparison(mss::compareSpheres(voxels(data, shape, voxelSize, origin), spheres(centers, radii),
+                                          compareOptions(opts)));
+}
+
 py::tuple readSpheres(const std::string& path, long long clumpId) {
     const mss::SphereSet s = mss::readSpheres(path, clumpId);
     py::list c, r;
@@ -364,6 +407,12 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("scoreVoxels", scoreVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
              py::arg("radii"), py::arg("planes") = py::list()));
+    py::def("compareMesh", compareMesh,
+            (py::arg("vertices"), py::arg("triangles"), py::arg("centers"), py::arg("radii"),
+             py::arg("options")));
+    py::def("compareVoxels", compareVoxels,
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
+             py::arg("radii"), py::arg("options")));
     py::def("readSpheres", readSpheres, (py::arg("path"), py::arg("clumpId") = -1));
     py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
 }

@@ -26,7 +26,7 @@ ROOT=$(pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 total=0
-for t in stl obj off ply npy generate; do
+for t in stl obj off ply npy spheres generate; do
   mkdir -p "$work/$t"
   cp fuzz/corpus/$t/* "$work/$t/"
   (cd "$work" && "$ROOT/build-fuzz/fuzz_$t" -max_total_time="${MSS_FUZZ_SECONDS:-45}" -rss_limit_mb=2048 \

@@ -48,10 +48,10 @@ public:
     double operator()(const Vec3& v) {
         const std::array<long long, 3> key{std::llround(v.x() * 65536.0), std::llround(v.y() * 65536.0),
                                            std::llround(v.z() * 65536.0)};
-        auto it = cache_.find(key);
-        if (it != cache_.end()) return it->second;
+        auto it = cache_->find(key);
+        if (it != cache_->end()) return it->second;
         const double b = world_(g_.toWorld(v)) / g_.h;
-        cache_.emplace(key, b);
+        cache_->emplace(key, b);
         return b;
     }
 
@@ -63,7 +63,9 @@ private:
     };
     std::function<double(const Vec3&)> world_;
     GridSpec g_;
-    std::unordered_map<std::array<long long, 3>, double, KeyHash> cache_;
+    // shared by the copies std::function makes, so that every run of the optimiser uses one cache
+    std::shared_ptr<std::unordered_map<std::array<long long, 3>, double, KeyHash>> cache_ =
+        std::make_shared<std::unordered_map<std::array<long long, 3>, double, KeyHash>>();
 };
 
 /// The spheres of the method asked for, in voxel units. Under constraints (clipping with refill, planes) the

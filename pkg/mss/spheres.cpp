@@ -85,6 +85,13 @@ long long clumpIdOf(const std::string& tok) {
 SphereSet readSpheres(const std::string& path, long long clumpId) {
     std::ifstream in(path);
     if (!in) throw std::invalid_argument("readSpheres: " + path + ": cannot open file");
+    {
+        char head[5] = {};
+        in.read(head, 5);
+        if (in.gcount() == 5 && std::string(head, 5) == "# vtk") return readVtkSpheres(path);
+        in.clear();
+        in.seekg(0);
+    }
     SphereSet s;
     std::vector<long long> ids; // clump id of each sphere read, -1 without one
     std::set<long long> distinct;

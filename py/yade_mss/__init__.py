@@ -17,12 +17,12 @@ Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, the
 
 from ._results import MassProperties, MssResult, readSpheres
 from ._sources import massProperties
-from ._generate import generate, score
+from ._generate import compareMany, generate, score
 from ._clumps import mssClump, restoreClumpProperties
 from ._clumpfiles import readClumps, writeClumps
 from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
-__all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'massProperties', 'mssClump',
+__all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
            'restoreClumpProperties', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
            'mssReplaceByClumps']

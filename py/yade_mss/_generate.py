@@ -95,3 +95,34 @@ def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=N
         return _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), int(resolution), float(offset), 1,
                               cuts)
     return _mss.scoreVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist(), cuts)
+
+
+def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes=(), clumpId=None, voxelSize=None,
+                origin=None, label=None):
+    """Compares sphere files (or :class:`MssResult` objects) of any generator with a grain, one row each, as
+    ``mss compare GRAIN A B C`` prints them.
+
+    :param spheres: a list of sphere files (CLUMP's ``x,y,z,r`` in its Python or MATLAB form, legacy VTK, YADE
+        text clumps with ``clumpId``, ours) or results
+    :param str align: None (a set in another frame is refused, with a hint), 'centroid', 'bbox', 'principal', or
+        'none' (as written, no check)
+    :return: list of dicts: file, spheres, dice, eta, volumeRatio, coverage, outside, protrusion (largest, world
+        units), smallestRadius, massError, centroidError, inertiaError (the union against the grain), rotation
+        (3x3) and translation of the registration applied
+    """
+    items = list(spheres) if isinstance(spheres, (list, tuple)) else [spheres]
+    opts = {'resolution': int(resolution), 'offset': float(offset), 'planes': [_plane(p) for p in planes]}
+    if align is not None:  # 'none': as written, even in another frame
+        opts['align'] = str(align)
+    s = _source(target, voxelSize, origin, label)
+    rows = []
+    for item in items:
+        sp = item if isinstance(item, MssResult) else readSpheres(item, clumpId)
+        if isinstance(s, _Mesh):
+            row = _mss.compareMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), opts)
+        else:
+            row = _mss.compareVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist(), opts)
+        row['file'] = sp.source if isinstance(item, MssResult) else str(item)
+        row['rotation'] = [row['rotation'][3 * i:3 * i + 3] for i in range(3)]
+        rows.append(row)
+    return rows

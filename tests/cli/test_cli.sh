@@ -56,8 +56,27 @@ dice=$(awk '/^dice/{print $2}' "$TMP/cmp.log")
 check "compare dice < 0.1 for 6 spheres ($dice)" awk -v d="$dice" 'BEGIN{exit !(d > 0 && d < 0.1)}'
 # a deliberately bad sphere set scores badly
 printf 'x,y,z,r\n5,5,5,0.5\n' > "$TMP/bad.csv"
-"$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/bad.csv" --resolution 30 > "$TMP/cmp2.log"
-check "a sphere outside the grain scores outside = 1" grep -qE '^outside +1$' "$TMP/cmp2.log"
+expect_error "a sphere wholly outside the grain's box: another frame?" "another frame" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/bad.csv"
+"$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/bad.csv" --resolution 30 --align none > "$TMP/cmp2.log"
+check "--align none scores it as written: outside = 1" grep -qE '^outside +1$' "$TMP/cmp2.log"
+
+# comparisons with real CLUMP outputs (tests/data/clump): every format they write, frames, one table
+C="$DATA/clump"
+"$MSS" compare "$DATA/human_femur.stl" "$C/FA_femur_N70_min.vtk" > "$TMP/fa.log"
+d=$(awk '/^dice/{print $2}' "$TMP/fa.log")
+check "CLUMP Favier VTK of the femur reads and scores D 0.604 +- 0.02 ($d)" awk -v d="$d" 'BEGIN{exit !(d > 0.584 && d < 0.624)}'
+check "compare reports the largest protrusion" grep -qE '^protrusion +[0-9.]+' "$TMP/fa.log"
+expect_error "CLUMP Euclidean femur as written: another frame, --align suggested" "register it with --align bbox" \
+  "$MSS" compare "$DATA/human_femur.stl" "$C/EU_femur_N70_div150_rMin4_ov0.95.txt"
+d=$("$MSS" compare "$DATA/human_femur.stl" "$C/EU_femur_N70_div150_rMin4_ov0.95.txt" --align bbox | awk '/^dice/{print $2}')
+check "--align bbox: D <= 0.085 ($d)" awk -v d="$d" 'BEGIN{exit !(d > 0 && d <= 0.085)}'
+printf ' -1.800000, -0.000000, -0.000000,  0.200000\r\n' > "$TMP/matlab.txt"
+tail -n +2 "$C/FA_ellipsoid_N10_min.txt" | awk -F, '{printf "%10f,%10f,%10f,%10f\r\n", $1, $2, $3, $4}' >> "$TMP/matlab.txt"
+"$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$C/FA_ellipsoid_N10_min.txt" "$TMP/matlab.txt" "$C/FA_ellipsoid_N10_min.vtk" --csv "$TMP/table.csv" > "$TMP/table.log"
+check "one table, one row per file (3 rows + header)" [ "$(wc -l < "$TMP/table.csv")" -eq 4 ]
+check "CLUMP's MATLAB form reads as its Python form (same D)" \
+  bash -c "[ \"\$(sed -n 2p $TMP/table.csv | cut -d, -f3)\" = \"\$(sed -n 3p $TMP/table.csv | cut -d, -f3)\" ]"
+expect_error "bad --align" "align must be none, centroid, bbox or principal" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$C/FA_ellipsoid_N10_min.txt" --align box
 
 # info
 "$MSS" info "$DATA/human_femur.stl" > "$TMP/info.log"

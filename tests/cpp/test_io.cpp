@@ -250,3 +250,55 @@ TEST(Npy, BadArraysGetClearErrors) {
     expectError([&] { readNpy(p); }, "magic");
     std::remove(p.c_str());
 }
+
+TEST(SpheresIo, LegacyVtkAsciiBinaryAndWhatItCannotRead) {
+    // CLUMP's outputVTK= (ASCII, no VERTICES) and our own .vtk (VERTICES)
+    const SphereSet fa = readSpheres(kData + "/clump/FA_ellipsoid_N10_min.vtk");
+    const SphereSet faText = readSpheres(kData + "/clump/FA_ellipsoid_N10_min.txt");
+    ASSERT_EQ(fa.size(), 10u);
+    for (std::size_t i = 0; i < fa.size(); ++i) {
+        EXPECT_NEAR(fa.radii[i], faText.radii[i], 1e-6 * faText.radii[i]); // float in the VTK file
+        EXPECT_NEAR((fa.centers[i] - faText.centers[i]).norm(), 0.0, 1e-6);
+    }
+    SphereSet s;
+    s.add(Vec3(1, 2, 3), 0.5);
+    s.add(Vec3(-1, 0.25, 7), 1.5);
+    const std::string ours = tempPath("ours.vtk");
+    writeSpheres(s, ours);
+    const SphereSet back = readSpheres(ours);
+    EXPECT_EQ(back.centers, s.centers);
+    EXPECT_EQ(back.radii, s.radii);
+    // BINARY: big-endian float points and double radii
+    const SphereSet bin = readSpheres(kData + "/binary_spheres.vtk");
+    ASSERT_EQ(bin.size(), 3u);
+    EXPECT_EQ(bin.centers[2], Vec3(0, 2, 0));
+    EXPECT_EQ(bin.radii[1], 0.6);
+    const std::string p = tempPath("bad.vtk");
+    auto write = [&](const std::string& text) {
+        std::ofstream o(p, std::ios::binary);
+        o << text;
+    };
+    write("# vtk DataFile Version 3.0\nx\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 1 float\n0 0 0\n");
+    expectError([&] { readSpheres(p); }, "only POLYDATA point sets are read");
+    write("# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\nPOINTS 2 float\n0 0 0 1 1 1\n"
+          "POINT_DATA 2\nSCALARS size float 1\nLOOKUP_TABLE default\n1 2\n");
+    expectError([&] { readSpheres(p); }, "no point array named radius (arrays: size)");
+    write("# vtk DataFile Version 3.0\nx\nBINARY\nDATASET POLYDATA\nPOINTS 1000 double\n1234");
+    expectError([&] { readSpheres(p); }, "3000 values announced, more than the file holds");
+    std::remove(p.c_str());
+    std::remove(ours.c_str());
+}
+
+TEST(SpheresIo, ClumpMatlabFormatWithCrlf) {
+    // CLUMP's MATLAB version: dlmwrite(..., '%10f'): padded fixed-point numbers, here with CRLF line ends
+    const std::string p = tempPath("matlab.txt");
+    {
+        std::ofstream o(p, std::ios::binary);
+        o << " -1.800000, -0.000000,  0.000000,  0.200000\r\n  0.600000,  1.250000, -2.000000,  0.824924\r\n";
+    }
+    const SphereSet s = readSpheres(p);
+    ASSERT_EQ(s.size(), 2u);
+    EXPECT_EQ(s.centers[1], Vec3(0.6, 1.25, -2.0));
+    EXPECT_EQ(s.radii[1], 0.824924);
+    std::remove(p.c_str());
+}

@@ -200,6 +200,32 @@ class Files(unittest.TestCase):
         self.assertEqual(len(generate(b, nSpheres=2)), 2)
 
 
+class Comparisons(unittest.TestCase):
+    def test_compare_many_reads_every_clump_format(self):
+        from yade_mss import compareMany
+        C = os.path.join(DATA, 'clump')
+        rows = compareMany(ELL, [os.path.join(C, 'FA_ellipsoid_N10_min.txt'), os.path.join(C, 'FA_ellipsoid_N10_min.vtk'),
+                                 generate(ELL, nSpheres=10, resolution=60)])
+        self.assertEqual([r['spheres'] for r in rows], [10, 10, 10])
+        self.assertAlmostEqual(rows[0]['dice'], rows[1]['dice'], places=4)  # the text and the VTK file agree
+        self.assertAlmostEqual(rows[0]['dice'], 0.0114, delta=0.001)  # shared/data/clump/README.md
+        self.assertLess(rows[2]['dice'], rows[0]['dice'])
+        for r in rows:
+            self.assertGreaterEqual(r['protrusion'], 0.0)
+            self.assertLess(abs(r['massError']), 0.1)
+
+    def test_another_frame_is_refused_then_aligned(self):
+        from yade_mss import compareMany
+        eu = os.path.join(DATA, 'clump', 'EU_femur_N70_div150_rMin4_ov0.95.txt')
+        with self.assertRaises(ValueError) as ctx:
+            compareMany(FEMUR, [eu])
+        self.assertIn("align=", str(ctx.exception))
+        row = compareMany(FEMUR, [eu], align='bbox')[0]
+        self.assertLessEqual(row['dice'], 0.085)
+        self.assertGreater(np.linalg.norm(row['translation']), 100)
+        self.assertEqual(compareMany(FEMUR, [eu], align='none')[0]['dice'], 1.0)  # as written: no overlap
+
+
 class Scoring(unittest.TestCase):
     def test_score_prefers_more_spheres(self):
         few = score(FEMUR, generate(FEMUR, nSpheres=5, resolution=40), resolution=50)

@@ -20,9 +20,9 @@ struct Selection {
     const VoxelGrid& S;
     const ScalarGrid& E;
     const GenerateOptions& opt;
-    const BoundVox& bound;
-    const double rMinVox;       ///< smallest radius (voxels): rMin, and never under half a voxel
-    Coverage cov;               ///< coverage of S by the chosen orbits' balls
+    const BoundVox bound; ///< a copy: a temporary may be passed (copies of a CachedBound share its cache)
+    const double rMinVox; ///< smallest radius (voxels): rMin, and never under half a voxel
+    Coverage cov;         ///< coverage of S by the chosen orbits' balls
     bool exactSymmetry = false; ///< S is exactly invariant under the mirror planes
     const Symmetry sym;
     const Targets t;
