@@ -15,6 +15,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <vector>
 
 namespace {
@@ -72,6 +74,30 @@ mss::Vec3 vec3(const Args& a, const std::string& key) {
     mss::Vec3 v;
     if (!(is >> v.x() >> v.y() >> v.z())) throw std::invalid_argument(key + ": expected X,Y,Z");
     return v;
+}
+
+/// Runs the pictures (yade_mss._pictures, matplotlib) in Debian's python3: `mss preview`, `mss curve` and
+/// `mss generate --preview`. The build tree's package comes first, so an uninstalled build draws with its own
+/// code. @return the exit status.
+int runPictures(const std::vector<std::string>& args) {
+    std::string path = MSS_PY_BUILD_DIR;
+    if (const char* old = std::getenv("PYTHONPATH")) path += std::string(":") + old;
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("cannot start python3 for the pictures");
+    if (pid == 0) {
+        setenv("PYTHONPATH", path.c_str(), 1);
+        std::vector<std::string> all{MSS_PYTHON, "-m", "yade_mss._pictures"};
+        all.insert(all.end(), args.begin(), args.end());
+        std::vector<char*> argv;
+        for (std::string& a : all) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        execv(MSS_PYTHON, argv.data());
+        std::perror("mss: cannot run " MSS_PYTHON);
+        _exit(127);
+    }
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
 /// Writes @p text to @p path through a temporary file and a rename.
@@ -178,7 +204,13 @@ int cmdGenerate(const Args& a) {
     mss::writeSpheres(r.spheres, out);
     r.metrics.secondsTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     printMetrics(r);
-    std::cout << "wrote       " << out << "\n";
+    std::cout << "wrote       " << out << std::endl;
+    if (a.has("--preview")) {
+        std::vector<std::string> args{"preview", in, out, "-o", a.opts.at("--preview")};
+        for (const char* k : {"--npy-voxel-size", "--origin", "--label"})
+            if (a.has(k)) args.insert(args.end(), {k, a.opts.at(k)});
+        if (runPictures(args) != 0) throw std::runtime_error("the preview could not be drawn (see above)");
+    }
     return 0;
 }
 
@@ -392,6 +424,7 @@ CLI::App* generateCommand(CLI::App& app, Args& a) {
     value(g, a, "--max-iterations", "--max-iterations", "iteration cap (default 100)", "N");
     value(g, a, "--threads", "--threads", "OpenMP threads (the result is the same for any T)", "T");
     value(g, a, "--memory-limit", "--memory-limit", "refuse grids needing more (default 8)", "GIB");
+    value(g, a, "--preview", "--preview", "also draw the clump against the grain (as mss preview)", "PNG");
     voxelOptions(g, a);
     return g;
 }
@@ -442,9 +475,22 @@ int main(int argc, char** argv) {
     CLI::App* gen = generateCommand(app, a);
     CLI::App* cmp = compareCommand(app, a);
     CLI::App* inf = infoCommand(app, a);
+    app.add_subcommand("preview",
+                       "draw a clump against its grain (PNG): mss preview GRAIN SPHERES -o OUT.png");
+    app.add_subcommand(
+        "curve", "D and time against the sphere count (PNG, CSV): mss curve GRAIN --spheres A:B -o OUT.png");
     const std::string first = argc > 1 ? argv[1] : "";
+    if (first == "preview" || first == "curve") { // drawn by python3 with matplotlib: options and help there
+        try {
+            return runPictures(std::vector<std::string>(argv + 1, argv + argc));
+        } catch (const std::exception& e) {
+            std::cerr << "mss " << first << ": error: " << e.what() << "\n";
+            return 1;
+        }
+    }
     if (!first.empty() && first[0] != '-' && first != "generate" && first != "compare" && first != "info") {
-        std::cerr << "mss: unknown command '" << argv[1] << "' (generate, compare or info; mss --help)\n";
+        std::cerr << "mss: unknown command '" << argv[1]
+                  << "' (generate, compare, info, preview or curve; mss --help)\n";
         return 2;
     }
     try {

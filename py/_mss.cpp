@@ -239,6 +239,18 @@ py::tuple readNpy(const std::string& path, long long label) {
         py::make_tuple(v.nx(), v.ny(), v.nz()));
 }
 
+/// A mesh voxelised (voxel centres inside, section 2.2) on a grid of @p resolution voxels along its shortest
+/// edge: (bytes x fastest, dims, voxel size, origin), as readNpy gives them.
+py::tuple voxelizeMesh(const py::object& vertices, const py::object& triangles, int resolution) {
+    mss::Resolution r;
+    r.resolution = resolution;
+    const mss::VoxelGrid v = mss::voxelizeMesh(mesh(vertices, triangles), r);
+    const std::string bytes(reinterpret_cast<const char*>(v.data.data()), v.data.size());
+    return py::make_tuple(
+        py::object(py::handle<>(PyBytes_FromStringAndSize(bytes.data(), Py_ssize_t(bytes.size())))),
+        py::make_tuple(v.nx(), v.ny(), v.nz()), v.spec.h, list(v.spec.origin));
+}
+
 py::dict meshInfo(const py::object& vertices, const py::object& triangles) {
     const mss::MeshInfo i = mss::analyzeMesh(mesh(vertices, triangles));
     py::dict d;
@@ -322,6 +334,9 @@ py::dict comparison(const mss::Comparison& c) {
     py::dict d = score(c.score);
     d["spheres"] = c.spheres;
     d["protrusion"] = c.protrusion;
+    py::list each;
+    for (double v : c.sphereProtrusion) each.append(v);
+    d["sphereProtrusion"] = each;
     d["smallestRadius"] = c.smallestRadius;
     d["massError"] = c.massError;
     d["centroidError"] = c.centroidError;
@@ -388,6 +403,7 @@ BOOST_PYTHON_MODULE(_mss) {
     py::scope().attr("__doc__") = "yade-mss core (C++). Use the yade_mss package, which wraps this module.";
     py::def("readMesh", readMesh, (py::arg("path")), "Mesh file -> (flat vertices, flat triangles).");
     py::def("readNpy", readNpy, (py::arg("path"), py::arg("label") = -1));
+    py::def("voxelizeMesh", voxelizeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("resolution")));
     py::def("meshInfo", meshInfo, (py::arg("vertices"), py::arg("triangles")));
     py::def("generateMesh", generateMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("resolution"), py::arg("options"),

@@ -160,14 +160,16 @@ Comparison compareSpheres(const TriangleMesh& target, const SphereSet& spheres, 
     massFigures(c, s, grain, info.lower, info.upper);
     const MeshQuery q(grainMesh);
     const std::vector<Vec3> dirs = spherePoints(std::max(o.protrusionSamples, 1));
+    c.sphereProtrusion.assign(s.size(), 0.0);
     for (std::size_t i = 0; i < s.size(); ++i) {
         const Vec3& x = s.centers[i];
         const double r = s.radii[i];
         if (q.inside(x) && q.distance(x) >= r) continue; // the whole ball is inside
         for (const Vec3& d : dirs) {
             const Vec3 p = x + r * d;
-            if (!q.inside(p)) c.protrusion = std::max(c.protrusion, q.distance(p));
+            if (!q.inside(p)) c.sphereProtrusion[i] = std::max(c.sphereProtrusion[i], q.distance(p));
         }
+        c.protrusion = std::max(c.protrusion, c.sphereProtrusion[i]);
     }
     return c;
 }
@@ -201,6 +203,7 @@ Comparison compareSpheres(const VoxelGrid& target, const SphereSet& spheres, con
     for (std::size_t q = 0; q < background.size(); ++q) background.data[q] = grainVoxels.data[q] ? 0 : 1;
     const ScalarGrid away = distanceTransform(background);
     const std::vector<Vec3> dirs = spherePoints(std::max(o.protrusionSamples, 1));
+    c.sphereProtrusion.assign(s.size(), 0.0);
     for (std::size_t i = 0; i < s.size(); ++i)
         for (const Vec3& d : dirs) {
             const Vec3 v = g.toVoxel(s.centers[i] + s.radii[i] * d);
@@ -216,7 +219,8 @@ Comparison compareSpheres(const VoxelGrid& target, const SphereSet& spheres, con
                                    std::clamp(v.z(), 0.0, g.dims[2] - 1.0));
                 e = (v - clamped).norm() + away(int(clamped.x()), int(clamped.y()), int(clamped.z()));
             }
-            c.protrusion = std::max(c.protrusion, (e - 0.5) * g.h);
+            c.sphereProtrusion[i] = std::max(c.sphereProtrusion[i], (e - 0.5) * g.h);
+            c.protrusion = std::max(c.protrusion, c.sphereProtrusion[i]);
         }
     return c;
 }

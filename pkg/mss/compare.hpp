@@ -41,13 +41,14 @@ struct CompareOptions {
 struct Comparison {
     Score score;
     std::size_t spheres = 0;
-    double protrusion = 0.0;     ///< largest distance of a sphere's surface point outside the grain (world)
-    double smallestRadius = 0.0; ///< world units
-    double massError = 0.0;      ///< (V_union - V) / V
-    double centroidError = 0.0;  ///< |c_union - c| / the grain's bounding-box diagonal
-    double inertiaError = 0.0;   ///< ||I_union - I|| / ||I|| (Frobenius, about each one's centroid)
-    double insideBox = 0.0;      ///< share of the spheres' volume inside the grain's bounding box, as given
-    RigidTransform transform;    ///< applied before scoring (identity without alignment)
+    double protrusion = 0.0; ///< largest distance of a sphere's surface point outside the grain (world)
+    std::vector<double> sphereProtrusion; ///< the same for each sphere
+    double smallestRadius = 0.0;          ///< world units
+    double massError = 0.0;               ///< (V_union - V) / V
+    double centroidError = 0.0;           ///< |c_union - c| / the grain's bounding-box diagonal
+    double inertiaError = 0.0;            ///< ||I_union - I|| / ||I|| (Frobenius, about each one's centroid)
+    double insideBox = 0.0;   ///< share of the spheres' volume inside the grain's bounding box, as given
+    RigidTransform transform; ///< applied before scoring (identity without alignment)
 };
 
 /// Compares a sphere set with a mesh. Without alignment, a set most of whose volume (over half) lies outside

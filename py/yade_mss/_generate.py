@@ -75,7 +75,9 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
         target = MassProperties._fromDict(_mss.massVoxels(*s.args(), opts['planes']))
     for w in d['metrics'].get('warnings', []):
         warnings.warn('%s: %s' % (s.name, w))
-    return MssResult(d['centers'], d['radii'], d['metrics'], d['grid'], target, s.name)
+    r = MssResult(d['centers'], d['radii'], d['metrics'], d['grid'], target, s.name)
+    r.grain = source if label is None else None  # a labelled volume needs its label again: not kept
+    return r
 
 
 # the keywords generate() takes besides the source: what mssClump and friends pass through

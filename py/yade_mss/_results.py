@@ -57,6 +57,7 @@ class MssResult(object):
         self.grid = grid
         self.targetMass = targetMass
         self.source = source
+        self.grain = None  # what it was generated from (a path, an array, (vertices, triangles)); not saved
         self._unionMass = None
 
     def __len__(self):
@@ -76,6 +77,18 @@ class MssResult(object):
         """Radius of the smallest ball about *center* (default: the union's centre of mass) holding every sphere."""
         c = self.unionMass().centroid if center is None else np.asarray(center, dtype=float)
         return float(np.max(np.linalg.norm(self.centers - c, axis=1) + self.radii))
+
+    def preview(self, path, grain=None, **kw):
+        """Draws these spheres against the grain (default: the one they were generated from) into a PNG; see
+        ``yade_mss._pictures.preview`` (three views, a section, n, D and the largest protrusion).
+
+        :return: the comparison row (dice, protrusion, ...)
+        """
+        from ._pictures import preview
+        g = self.grain if grain is None else grain
+        if g is None:
+            raise ValueError('MssResult.preview: give the grain (this result does not know what it was made from)')
+        return preview(g, self, path, title=kw.pop('title', self.source or None), **kw)
 
     def save(self, path):
         """Writes the result by extension: ``.npz`` (everything, for :meth:`load`), or the sphere files of the

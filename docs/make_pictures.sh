@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# Redraws the README's pictures of the femur with the command line: mss preview (40 spheres against the mesh)
+# and mss curve (D and time for 5 to 100 spheres, CLUMP's real outputs as points).
+# usage: bash docs/make_pictures.sh   (after bash scripts/setup.sh)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+MSS=./build/mss
+FEMUR=tests/data/human_femur.stl
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+$MSS generate $FEMUR --spheres 40 --resolution 103 -o "$tmp/femur_40.txt" --preview docs/femur40_preview.png
+$MSS curve $FEMUR --spheres 5:100 -o docs/femur_curve.png \
+  --compare tests/data/clump/FA_femur_N70_min.txt tests/data/clump/FM_femur_n70_dmin2_rmin1_rstep0.1_seed5.txt
