@@ -76,17 +76,17 @@ mss::Vec3 vec3(const Args& a, const std::string& key) {
     return v;
 }
 
-/// Runs the pictures (yade_mss._pictures, matplotlib) in Debian's python3: `mss preview`, `mss curve` and
-/// `mss generate --preview`. The build tree's package comes first, so an uninstalled build draws with its own
-/// code. @return the exit status.
-int runPictures(const std::vector<std::string>& args) {
+/// Runs a module of the package in Debian's python3: the pictures (yade_mss._pictures: `mss preview`, `mss
+/// curve`, `mss generate --preview`) and the batch (yade_mss._batch: `mss batch`). The build tree's package
+/// comes first, so an uninstalled build draws with its own code. @return the exit status.
+int runPython(const std::string& module, const std::vector<std::string>& args) {
     std::string path = MSS_PY_BUILD_DIR;
     if (const char* old = std::getenv("PYTHONPATH")) path += std::string(":") + old;
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start python3 for the pictures");
     if (pid == 0) {
         setenv("PYTHONPATH", path.c_str(), 1);
-        std::vector<std::string> all{MSS_PYTHON, "-m", "yade_mss._pictures"};
+        std::vector<std::string> all{MSS_PYTHON, "-m", module};
         all.insert(all.end(), args.begin(), args.end());
         std::vector<char*> argv;
         for (std::string& a : all) argv.push_back(a.data());
@@ -209,7 +209,8 @@ int cmdGenerate(const Args& a) {
         std::vector<std::string> args{"preview", in, out, "-o", a.opts.at("--preview")};
         for (const char* k : {"--npy-voxel-size", "--origin", "--label"})
             if (a.has(k)) args.insert(args.end(), {k, a.opts.at(k)});
-        if (runPictures(args) != 0) throw std::runtime_error("the preview could not be drawn (see above)");
+        if (runPython("yade_mss._pictures", args) != 0)
+            throw std::runtime_error("the preview could not be drawn (see above)");
     }
     return 0;
 }
@@ -479,10 +480,14 @@ int main(int argc, char** argv) {
                        "draw a clump against its grain (PNG): mss preview GRAIN SPHERES -o OUT.png");
     app.add_subcommand(
         "curve", "D and time against the sphere count (PNG, CSV): mss curve GRAIN --spheres A:B -o OUT.png");
+    app.add_subcommand(
+        "batch", "a labelled CT volume or a folder of grains to a DEM assembly: mss batch INPUT... -o DIR");
     const std::string first = argc > 1 ? argv[1] : "";
-    if (first == "preview" || first == "curve") { // drawn by python3 with matplotlib: options and help there
+    if (first == "preview" || first == "curve" ||
+        first == "batch") { // run by python3: options and help there
         try {
-            return runPictures(std::vector<std::string>(argv + 1, argv + argc));
+            const std::vector<std::string> rest(argv + (first == "batch" ? 2 : 1), argv + argc);
+            return runPython(first == "batch" ? "yade_mss._batch" : "yade_mss._pictures", rest);
         } catch (const std::exception& e) {
             std::cerr << "mss " << first << ": error: " << e.what() << "\n";
             return 1;
@@ -490,7 +495,7 @@ int main(int argc, char** argv) {
     }
     if (!first.empty() && first[0] != '-' && first != "generate" && first != "compare" && first != "info") {
         std::cerr << "mss: unknown command '" << argv[1]
-                  << "' (generate, compare, info, preview or curve; mss --help)\n";
+                  << "' (generate, compare, info, preview, curve or batch; mss --help)\n";
         return 2;
     }
     try {

@@ -12,7 +12,9 @@ Units are those of the input file. Densities come from the material, as in :yref
 
 Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, their mass properties),
 ``_generate`` (generation, scoring), ``_loads`` (the sums that make YADE clumps exact, numpy only),
-``_clumps`` (YADE clumps), ``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings).
+``_clumps`` (YADE clumps), ``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings),
+``_specimen`` (labelled volumes, synthetic specimens), ``_batch`` (mss batch), ``_assembly`` (specimens in YADE),
+``_pictures`` (mss preview, mss curve).
 """
 
 from ._results import MassProperties, MssResult, readSpheres
@@ -21,8 +23,11 @@ from ._generate import compareMany, generate, score
 from ._clumps import mssClump, restoreClumpProperties
 from ._clumpfiles import readClumps, writeClumps
 from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate
+from ._batch import batch
+from ._assembly import mssAssembly
+from ._specimen import regions, syntheticSpecimen
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
            'restoreClumpProperties', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
-           'mssReplaceByClumps']
+           'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen']

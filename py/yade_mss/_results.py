@@ -90,7 +90,7 @@ class MssResult(object):
             raise ValueError('MssResult.preview: give the grain (this result does not know what it was made from)')
         return preview(g, self, path, title=kw.pop('title', self.source or None), **kw)
 
-    def save(self, path):
+    def save(self, path, compress=True):
         """Writes the result by extension: ``.npz`` (everything, for :meth:`load`), or the sphere files of the
         command line: ``.csv`` (x,y,z,r), ``.txt`` (YADE text clump, ``ymport.textClumps``), ``.vtk`` (ParaView).
         Written atomically."""
@@ -106,7 +106,8 @@ class MssResult(object):
                 'targetMass': self.targetMass._toDict() if self.targetMass is not None else None, 'version': 1}
         tmp = path + '.tmp%d.npz' % os.getpid()
         try:
-            np.savez_compressed(tmp, centers=self.centers, radii=self.radii, meta=np.array(json.dumps(meta)))
+            (np.savez_compressed if compress else np.savez)(tmp, centers=self.centers, radii=self.radii,
+                                                            meta=np.array(json.dumps(meta)))
             os.replace(tmp, path)
         except OSError as e:
             if os.path.exists(tmp):

@@ -78,6 +78,12 @@ check "CLUMP's MATLAB form reads as its Python form (same D)" \
   bash -c "[ \"\$(sed -n 2p $TMP/table.csv | cut -d, -f3)\" = \"\$(sed -n 3p $TMP/table.csv | cut -d, -f3)\" ]"
 expect_error "bad --align" "align must be none, centroid, bbox or principal" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$C/FA_ellipsoid_N10_min.txt" --align box
 
+# batch: a labelled volume to an assembly, through the mss command
+"$MSS" batch "$DATA/two_grains_labels.npy" -o "$TMP/batch" --spheres 5 --voxel-size 0.001 --workers 1 > "$TMP/batch.log"
+check "batch: both grains ok in grains.csv" [ "$(grep -c ',ok,' "$TMP/batch/grains.csv")" -eq 2 ]
+check "batch: assembly with two clumps" [ "$(grep -c '^#mss clump' "$TMP/batch/assembly.txt")" -eq 2 ]
+expect_error "batch without -o" "required" "$MSS" batch "$DATA/two_grains_labels.npy" --spheres 5
+
 # info
 "$MSS" info "$DATA/human_femur.stl" > "$TMP/info.log"
 check "info reports 13752 triangles" grep -qE '^triangles +13752' "$TMP/info.log"

@@ -167,6 +167,37 @@ class Packing(Base):
         self.assertEqual(sorted(k for c, k in restoreClumpProperties()), ['grain'] * n)
 
 
+class Assembly(Base):
+    def test_labelled_volume_and_finished_batch_directory(self):
+        import tempfile
+        from yade_mss import batch, mssAssembly, regions, syntheticSpecimen
+        L = syntheticSpecimen((80, 80, 80), 8, size=(5, 10), seed=4)
+        h, origin = 1e-4, (0.01, 0.02, 0.0)
+        clumps = mssAssembly(L, voxelSize=h, origin=origin, nSpheres=6, material='grain')
+        rs = {r.label: r for r in regions(L)}
+        self.assertEqual(sorted(clumps), sorted(rs))
+        for lab, (cid, ids) in clumps.items():
+            st = O.bodies[cid].state
+            self.assertLess(abs(st.mass / (2000 * rs[lab].voxels * h ** 3) - 1), 1e-9)  # the grain's own mass
+            c = np.array(origin) + h * np.argwhere(L == lab).mean(axis=0)
+            np.testing.assert_allclose(vec(st.pos), c, atol=1e-9)  # at its true position
+            self.assertEqual(len(ids), 6)
+        n = len(O.bodies)
+        with tempfile.TemporaryDirectory() as d:
+            batch(L, d, workers=1, nSpheres=6, voxelSize=h, origin=origin, progress=False)
+            again = mssAssembly(d, material='grain')
+            self.assertEqual(sorted(again), sorted(clumps))
+            for lab in clumps:  # the same clumps from the directory
+                a, b = O.bodies[clumps[lab][0]].state, O.bodies[again[lab][0]].state
+                self.assertEqual(a.mass, b.mass)
+                np.testing.assert_allclose(vec(a.pos), vec(b.pos), atol=1e-12)
+            with self.assertRaises(ValueError):
+                mssAssembly(d, nSpheres=3)  # nothing is generated for a finished batch
+        self.assertEqual(len(O.bodies), 2 * n)  # as many again from the directory, none by the refusal
+        with self.assertRaises(TypeError):
+            mssAssembly(L, voxelSize=h, nSphere=3)
+
+
 if __name__ == '__main__':
     result = unittest.main(exit=False, verbosity=2).result
     print('%d passed, %d failed' % (result.testsRun - len(result.failures) - len(result.errors),

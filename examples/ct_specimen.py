@@ -1,0 +1,57 @@
+# A labelled CT volume to a DEM assembly, then compressed: every grain of the specimen becomes a clump at its
+# true position with its exact mass properties (mssAssembly; the same as `mss batch` then mssAssembly(OUTDIR)),
+# inside a box whose lid then moves down. Prints the assembly's figures and the lid's force against its travel.
+# Run: yade -n -x examples/ct_specimen.py       (MSS_SHORT=1 for a short run)
+# Environment: MSS_SPECIMEN  a labelled volume (.npy or .tif, 0 is background; voxel edge MSS_VOXEL_SIZE, m);
+#              by default a synthetic specimen of 40 irregular grains (yade_mss.syntheticSpecimen).
+import os
+import time
+
+import numpy as np
+from yade import utils
+from yade_mss import mssAssembly, regions, syntheticSpecimen
+
+short = os.environ.get('MSS_SHORT') == '1'
+h = float(os.environ.get('MSS_VOXEL_SIZE', '2e-5'))  # 20 micrometre voxels: grains of about 0.4 mm
+source = os.environ.get('MSS_SPECIMEN') or syntheticSpecimen((100, 100, 100) if short else (160, 160, 160),
+                                                             20 if short else 40, seed=3)
+labels = np.load(source) if isinstance(source, str) and source.endswith('.npy') else source
+sand = O.materials.append(FrictMat(young=5e7, poisson=0.3, frictionAngle=0.5, density=2650, label='sand'))
+t0 = time.perf_counter()
+clumps = mssAssembly(source, voxelSize=h, nSpheres=12, minVoxels=100, material=sand)
+print('assembly     %d grains as clumps (%d spheres) in %.2f s' % (len(clumps), sum(len(m) for c, m in clumps.values()),
+                                                                     time.perf_counter() - t0))
+# the grains' exact volumes against their voxel counts: the clumps carry the grains' own mass
+counts = {r.label: r.voxels for r in regions(labels)}
+err = max(abs(O.bodies[c].state.mass / (2650 * counts[k] * h ** 3) - 1) for k, (c, m) in clumps.items())
+print('mass         largest error against the voxel counts %.1e' % err)
+if err > 1e-9:
+    raise SystemExit('a clump does not carry its grain\'s mass')
+
+# a box around the specimen, its lid moving down at constant speed
+lo = np.array([min(O.bodies[i].state.pos[a] - O.bodies[i].shape.radius for c, m in clumps.values() for i in m)
+               for a in range(3)])
+hi = np.array([max(O.bodies[i].state.pos[a] + O.bodies[i].shape.radius for c, m in clumps.values() for i in m)
+               for a in range(3)])
+walls = [O.bodies.append(utils.wall(lo[a], axis=a, sense=1, material=sand)) for a in range(3)]
+walls += [O.bodies.append(utils.wall(hi[a], axis=a, sense=-1, material=sand)) for a in range(2)]
+lid = O.bodies.append(utils.wall(hi[2], axis=2, sense=-1, material=sand))
+O.engines = [
+    ForceResetter(),
+    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
+    NewtonIntegrator(damping=0.4, gravity=(0, 0, -9.81)),
+]
+O.dt = 0.5 * utils.PWaveTimeStep()
+height = hi[2] - lo[2]
+speed = 0.2 * height / (2000 * O.dt)  # 20% of the height in 2000 steps
+O.bodies[lid].state.vel = (0, 0, -speed)
+O.bodies[lid].state.blockedDOFs = 'xyzXYZ'
+print('%10s %12s' % ('travel', 'lid force'))
+for step in range(5 if short else 10):
+    O.run(200 if short else 200, True)
+    travel = hi[2] - O.bodies[lid].state.pos[2]
+    print('%10.3e %12.4e' % (travel, abs(O.forces.f(lid)[2])))
+if not all(np.isfinite(O.bodies[c].state.pos).all() for c, m in clumps.values()):
+    raise SystemExit('a clump left the box')

@@ -1,0 +1,408 @@
+"""From a CT specimen or a folder of grains to a DEM assembly: ``mss batch`` (``python3 -m yade_mss._batch``).
+
+Each grain is cropped to its bounding box plus the double zero hull (eq. 6), generated single-threaded, placed
+at its true position, and written atomically to OUTDIR/grains/ (``KEY.npz`` result, ``KEY.csv`` spheres, then
+``KEY.json``, the mark that it is done and with which options). A rerun with the same options skips what is
+done, so an interrupted run loses nothing already written. Grains run side by side in processes
+(``--workers``) or as tasks on a Dask cluster (``--scheduler``); only a grain's cropped sub-volume travels. The
+results do not depend on which way or worker ran what (generation is deterministic, one thread per grain).
+At the end: ``assembly.txt`` (every sphere, ``x y z r clumpId``, with each clump's exact mass properties on a
+``#mss clump`` line for ``readClumps``), ``grains.csv`` and ``report.html``.
+"""
+
+import argparse
+import csv
+import hashlib
+import json
+import os
+import sys
+import time
+
+import numpy as np
+
+from ._generate import GENERATE_OPTIONS
+from ._results import MssResult
+from ._specimen import _VOLUME_EXT, readVolume, regions
+from ._sources import _MESH_EXT
+
+COLUMNS = ['label', 'file', 'status', 'voxels', 'spheres', 'dice', 'eta', 'seconds', 'touches_border', 'message']
+
+
+class GrainTask(object):
+    """One grain to generate: a cropped sub-volume (with its world origin) or a file; small enough to send."""
+
+    def __init__(self, key, options, label=None, path=None, crop=None, voxelSize=None, origin=None, voxels=0,
+                 touchesBorder=False):
+        self.key, self.options, self.label, self.path = key, options, label, path
+        self.crop, self.voxelSize, self.origin = crop, voxelSize, origin
+        self.voxels, self.touchesBorder = voxels, touchesBorder
+
+
+def runGrain(task):
+    """Generates one grain (one thread); never raises: a failure is a row with its message."""
+    from ._generate import generate
+    row = {'label': task.label if task.label is not None else '', 'file': task.path or '', 'voxels': task.voxels,
+           'touches_border': int(bool(task.touchesBorder)), 'spheres': 0, 'dice': '', 'eta': '', 'seconds': '',
+           'message': ''}
+    t0 = time.perf_counter()
+    try:
+        opts = dict(task.options, threads=1)
+        if task.crop is not None:
+            r = generate(task.crop, voxelSize=task.voxelSize, origin=task.origin, **opts)
+        else:
+            r = generate(task.path, **opts)
+        row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
+                   seconds=time.perf_counter() - t0)
+        return task.key, row, r
+    except Exception as e:  # noqa: BLE001 (any grain's failure is recorded, the batch goes on)
+        row.update(status='failed', seconds=time.perf_counter() - t0, message='%s: %s' % (type(e).__name__, e))
+        return task.key, row, None
+
+
+def runGrains(tasks):
+    """Several grains in one task (Dask)."""
+    return [runGrain(t) for t in tasks]
+
+
+def _optionsKey(gen, extra):
+    text = json.dumps({'generate': gen, 'input': extra}, sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _atomic(path, write):
+    tmp = '%s.tmp%d%s' % (path, os.getpid(), os.path.splitext(path)[1])
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+
+
+def _write(path, text):
+    with open(path, 'w') as f:
+        f.write(text)
+
+
+def _inputs(inputs):
+    """Files from the arguments: files as given, directories by their supported files (sorted)."""
+    files = []
+    for item in inputs:
+        item = os.fspath(item)
+        if os.path.isdir(item):
+            files += sorted(os.path.join(item, f) for f in os.listdir(item)
+                            if os.path.splitext(f)[1].lower() in _MESH_EXT + _VOLUME_EXT)
+        elif os.path.exists(item):
+            files.append(item)
+        else:
+            raise ValueError('batch: %s: no such file or directory' % item)
+    if not files:
+        raise ValueError('batch: no mesh or volume file in %s' % ', '.join(map(str, inputs)))
+    return files
+
+
+def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, excludeBorder=False, labels=None):
+    """The grains of the inputs: a labelled volume (one file, or an array) gives one task per label, read once;
+    several files give one task each. Grains under *minVoxels* or (with *excludeBorder*) cut by
+    the border come back as skipped rows instead.
+
+    :return: (tasks, skipped rows {key: row}, options key)
+    """
+    array = inputs if isinstance(inputs, np.ndarray) else None
+    files = ['(array)'] if array is not None else _inputs(inputs)
+    h = 1.0 if voxelSize is None else float(voxelSize)
+    if not (h > 0 and np.isfinite(h)):
+        raise ValueError('batch: voxel size must be > 0, got %r' % (voxelSize,))
+    org = np.zeros(3) if origin is None else np.asarray(origin, dtype=float).reshape(3)
+    key = _optionsKey(options, {'voxelSize': h, 'origin': org.tolist(), 'minVoxels': minVoxels,
+                                'excludeBorder': bool(excludeBorder)})
+    tasks, skipped = [], {}
+    volumes = [f for f in files if os.path.splitext(f)[1].lower() in _VOLUME_EXT]
+    if array is not None or (len(files) == 1 and volumes):
+        vol = readVolume(files[0]) if array is None else array
+        for reg in regions(vol, labels):
+            k = 'label_%d' % reg.label
+            base = {'label': reg.label, 'file': '', 'voxels': reg.voxels, 'touches_border': int(reg.touchesBorder),
+                    'spheres': 0, 'dice': '', 'eta': '', 'seconds': ''}
+            if reg.voxels < minVoxels:
+                skipped[k] = dict(base, status='skipped', message='%d voxels, under --min-voxels %d'
+                                  % (reg.voxels, minVoxels))
+            elif excludeBorder and reg.touchesBorder:
+                skipped[k] = dict(base, status='skipped', message='cut by the volume\'s border (--exclude-border)')
+            else:
+                crop, start = reg.crop(vol)
+                tasks.append(GrainTask(k, options, label=reg.label, crop=crop, voxelSize=h,
+                                       origin=(org + h * start).tolist(), voxels=reg.voxels,
+                                       touchesBorder=reg.touchesBorder))
+        return tasks, skipped, key
+    if labels:
+        raise ValueError('batch: --labels applies to one labelled volume')
+    for f in files:
+        stem = os.path.splitext(os.path.basename(f))[0]
+        if os.path.splitext(f)[1].lower() in _VOLUME_EXT:  # a grain's volume: all its voxels are the grain
+            vol = readVolume(f)
+            opts = {k: v for k, v in options.items() if k != 'resolution'}
+            tasks.append(GrainTask('file_' + stem, opts, path=f, crop=np.asarray(vol), voxelSize=h,
+                                   origin=org.tolist(), voxels=int(np.count_nonzero(vol))))
+        else:
+            tasks.append(GrainTask('file_' + stem, options, path=f))
+    return tasks, skipped, key
+
+
+class Batch(object):
+    """What a batch did: rows (one per grain, in key order) and the results of the grains that are ok."""
+
+    def __init__(self):
+        self.rows, self.results, self.seconds = {}, {}, 0.0
+
+    @property
+    def failed(self):
+        return [k for k, r in self.rows.items() if r['status'] == 'failed']
+
+
+def _done(outdir, key, optionsKey):
+    """The row and result of a grain already done with these options, or None."""
+    path = os.path.join(outdir, 'grains', key + '.json')
+    try:
+        with open(path) as f:
+            meta = json.load(f)
+        if meta.get('options') != optionsKey or meta['row']['status'] == 'failed':
+            return None
+        r = MssResult.load(os.path.join(outdir, 'grains', key + '.npz')) if meta['row']['status'] == 'ok' else None
+        return meta['row'], r
+    except (OSError, ValueError, KeyError):
+        return None
+
+
+def _store(outdir, key, row, result, optionsKey):
+    g = os.path.join(outdir, 'grains')
+    if result is not None:
+        _atomic(os.path.join(g, key + '.npz'), lambda p: result.save(p, compress=False))
+        _atomic(os.path.join(g, key + '.csv'), result.save)
+    _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({'options': optionsKey, 'row': row})))
+
+
+def _executor(workers, scheduler):
+    """(submit-all function yielding results as they finish, closer)."""
+    if scheduler:
+        try:
+            from distributed import Client, as_completed
+        except ImportError:
+            raise RuntimeError('batch: --scheduler needs Dask (Debian: python3-distributed)')
+        client = Client(scheduler, timeout=30)
+
+        def run(tasks):
+            # a few grains per task: Dask's per-task cost (~ms) stays small against the grains' own; still
+            # several tasks per worker, so that a lost worker costs little and the load stays even
+            slots = max(1, sum(client.nthreads().values()))
+            size = max(1, min(16, len(tasks) // (8 * slots)))
+            chunks = [tasks[i:i + size] for i in range(0, len(tasks), size)]
+            futures = client.map(runGrains, chunks, pure=False, retries=3)
+            for fut in as_completed(futures):
+                for result in fut.result():
+                    yield result
+        return run, client.close
+    if workers == 1:
+        return (lambda tasks: (runGrain(t) for t in tasks)), (lambda: None)
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+    # fork: a user's script needs no __main__ guard (spawn would import it again in every child). Each grain runs
+    # on one OpenMP thread, so a child never needs the parent's OpenMP thread pool.
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context('fork'))
+
+    def run(tasks):
+        futures = [pool.submit(runGrain, t) for t in tasks]
+        for fut in as_completed(futures):
+            yield fut.result()
+    return run, lambda: pool.shutdown(wait=False, cancel_futures=True)
+
+
+def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
+          voxelSize=None, origin=None, progress=True, **options):
+    """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
+    assembly; see the module. *options*: :func:`generate`'s keywords (nSpheres, dice, eta, rMin, resolution for
+    meshes, clip, ...). :return: :class:`Batch`"""
+    from ._keywords import split
+    gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
+                                                                             'threads')])
+    if workers is None:  # inside YADE one process: spawning children of the yade launcher does not work
+        workers = 1 if 'yade' in sys.modules else (os.cpu_count() or 1)
+    workers = int(workers)
+    if workers < 1:
+        raise ValueError('batch: workers must be >= 1, got %d' % workers)
+    tasks, skipped, key = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+    out = Batch()
+    t0 = time.perf_counter()
+    if outdir is not None:
+        os.makedirs(os.path.join(outdir, 'grains'), exist_ok=True)
+        for k, row in skipped.items():
+            _store(outdir, k, row, None, key)
+    out.rows.update(skipped)
+    todo = []
+    for t in tasks:
+        prior = _done(outdir, t.key, key) if outdir is not None else None
+        if prior is None:
+            todo.append(t)
+        else:
+            out.rows[t.key], r = prior
+            if r is not None:
+                out.results[t.key] = r
+    total, already = len(tasks) + len(skipped), len(tasks) - len(todo)
+    bar = None
+    if progress and sys.stderr.isatty():
+        from tqdm import tqdm
+        bar = tqdm(total=len(todo), unit='grain', desc='mss batch')
+    elif progress:
+        print('batch: %d grains, %d done before, %d skipped, %d to generate' % (total, already, len(skipped), len(todo)),
+              flush=True)
+    run, close = _executor(workers, scheduler)
+    n = 0
+    try:
+        for k, row, r in run(todo):
+            if outdir is not None:
+                _store(outdir, k, row, r, key)
+            out.rows[k] = row
+            if r is not None:
+                out.results[k] = r
+            n += 1
+            if bar is not None:
+                bar.update(1)
+            elif progress:
+                print('[%*d/%d] %-12s %-7s %3s spheres  D %-8s %s' % (len(str(len(todo))), n, len(todo), k,
+                      row['status'], row['spheres'], '%.4f' % row['dice'] if row['dice'] != '' else '-',
+                      row['message'][:80]), flush=True)
+    finally:
+        close()
+        if bar is not None:
+            bar.close()
+    out.seconds = time.perf_counter() - t0
+    out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
+    if outdir is not None:
+        writeOutputs(outdir, out)
+    if progress:
+        ok = sum(1 for r in out.rows.values() if r['status'] == 'ok')
+        print('batch: %d ok, %d skipped, %d failed of %d grains in %.2f s (%.1f grains/s generated here)'
+              % (ok, sum(1 for r in out.rows.values() if r['status'] == 'skipped'), len(out.failed), total,
+                 out.seconds, n / out.seconds if out.seconds > 0 else 0.0), flush=True)
+    return out
+
+
+def _order(key):
+    kind, _, rest = key.partition('_')
+    return (kind, int(rest) if rest.isdigit() else 0, rest)
+
+
+def writeOutputs(outdir, b):
+    """assembly.txt, grains.csv and report.html, each atomically."""
+    rows = list(b.rows.values())
+
+    def table(p):
+        with open(p, 'w', newline='') as f:
+            w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction='ignore')
+            w.writeheader()
+            w.writerows(rows)
+    _atomic(os.path.join(outdir, 'grains.csv'), table)
+
+    def assembly(p):
+        with open(p, 'w') as f:
+            f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
+                    '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
+                    'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
+            for i, (k, r) in enumerate(b.results.items(), 1):
+                cid = b.rows[k]['label'] if b.rows[k]['label'] != '' else i
+                m = r.targetMass
+                I = m.inertia
+                f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
+                        % ((int(cid), m.volume) + tuple(float(x) for x in m.centroid)
+                           + (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])))
+                for c, rad in zip(r.centers, r.radii):
+                    f.write('%r %r %r %r %d\n' % (float(c[0]), float(c[1]), float(c[2]), float(rad), int(cid)))
+    b.results = dict(sorted(b.results.items(), key=lambda kv: _order(kv[0])))
+    _atomic(os.path.join(outdir, 'assembly.txt'), assembly)
+    _report(outdir, b)
+
+
+def _report(outdir, b):
+    rows = list(b.rows.values())
+    ok = [r for r in rows if r['status'] == 'ok']
+    img = ''
+    if ok:
+        import matplotlib
+        matplotlib.use('Agg')
+        import matplotlib.pyplot as plt
+        fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.6), dpi=100)
+        a1.hist([float(r['dice']) for r in ok], bins=20)
+        a1.set_xlabel('Dice mismatch D (eq. 27, generation grid)')
+        a1.set_ylabel('grains')
+        a2.hist([int(r['spheres']) for r in ok], bins=20)
+        a2.set_xlabel('spheres per grain')
+        a2.set_ylabel('grains')
+        fig.suptitle('%d grains generated' % len(ok))
+        fig.tight_layout()
+        _atomic(os.path.join(outdir, 'report_distributions.png'), fig.savefig)
+        plt.close(fig)
+        img = '<img src="report_distributions.png" alt="distributions of D and of the sphere counts">'
+    cells = ''.join('<tr>%s</tr>' % ''.join('<td>%s</td>' % _html(r.get(c, '')) for c in COLUMNS) for r in rows)
+    counts = {s: sum(1 for r in rows if r['status'] == s) for s in ('ok', 'skipped', 'failed')}
+    html = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>td,th{padding:2px 8px;'
+            'font:12px sans-serif}tr:nth-child(even){background:#eee}</style></head><body><h1>mss batch</h1>'
+            '<p>%d grains: %d ok, %d skipped, %d failed; %.2f s. Files: <a href="assembly.txt">assembly.txt</a>, '
+            '<a href="grains.csv">grains.csv</a>.</p>%s<table><tr>%s</tr>%s</table></body></html>'
+            % (len(rows), counts['ok'], counts['skipped'], counts['failed'], b.seconds, img,
+               ''.join('<th>%s</th>' % c for c in COLUMNS), cells))
+    _atomic(os.path.join(outdir, 'report.html'), lambda p: _write(p, html))
+
+
+def _html(v):
+    if isinstance(v, float):
+        v = '%.4g' % v
+    return str(v).replace('&', '&amp;').replace('<', '&lt;').replace('>', '&gt;')
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog='mss batch', description='a CT specimen or a folder of grains to a DEM '
+                                'assembly (yade-mss)')
+    p.add_argument('inputs', nargs='+', help='a labelled volume (.npy, .tif; 0 is background), or mesh/volume '
+                   'files, or directories of them')
+    p.add_argument('-o', '--output', required=True, help='the output directory (a rerun resumes in it)')
+    p.add_argument('--spheres', type=int, help='at most N spheres per grain')
+    p.add_argument('--dice', type=float, help='stop at Dice mismatch D <= X (eq. 27)')
+    p.add_argument('--eta', type=float, help='stop at relative mismatch eta <= X (eq. 7)')
+    p.add_argument('--rmin', type=float, help='no sphere of radius below R (world units)')
+    p.add_argument('--resolution', type=int, help='meshes: voxels along the shortest edge (default 100)')
+    p.add_argument('--clip', action='store_true', help='no sphere protrudes from its grain')
+    p.add_argument('--voxel-size', type=float, default=None, help='voxel edge of the volumes (default 1)')
+    p.add_argument('--origin', default=None, help='X,Y,Z: centre of voxel (0, 0, 0)')
+    p.add_argument('--workers', type=int, default=None, help='processes side by side (default: the cores)')
+    p.add_argument('--scheduler', default=None, help='tcp://HOST:PORT of a Dask scheduler: grains as its tasks')
+    p.add_argument('--min-voxels', type=int, default=0, help='skip grains with fewer voxels')
+    p.add_argument('--exclude-border', action='store_true', help='skip grains cut by the volume\'s border')
+    p.add_argument('--labels', default=None, help='L1,L2,...: only these labels')
+    a = p.parse_args(argv)
+    gen = {k: v for k, v in (('nSpheres', a.spheres), ('dice', a.dice), ('eta', a.eta), ('rMin', a.rmin),
+                             ('resolution', a.resolution)) if v is not None}
+    if a.clip:
+        gen['clip'] = True
+    try:
+        origin = [float(x) for x in a.origin.split(',')] if a.origin else None
+        if origin is not None and len(origin) != 3:
+            raise ValueError('--origin: expected X,Y,Z')
+        labels = [int(x) for x in a.labels.split(',')] if a.labels else None
+        b = batch(a.inputs, a.output, workers=a.workers, scheduler=a.scheduler, minVoxels=a.min_voxels,
+                  excludeBorder=a.exclude_border, labels=labels, voxelSize=a.voxel_size, origin=origin, **gen)
+    except KeyboardInterrupt:
+        print('mss batch: interrupted; what was done is kept: run the same command again to continue',
+              file=sys.stderr)
+        return 130
+    except (ValueError, RuntimeError, OSError) as e:
+        print('mss batch: error: %s' % e, file=sys.stderr)
+        return 1
+    if b.failed:
+        print('mss batch: %d grains failed (see grains.csv)' % len(b.failed), file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

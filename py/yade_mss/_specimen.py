@@ -1,0 +1,126 @@
+"""Specimens: labelled volumes read and cut into grains, and synthetic specimens for tests and benchmarks.
+
+Convention, as everywhere in the project: array element [i, j, k] is the voxel whose centre is at
+origin + h (i, j, k). A TIFF stack is taken in the order tifffile gives (pages first).
+"""
+
+import math
+import os
+
+import numpy as np
+
+_VOLUME_EXT = ('.npy', '.tif', '.tiff')
+
+
+def readVolume(path):
+    """An integer or boolean volume from a .npy file or a TIFF stack. Raises ValueError naming the problem."""
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1].lower()
+    try:
+        if ext == '.npy':
+            a = np.load(path, mmap_mode='r', allow_pickle=False)
+        elif ext in ('.tif', '.tiff'):
+            import tifffile
+            a = tifffile.imread(path)
+        else:
+            raise ValueError("%s: unknown volume extension '%s' (expected .npy, .tif or .tiff)" % (path, ext))
+    except (OSError, ValueError) as e:
+        if str(e).startswith(path):
+            raise
+        raise ValueError('%s: cannot read the volume (%s)' % (path, e))
+    if a.ndim != 3:
+        raise ValueError('%s: the volume must be 3-D, got %d-D' % (path, a.ndim))
+    if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
+        raise ValueError('%s: dtype %s is not boolean or integer (a labelled volume: 0 is background)' % (path, a.dtype))
+    return np.asarray(a)
+
+
+class Region(object):
+    """One label of a volume: its bounding box (slices), voxel count, and whether it touches the border."""
+
+    def __init__(self, label, box, voxels, shape):
+        self.label = int(label)
+        self.box = box
+        self.voxels = int(voxels)
+        self.touchesBorder = any(s.start == 0 or s.stop == n for s, n in zip(box, shape))
+
+    def crop(self, labels, pad=2):
+        """The label's voxels in its box, padded by *pad* empty voxels (the double zero hull, eq. 6), and the
+        index of the crop's voxel (0, 0, 0) in the volume."""
+        sub = labels[self.box] == self.label
+        start = np.array([s.start for s in self.box]) - pad
+        return np.pad(sub, pad), start
+
+
+def regions(labels, only=None):
+    """The labels present (non-zero), each as a :class:`Region`, in increasing label order: one pass over the
+    volume (``scipy.ndimage.find_objects``), then each label counted in its own box."""
+    from scipy import ndimage
+    labels = np.asarray(labels)
+    if labels.dtype == bool:
+        labels = labels.astype(np.uint8)
+    if labels.min() < 0:
+        raise ValueError('labels must be >= 0 (0 is background), found %d' % labels.min())
+    boxes = ndimage.find_objects(labels)
+    wanted = None if only is None else set(int(x) for x in only)
+    out = []
+    for i, box in enumerate(boxes):
+        label = i + 1
+        if box is None or (wanted is not None and label not in wanted):
+            continue
+        out.append(Region(label, box, np.count_nonzero(labels[box] == label), labels.shape))
+    if wanted is not None:
+        missing = sorted(wanted - set(r.label for r in out))
+        if missing:
+            raise ValueError('labels not in the volume: %s' % ', '.join(str(m) for m in missing))
+    return out
+
+
+def _rotation(rng):
+    q = rng.normal(size=4)
+    w, x, y, z = q / np.linalg.norm(q)
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
+def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, gap=1, maxTries=20000):
+    """A labelled volume of random, non-overlapping, randomly oriented irregular grains (each the union of two
+    or three ellipsoids), some cut by the volume's border: for tests and benchmarks.
+
+    :param size: range of the ellipsoids' semi-axes, voxels
+    :param gap: least number of empty voxels between two grains
+    :return: int32 array, labels 1..n (n may fall short of *grains* if they do not fit)
+    """
+    rng = np.random.default_rng(seed)
+    shape = tuple(int(n) for n in shape)
+    labels = np.zeros(shape, dtype=np.int32)
+    grown = np.zeros(shape, dtype=bool)  # grains dilated by the gap: where no new grain may go
+    placed = 0
+    lo, hi = size
+    for _ in range(maxTries):
+        if placed == grains:
+            break
+        R = _rotation(rng)
+        parts = [(np.zeros(3), rng.uniform(lo, hi, 3))]
+        for _ in range(rng.integers(1, 3)):
+            parts.append((R.dot(rng.normal(0, 0.6 * lo, 3)), rng.uniform(0.6 * lo, 0.9 * hi, 3)))
+        reach = int(math.ceil(max(np.linalg.norm(c) + a.max() for c, a in parts))) + gap
+        centre = rng.uniform(0, np.array(shape))  # grains near a face are cut by it
+        box = [slice(max(0, int(centre[d]) - reach), min(shape[d], int(centre[d]) + reach + 1)) for d in range(3)]
+        if any(s.stop - s.start < 2 for s in box):
+            continue
+        grid = np.stack(np.meshgrid(*[np.arange(s.start, s.stop) for s in box], indexing='ij'), axis=-1) - centre
+        local = grid.dot(R)  # coordinates in the grain's frame
+        inside = np.zeros(grid.shape[:3], dtype=bool)
+        near = np.zeros(grid.shape[:3], dtype=bool)
+        for c, a in parts:
+            q = (((local - c) / a) ** 2).sum(axis=-1)
+            inside |= q <= 1.0
+            near |= (((local - c) / (a + gap)) ** 2).sum(axis=-1) <= 1.0
+        if inside.sum() < 50 or (grown[tuple(box)] & near).any():
+            continue
+        placed += 1
+        labels[tuple(box)][inside] = placed
+        grown[tuple(box)] |= near
+    return labels

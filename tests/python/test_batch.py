@@ -1,0 +1,192 @@
+"""mss batch: a labelled specimen or a folder of grains to an assembly, locally, in processes and on a real
+Dask cluster started here on localhost (scheduler and two workers, one killed mid-batch)."""
+import csv
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import numpy as np
+
+from yade_mss import batch, readClumps, regions, syntheticSpecimen  # noqa: F401
+from yade_mss._batch import main as batchMain
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data')
+_specimen = []
+
+
+def specimen():
+    """The bar's specimen: 40 grains in 160^3 voxels, 14 of them cut by the border (seed 3)."""
+    if not _specimen:
+        _specimen.append(syntheticSpecimen((160, 160, 160), 40, seed=3))
+    return _specimen[0]
+
+
+def rows(outdir):
+    with open(os.path.join(outdir, 'grains.csv')) as f:
+        return list(csv.DictReader(f))
+
+
+class Cluster(object):
+    """A Dask scheduler and two workers (no nanny: a killed worker stays dead) on localhost."""
+
+    def __enter__(self):
+        self.dir = tempfile.mkdtemp()
+        self.file = os.path.join(self.dir, 'scheduler.json')
+        env = dict(os.environ)
+        self.procs = [subprocess.Popen(['dask-scheduler', '--host', '127.0.0.1', '--port', '0', '--no-dashboard',
+                                        '--scheduler-file', self.file], stdout=subprocess.DEVNULL,
+                                       stderr=subprocess.DEVNULL, env=env)]
+        for _ in range(100):
+            if os.path.exists(self.file):
+                break
+            time.sleep(0.1)
+        time.sleep(0.5)
+        with open(self.file) as f:
+            self.address = json.load(f)['address']
+        for _ in range(2):
+            self.procs.append(subprocess.Popen(['dask-worker', '--scheduler-file', self.file, '--nthreads', '1',
+                                                '--no-nanny', '--no-dashboard'], stdout=subprocess.DEVNULL,
+                                               stderr=subprocess.DEVNULL, env=env))
+        from distributed import Client
+        with Client(self.address, timeout=30) as c:
+            c.wait_for_workers(2, timeout=60)
+        return self
+
+    def __exit__(self, *exc):
+        for p in self.procs:
+            if p.poll() is None:
+                p.kill()
+            p.wait()
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+
+class Specimen(unittest.TestCase):
+    def test_synthetic_specimen(self):
+        L = specimen()
+        rs = regions(L)
+        self.assertEqual(len(rs), 40)
+        self.assertEqual(sum(r.touchesBorder for r in rs), 14)
+        self.assertTrue(all(r.voxels > 50 for r in rs))
+
+    def test_bar_forty_grains_locally_in_processes_and_on_dask(self):
+        L = specimen()
+        h, origin = 0.5, np.array([10.0, -4.0, 2.0])
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'spec.npy'), L)
+            out1, out2, outd = (os.path.join(d, x) for x in ('one', 'two', 'dask'))
+            b1 = batch([os.path.join(d, 'spec.npy')], out1, workers=1, nSpheres=12, voxelSize=h, origin=origin,
+                       progress=False)
+            got = rows(out1)
+            self.assertEqual([r['status'] for r in got], ['ok'] * 40)
+            self.assertEqual(sum(int(r['touches_border']) for r in got), 14)
+            for r in got:
+                self.assertLessEqual(float(r['dice']), 0.12)
+            # each clump where its label is: the grain's centre of mass is its voxels' centroid, and the
+            # spheres' union sits within 2 voxels of it
+            for key, res in b1.results.items():
+                lab = int(key.split('_')[1])
+                idx = np.argwhere(L == lab)
+                c = origin + h * idx.mean(axis=0)
+                np.testing.assert_allclose(res.targetMass.centroid, c, atol=1e-9)
+                self.assertLess(np.linalg.norm(res.unionMass(100).centroid - c), 2 * h)
+            # a rerun does nothing but read what is done
+            b1b = batch([os.path.join(d, 'spec.npy')], out1, workers=1, nSpheres=12, voxelSize=h, origin=origin,
+                        progress=False)
+            self.assertLess(b1b.seconds, b1.seconds)
+            # processes and Dask give the same spheres
+            batch([os.path.join(d, 'spec.npy')], out2, workers=2, nSpheres=12, voxelSize=h, origin=origin,
+                  progress=False)
+            with Cluster() as cl:
+                batch([os.path.join(d, 'spec.npy')], outd, scheduler=cl.address, nSpheres=12, voxelSize=h,
+                      origin=origin, progress=False)
+            a = open(os.path.join(out1, 'assembly.txt')).read()
+            self.assertEqual(a, open(os.path.join(out2, 'assembly.txt')).read())
+            self.assertEqual(a, open(os.path.join(outd, 'assembly.txt')).read())
+            self.assertEqual(a.count('#mss clump'), 40)
+            self.assertIn('report_distributions.png', open(os.path.join(out1, 'report.html')).read())
+
+    def test_a_worker_killed_mid_batch_loses_nothing(self):
+        L = syntheticSpecimen((120, 120, 120), 30, size=(10, 18), seed=5)
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'spec.npy'), L)
+            out = os.path.join(d, 'out')
+            with Cluster() as cl:
+                env = dict(os.environ)
+                p = subprocess.Popen([sys.executable, '-m', 'yade_mss._batch', os.path.join(d, 'spec.npy'), '-o', out,
+                                      '--spheres', '60', '--scheduler', cl.address], stdout=subprocess.PIPE,
+                                     stderr=subprocess.STDOUT, env=env, text=True)
+                g = os.path.join(out, 'grains')
+                for _ in range(600):  # wait for a few grains, then kill a worker
+                    if os.path.isdir(g) and sum(f.endswith('.json') for f in os.listdir(g)) >= 3:
+                        break
+                    time.sleep(0.05)
+                done = sum(f.endswith('.json') for f in os.listdir(g))
+                cl.procs[1].send_signal(signal.SIGKILL)
+                text, _ = p.communicate(timeout=600)
+            self.assertEqual(p.returncode, 0, text)
+            self.assertLess(done, 30)  # it was killed mid-batch
+            self.assertEqual([r['status'] for r in rows(out)], ['ok'] * len(regions(L)))
+
+    def test_skips_failures_resume_and_labels(self):
+        L = specimen()
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'spec.npy')
+            np.save(path, L)
+            out = os.path.join(d, 'out')
+            small = sorted(r.voxels for r in regions(L))[5]
+            code = batchMain([path, '-o', out, '--spheres', '8', '--min-voxels', str(small), '--exclude-border',
+                              '--workers', '1'])
+            got = {r['label']: r for r in rows(out)}
+            self.assertEqual(code, 0)
+            skipped = [r for r in got.values() if r['status'] == 'skipped']
+            self.assertGreaterEqual(len(skipped), 14)
+            self.assertTrue(all(r['message'] for r in skipped))
+            # resume: grains whose files are gone are done again, and only those
+            for lab in ('3', '7'):
+                if got[lab]['status'] == 'ok':
+                    os.remove(os.path.join(out, 'grains', 'label_%s.json' % lab))
+            b = batch([path], out, workers=1, nSpheres=8, minVoxels=small, excludeBorder=True, progress=False)
+            self.assertEqual(len(b.results), sum(1 for r in got.values() if r['status'] == 'ok'))
+            # a criterion that some grains cannot meet: recorded with the message, the batch goes on, exit 1
+            out2 = os.path.join(d, 'fail')
+            code = batchMain([path, '-o', out2, '--rmin', '30', '--workers', '1', '--labels', '1,2,3'])
+            got2 = rows(out2)
+            self.assertEqual([r['status'] for r in got2], ['failed'] * 3)  # every one recorded, none stops it
+            self.assertEqual(code, 1)
+            for r in got2:
+                self.assertIn('largest inscribed radius', r['message'])
+            self.assertFalse(os.path.exists(os.path.join(out2, 'grains', 'label_1.npz')))
+            with self.assertRaises(ValueError):
+                batch([path], None, labels=[999], nSpheres=3, progress=False)
+            with self.assertRaises(TypeError):
+                batch([path], None, nSphere=3, progress=False)
+
+    def test_folder_of_meshes_and_a_tiff_stack(self):
+        import tifffile
+        with tempfile.TemporaryDirectory() as d:
+            grains = os.path.join(d, 'grains')
+            os.makedirs(grains)
+            for f in ('ellipsoid_2_1_1.stl', 'cube.stl'):
+                shutil.copy(os.path.join(DATA, f), grains)
+            out = os.path.join(d, 'out')
+            b = batch([grains], out, workers=1, nSpheres=6, resolution=30, progress=False)
+            self.assertEqual(sorted(b.results), ['file_cube', 'file_ellipsoid_2_1_1'])
+            self.assertEqual(open(os.path.join(out, 'assembly.txt')).read().count('#mss clump'), 2)
+            L = syntheticSpecimen((60, 60, 60), 5, size=(5, 9), seed=2)
+            tifffile.imwrite(os.path.join(d, 'spec.tif'), L.astype(np.uint16))
+            np.save(os.path.join(d, 'spec.npy'), L)
+            a = batch([os.path.join(d, 'spec.tif')], os.path.join(d, 't'), workers=1, nSpheres=5, progress=False)
+            c = batch([os.path.join(d, 'spec.npy')], os.path.join(d, 'n'), workers=1, nSpheres=5, progress=False)
+            self.assertEqual(open(os.path.join(d, 't', 'assembly.txt')).read(),
+                             open(os.path.join(d, 'n', 'assembly.txt')).read())
+            self.assertEqual(len(a.results), len(regions(L)))
+
+
+if __name__ == '__main__':
+    unittest.main()
