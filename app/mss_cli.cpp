@@ -76,17 +76,17 @@ mss::Vec3 vec3(const Args& a, const std::string& key) {
     return v;
 }
 
-/// Runs a module of the package in Debian's python3: the pictures (yade_mss._pictures: `mss preview`, `mss
-/// curve`, `mss generate --preview`) and the batch (yade_mss._batch: `mss batch`). The build tree's package
+/// Runs `python3 -m yade_mss COMMAND ...` (Debian's python3): the commands drawn with matplotlib (`mss
+/// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's package
 /// comes first, so an uninstalled build draws with its own code. @return the exit status.
-int runPython(const std::string& module, const std::vector<std::string>& args) {
+int runPython(const std::vector<std::string>& args) {
     std::string path = MSS_PY_BUILD_DIR;
     if (const char* old = std::getenv("PYTHONPATH")) path += std::string(":") + old;
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start python3 for the pictures");
     if (pid == 0) {
         setenv("PYTHONPATH", path.c_str(), 1);
-        std::vector<std::string> all{MSS_PYTHON, "-m", module};
+        std::vector<std::string> all{MSS_PYTHON, "-m", "yade_mss"};
         all.insert(all.end(), args.begin(), args.end());
         std::vector<char*> argv;
         for (std::string& a : all) argv.push_back(a.data());
@@ -209,8 +209,7 @@ int cmdGenerate(const Args& a) {
         std::vector<std::string> args{"preview", in, out, "-o", a.opts.at("--preview")};
         for (const char* k : {"--npy-voxel-size", "--origin", "--label"})
             if (a.has(k)) args.insert(args.end(), {k, a.opts.at(k)});
-        if (runPython("yade_mss._pictures", args) != 0)
-            throw std::runtime_error("the preview could not be drawn (see above)");
+        if (runPython(args) != 0) throw std::runtime_error("the preview could not be drawn (see above)");
     }
     return 0;
 }
@@ -486,8 +485,7 @@ int main(int argc, char** argv) {
     if (first == "preview" || first == "curve" ||
         first == "batch") { // run by python3: options and help there
         try {
-            const std::vector<std::string> rest(argv + (first == "batch" ? 2 : 1), argv + argc);
-            return runPython(first == "batch" ? "yade_mss._batch" : "yade_mss._pictures", rest);
+            return runPython(std::vector<std::string>(argv + 1, argv + argc));
         } catch (const std::exception& e) {
             std::cerr << "mss " << first << ": error: " << e.what() << "\n";
             return 1;

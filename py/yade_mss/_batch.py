@@ -1,4 +1,4 @@
-"""From a CT specimen or a folder of grains to a DEM assembly: ``mss batch`` (``python3 -m yade_mss._batch``).
+"""From a CT specimen or a folder of grains to a DEM assembly: ``mss batch`` (``python3 -m yade_mss batch``).
 
 Each grain is cropped to its bounding box plus the double zero hull (eq. 6), generated single-threaded, placed
 at its true position, and written atomically to OUTDIR/grains/ (``KEY.npz`` result, ``KEY.csv`` spheres, then

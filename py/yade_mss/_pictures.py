@@ -4,7 +4,7 @@ Rendering is done here in numpy, orthographically, and written with matplotlib's
 python3-matplotlib; no display, no OpenGL context): a sphere seen along an axis is exactly a disc whose depth is
 known in closed form, and the grain is seen as the depth of its first solid voxel on a fine grid. That needs no
 3-D library, is exact for the spheres, and draws 200 spheres in well under a second per view.
-Also the command line's ``mss preview`` and ``mss curve`` (``python3 -m yade_mss._pictures``).
+Also the command line's ``mss preview`` and ``mss curve`` (``python3 -m yade_mss preview|curve``).
 """
 
 import argparse

@@ -118,7 +118,7 @@ class Specimen(unittest.TestCase):
             out = os.path.join(d, 'out')
             with Cluster() as cl:
                 env = dict(os.environ)
-                p = subprocess.Popen([sys.executable, '-m', 'yade_mss._batch', os.path.join(d, 'spec.npy'), '-o', out,
+                p = subprocess.Popen([sys.executable, '-m', 'yade_mss', 'batch', os.path.join(d, 'spec.npy'), '-o', out,
                                       '--spheres', '60', '--scheduler', cl.address], stdout=subprocess.PIPE,
                                      stderr=subprocess.STDOUT, env=env, text=True)
                 g = os.path.join(out, 'grains')
