@@ -53,6 +53,16 @@ def runGrain(task):
             r = generate(task.path, **opts)
         row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
                    seconds=time.perf_counter() - t0)
+        if getattr(task, 'preview', False):  # drawn where the grain is, sent back as PNG bytes
+            import tempfile
+            from ._pictures import preview
+            with tempfile.TemporaryDirectory() as d:
+                png = os.path.join(d, task.key + '.png')
+                grain = task.crop if task.crop is not None else task.path
+                kw = {'voxelSize': task.voxelSize, 'origin': task.origin} if task.crop is not None else {}
+                preview(grain, r, png, title=task.key, **kw)
+                with open(png, 'rb') as f:
+                    r.png = f.read()
         return task.key, row, r
     except Exception as e:  # noqa: BLE001 (any grain's failure is recorded, the batch goes on)
         row.update(status='failed', seconds=time.perf_counter() - t0, message='%s: %s' % (type(e).__name__, e))
@@ -80,9 +90,9 @@ def _atomic(path, write):
         raise
 
 
-def _write(path, text):
-    with open(path, 'w') as f:
-        f.write(text)
+def _write(path, data):
+    with open(path, 'wb' if isinstance(data, bytes) else 'w') as f:
+        f.write(data)
 
 
 def _inputs(inputs):
@@ -177,6 +187,10 @@ def _done(outdir, key, optionsKey):
 
 def _store(outdir, key, row, result, optionsKey):
     g = os.path.join(outdir, 'grains')
+    png = getattr(result, 'png', None)
+    if png is not None:
+        _atomic(os.path.join(g, key + '.png'), lambda p: _write(p, png))
+        del result.png
     if result is not None:
         _atomic(os.path.join(g, key + '.npz'), lambda p: result.save(p, compress=False))
         _atomic(os.path.join(g, key + '.csv'), result.save)
@@ -219,10 +233,11 @@ def _executor(workers, scheduler):
 
 
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
-          voxelSize=None, origin=None, progress=True, **options):
+          voxelSize=None, origin=None, progress=True, previews=False, **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
     assembly; see the module. *options*: :func:`generate`'s keywords (nSpheres, dice, eta, rMin, resolution for
-    meshes, clip, ...). :return: :class:`Batch`"""
+    meshes, clip, ...). With *previews*, each grain's preview (mss preview) is drawn where it is generated and
+    shown in report.html (about a second a grain). :return: :class:`Batch`"""
     from ._keywords import split
     gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
                                                                              'threads')])
@@ -232,6 +247,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     if workers < 1:
         raise ValueError('batch: workers must be >= 1, got %d' % workers)
     tasks, skipped, key = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+    for t in tasks:
+        t.preview = bool(previews) and outdir is not None
     out = Batch()
     t0 = time.perf_counter()
     if outdir is not None:
@@ -334,6 +351,7 @@ def _report(outdir, b):
         fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.6), dpi=100)
         a1.hist([float(r['dice']) for r in ok], bins=20)
         a1.set_xlabel('Dice mismatch D (eq. 27, generation grid)')
+        a1.tick_params(axis='x', labelrotation=30)
         a1.set_ylabel('grains')
         a2.hist([int(r['spheres']) for r in ok], bins=20)
         a2.set_xlabel('spheres per grain')
@@ -343,7 +361,14 @@ def _report(outdir, b):
         _atomic(os.path.join(outdir, 'report_distributions.png'), fig.savefig)
         plt.close(fig)
         img = '<img src="report_distributions.png" alt="distributions of D and of the sphere counts">'
-    cells = ''.join('<tr>%s</tr>' % ''.join('<td>%s</td>' % _html(r.get(c, '')) for c in COLUMNS) for r in rows)
+    keys = list(b.rows)
+
+    def thumb(k):
+        if not os.path.exists(os.path.join(outdir, 'grains', k + '.png')):
+            return ''
+        return '<td><a href="grains/%s.png"><img src="grains/%s.png" width="360"></a></td>' % (k, k)
+    cells = ''.join('<tr>%s%s</tr>' % (''.join('<td>%s</td>' % _html(r.get(c, '')) for c in COLUMNS), thumb(k))
+                    for k, r in zip(keys, rows))
     counts = {s: sum(1 for r in rows if r['status'] == s) for s in ('ok', 'skipped', 'failed')}
     html = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>td,th{padding:2px 8px;'
             'font:12px sans-serif}tr:nth-child(even){background:#eee}</style></head><body><h1>mss batch</h1>'
@@ -379,6 +404,7 @@ def main(argv=None):
     p.add_argument('--min-voxels', type=int, default=0, help='skip grains with fewer voxels')
     p.add_argument('--exclude-border', action='store_true', help='skip grains cut by the volume\'s border')
     p.add_argument('--labels', default=None, help='L1,L2,...: only these labels')
+    p.add_argument('--previews', action='store_true', help='draw each grain (mss preview) into report.html')
     a = p.parse_args(argv)
     gen = {k: v for k, v in (('nSpheres', a.spheres), ('dice', a.dice), ('eta', a.eta), ('rMin', a.rmin),
                              ('resolution', a.resolution)) if v is not None}
@@ -390,7 +416,8 @@ def main(argv=None):
             raise ValueError('--origin: expected X,Y,Z')
         labels = [int(x) for x in a.labels.split(',')] if a.labels else None
         b = batch(a.inputs, a.output, workers=a.workers, scheduler=a.scheduler, minVoxels=a.min_voxels,
-                  excludeBorder=a.exclude_border, labels=labels, voxelSize=a.voxel_size, origin=origin, **gen)
+                  excludeBorder=a.exclude_border, labels=labels, voxelSize=a.voxel_size, origin=origin,
+                  previews=a.previews, **gen)
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)

@@ -181,7 +181,12 @@ class Specimen(unittest.TestCase):
             L = syntheticSpecimen((60, 60, 60), 5, size=(5, 9), seed=2)
             tifffile.imwrite(os.path.join(d, 'spec.tif'), L.astype(np.uint16))
             np.save(os.path.join(d, 'spec.npy'), L)
-            a = batch([os.path.join(d, 'spec.tif')], os.path.join(d, 't'), workers=1, nSpheres=5, progress=False)
+            a = batch([os.path.join(d, 'spec.tif')], os.path.join(d, 't'), workers=2, nSpheres=5, progress=False,
+                      previews=True)
+            pngs = [f for f in os.listdir(os.path.join(d, 't', 'grains')) if f.endswith('.png')]
+            self.assertEqual(len(pngs), len(a.results))  # a preview per grain, drawn by the workers
+            report = open(os.path.join(d, 't', 'report.html')).read()
+            self.assertEqual(report.count('<img src="grains/'), len(a.results))
             c = batch([os.path.join(d, 'spec.npy')], os.path.join(d, 'n'), workers=1, nSpheres=5, progress=False)
             self.assertEqual(open(os.path.join(d, 't', 'assembly.txt')).read(),
                              open(os.path.join(d, 'n', 'assembly.txt')).read())
