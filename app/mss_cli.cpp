@@ -481,9 +481,11 @@ int main(int argc, char** argv) {
         "curve", "D and time against the sphere count (PNG, CSV): mss curve GRAIN --spheres A:B -o OUT.png");
     app.add_subcommand(
         "batch", "a labelled CT volume or a folder of grains to a DEM assembly: mss batch INPUT... -o DIR");
+    app.add_subcommand("spheropolygon",
+                       "2-D particle images to spheropolygons: mss spheropolygon IMAGE -o OUT.json");
     const std::string first = argc > 1 ? argv[1] : "";
-    if (first == "preview" || first == "curve" ||
-        first == "batch") { // run by python3: options and help there
+    // these run in python3 (matplotlib, Dask): their options and help are there
+    if (first == "preview" || first == "curve" || first == "batch" || first == "spheropolygon") {
         try {
             return runPython(std::vector<std::string>(argv + 1, argv + argc));
         } catch (const std::exception& e) {
@@ -493,7 +495,7 @@ int main(int argc, char** argv) {
     }
     if (!first.empty() && first[0] != '-' && first != "generate" && first != "compare" && first != "info") {
         std::cerr << "mss: unknown command '" << argv[1]
-                  << "' (generate, compare, info, preview, curve or batch; mss --help)\n";
+                  << "' (generate, compare, info, preview, curve, batch or spheropolygon; mss --help)\n";
         return 2;
     }
     try {

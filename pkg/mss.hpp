@@ -12,4 +12,5 @@
 #include "mss/npy.hpp"      // .npy voxel volumes
 #include "mss/score.hpp"    // scoring sphere sets (eq. 7, 27)
 #include "mss/spheres.hpp"  // sphere sets and their files
+#include "mss/spheropolygon.hpp" // 2-D: spheropolygons from particle images (the second paper)
 #include "mss/voxelize.hpp" // voxelisation (section 2.2)

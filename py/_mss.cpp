@@ -363,6 +363,52 @@ py::dict compareVoxels(const py::object& data, const py::object& shape, double v
                                           compareOptions(opts)));
 }
 
+mss::Image2 image2(const py::object& data, int nx, int ny, double pixel, const py::object& origin) {
+    if (nx < 1 || ny < 1) throw std::invalid_argument("spheropolygon: the image must be 2-D and not empty");
+    const std::vector<double> o = doubles(origin, "spheropolygon: origin");
+    if (o.size() != 2) throw std::invalid_argument("spheropolygon: origin must be (x, y)");
+    mss::Image2 im(nx, ny, pixel, mss::Vec2(o[0], o[1]));
+    char* buf = nullptr;
+    Py_ssize_t len = 0;
+    if (!PyBytes_Check(data.ptr()) || PyBytes_AsStringAndSize(data.ptr(), &buf, &len) != 0 ||
+        std::size_t(len) != im.data.size())
+        throw std::invalid_argument("spheropolygon: image data must be nx * ny bytes");
+    for (std::size_t q = 0; q < im.data.size(); ++q) im.data[q] = buf[q] != 0;
+    return im;
+}
+
+py::dict spheropolygonFit(const py::object& data, int nx, int ny, double pixel, const py::object& origin,
+                          const py::dict& d) {
+    mss::SpOptions o;
+    if (d.has_key("vertices")) o.vertices = py::extract<int>(d["vertices"]);
+    if (d.has_key("radius")) o.radius = py::extract<double>(d["radius"]);
+    if (d.has_key("init")) o.init = mss::parseSpInit(py::extract<std::string>(d["init"]));
+    if (d.has_key("inset")) o.inset = py::extract<bool>(d["inset"]);
+    if (d.has_key("samplingRadius")) o.samplingRadius = py::extract<double>(d["samplingRadius"]);
+    if (d.has_key("samples")) o.samples = py::extract<int>(d["samples"]);
+    if (d.has_key("weight")) o.weight = py::extract<double>(d["weight"]);
+    if (d.has_key("cutoff")) o.cutoff = py::extract<long long>(d["cutoff"]);
+    if (d.has_key("tolerance")) o.tolerance = py::extract<double>(d["tolerance"]);
+    if (d.has_key("maxIterations")) o.maxIterations = py::extract<int>(d["maxIterations"]);
+    const mss::SpResult r = mss::fitSpheropolygon(image2(data, nx, ny, pixel, origin), o);
+    py::dict out;
+    py::list v, h;
+    for (const mss::Vec2& p : r.sp.vertices) v.append(py::make_tuple(p.x(), p.y()));
+    for (long long e : r.history) h.append(e);
+    out["vertices"] = v;
+    out["spheroradius"] = r.sp.radius;
+    out["errorPixels"] = r.errorPixels;
+    out["particlePixels"] = r.particlePixels;
+    out["error"] = r.error;
+    out["iterations"] = r.iterations;
+    out["history"] = h;
+    const mss::Roundness R = mss::roundness(r.sp);
+    out["roundness"] = R.roundness;
+    out["area"] = R.area;
+    out["perimeter"] = R.perimeter;
+    return out;
+}
+
 py::tuple readSpheres(const std::string& path, long long clumpId) {
     const mss::SphereSet s = mss::readSpheres(path, clumpId);
     py::list c, r;
@@ -429,6 +475,9 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("compareVoxels", compareVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
              py::arg("radii"), py::arg("options")));
+    py::def("spheropolygon", spheropolygonFit,
+            (py::arg("data"), py::arg("nx"), py::arg("ny"), py::arg("pixel"), py::arg("origin"),
+             py::arg("options")));
     py::def("readSpheres", readSpheres, (py::arg("path"), py::arg("clumpId") = -1));
     py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
 }

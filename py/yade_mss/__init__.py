@@ -14,7 +14,7 @@ Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, the
 ``_generate`` (generation, scoring), ``_loads`` (the sums that make YADE clumps exact, numpy only),
 ``_clumps`` (YADE clumps), ``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings),
 ``_specimen`` (labelled volumes, synthetic specimens), ``_batch`` (mss batch), ``_assembly`` (specimens in YADE),
-``_pictures`` (mss preview, mss curve).
+``_pictures`` (mss preview, mss curve), ``_spheropolygon`` (2-D: spheropolygons, the O-chart).
 """
 
 from ._results import MassProperties, MssResult, readSpheres
@@ -26,8 +26,10 @@ from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTempl
 from ._batch import batch
 from ._assembly import mssAssembly
 from ._specimen import regions, syntheticSpecimen
+from ._spheropolygon import ochart, spheropolygon, spheropolygons
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
            'restoreClumpProperties', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
-           'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen']
+           'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen',
+           'spheropolygon', 'spheropolygons', 'ochart']

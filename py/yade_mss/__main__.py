@@ -1,9 +1,14 @@
-"""``python3 -m yade_mss COMMAND ...``: the commands of ``mss`` that run in Python (batch, preview, curve)."""
+"""``python3 -m yade_mss COMMAND ...``: the commands of ``mss`` that run in Python (batch, preview, curve, spheropolygon)."""
 import sys
 
 from ._batch import main as batch
 from ._pictures import main as pictures
+from ._spheropolygon import main as spheropolygon
 
 if __name__ == '__main__':
     command = sys.argv[1] if len(sys.argv) > 1 else ''
-    sys.exit(batch(sys.argv[2:]) if command == 'batch' else pictures(sys.argv[1:]))
+    if command == 'batch':
+        sys.exit(batch(sys.argv[2:]))
+    if command == 'spheropolygon':
+        sys.exit(spheropolygon(sys.argv[2:]))
+    sys.exit(pictures(sys.argv[1:]))

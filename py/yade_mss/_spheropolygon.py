@@ -1,0 +1,283 @@
+"""Spheropolygons from 2-D particle images (the second paper: Dobrohotoff et al., Granular Matter 2012):
+:func:`spheropolygon` (Algorithm 1, in C++), :func:`ochart` (the choice of N and r, eq. 5-8, Fig. 4),
+``mss spheropolygon`` (``python3 -m yade_mss spheropolygon``).
+
+Convention, as for volumes: array element [i, j] has its centre at (x, y) = origin + pixelSize (i, j).
+"""
+
+import argparse
+import csv
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+from . import _mss
+
+_DEFAULT_RADII = (0.0025, 0.005, 0.01, 0.02, 0.04)  # fractions of the particle's size
+
+
+def readImage(path, threshold=None):
+    """A 2-D image from a .npy array (non-zero: particle; integer labels kept) or a PNG (dark = particle:
+    grey below *threshold*, default 0.5). PNG rows run down the picture; here j runs up (element [i, j])."""
+    path = os.fspath(path)
+    ext = os.path.splitext(path)[1].lower()
+    if ext == '.npy':
+        a = np.load(path, allow_pickle=False)
+        if a.ndim != 2:
+            raise ValueError('%s: the image must be 2-D, got %d-D' % (path, a.ndim))
+        if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
+            raise ValueError('%s: dtype %s is not boolean or integer (threshold it first)' % (path, a.dtype))
+        return a
+    if ext == '.png':
+        import matplotlib
+        matplotlib.use('Agg')
+        import matplotlib.image as mpimg
+        try:
+            img = mpimg.imread(path)
+        except (OSError, ValueError, SyntaxError) as e:
+            raise ValueError('%s: cannot read the PNG (%s)' % (path, e))
+        grey = img[..., :3].mean(axis=-1) if img.ndim == 3 else img
+        t = 0.5 if threshold is None else float(threshold)
+        return (grey < t)[::-1].T  # [row, col] from the top -> [i, j] with j up
+    raise ValueError("%s: unknown image extension '%s' (expected .npy or .png)" % (path, ext))
+
+
+def _fit(mask, vertices, radius, pixelSize, origin, init='auto', **options):
+    """One fit; init 'auto' runs the boundary and the curvature initialisations and keeps the better (on our
+    cow the boundary start ends at 2.3% and the curvature start at 5%, where the paper found curvature best)."""
+    if init == 'auto':
+        fits = [_fit(mask, vertices, radius, pixelSize, origin, i, **options) for i in ('boundary', 'curvature')]
+        return min(fits, key=lambda x: x['errorPixels'])
+    m = np.asarray(mask) != 0
+    data = np.ascontiguousarray(m.T.astype(np.uint8)).tobytes()  # x fastest: element [i, j] at i + nx j
+    opts = dict(options, vertices=int(vertices), radius=float(radius), init=init)
+    r = _mss.spheropolygon(data, m.shape[0], m.shape[1], float(pixelSize), [float(x) for x in origin], opts)
+    r['init'] = init
+    return r
+
+
+def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0.0), label=None, init='auto',
+                  inset=True, radii=None, **options):
+    """The spheropolygon of N vertices that best matches a particle image (Algorithm 1).
+
+    :param image: 2-D array (non-zero: the particle) or a .npy/.png file
+    :param int vertices: N
+    :param float radius: the spheroradius r (world units); None: the one of least error among *radii*
+        (fractions of the particle's size; default 0.0025 to 0.04)
+    :param label: of a labelled image, the particle to describe
+    :param str init: 'circle', 'boundary' or 'curvature' (section 3.1), or 'auto' (default): boundary and
+        curvature both, the better kept
+    :param bool inset: start the vertices one spheroradius inside the boundary (beyond the paper)
+    :param options: samplingRadius (r_s, world units), samples (n_s), weight (g), cutoff, tolerance,
+        maxIterations
+    :return: dict with spheroradius, vertices [[x, y], ...], errorPixels, error (fraction of the particle's
+        pixels), iterations, roundness (eq. 9), area, perimeter, history, seconds
+    """
+    a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
+    if a.ndim != 2 or a.size == 0:
+        raise ValueError('spheropolygon: the image must be 2-D and not empty')
+    mask = (a == label) if label is not None else (a != 0)
+    if not mask.any():
+        raise ValueError('spheropolygon: no particle pixel%s' % ('' if label is None else ' with label %s' % label))
+    if label is None and a.dtype != bool and len(np.unique(a[a != 0])) > 1:
+        raise ValueError('spheropolygon: the image holds several labels: choose one (label=), or use '
+                         'spheropolygons() for all')
+    if not (float(pixelSize) > 0):
+        raise ValueError('spheropolygon: pixelSize must be > 0, got %r' % (pixelSize,))
+    t0 = time.perf_counter()
+    if radius is not None:
+        r = _fit(mask, vertices, radius, pixelSize, origin, init=init, inset=inset, **options)
+    else:
+        idx = np.argwhere(mask)
+        size = pixelSize * (np.ptp(idx, axis=0).max() + 1)
+        fits = [_fit(mask, vertices, f * size, pixelSize, origin, init=init, inset=inset, **options)
+                for f in (radii or _DEFAULT_RADII)]
+        r = min(fits, key=lambda x: (x['errorPixels'], -x['spheroradius']))
+    r['vertices'] = [list(v) for v in r['vertices']]
+    r['seconds'] = time.perf_counter() - t0
+    return r
+
+
+def spheropolygons(image, **kw):
+    """One spheropolygon per label of a labelled image: {label: result}."""
+    a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
+    return {int(l): spheropolygon(a, label=l, **kw) for l in np.unique(a[a != 0])}
+
+
+def ochart(image, outdir, vertices=(6, 10, 15, 20, 30, 40), radii=(0.005, 0.01, 0.02, 0.05, 0.1),
+           pixelSize=1.0, origin=(0.0, 0.0), label=None, **options):
+    """Choosing N and r (section 3.2): the error for each (N, r), the normalised cost T ~ N / sqrt(r) (eq. 7)
+    and O = T x error (eq. 8), written as ``ochart.csv`` and three contour charts (``ochart.png``: Fig. 4) in
+    *outdir*, the global and the best non-trivial minimum of O marked. *radii* are fractions of the particle's
+    size (the paper's normalised r). :return: the rows"""
+    a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
+    mask = (a == label) if label is not None else (a != 0)
+    idx = np.argwhere(mask)
+    if not len(idx):
+        raise ValueError('ochart: no particle pixel')
+    size = pixelSize * (np.ptp(idx, axis=0).max() + 1)
+    rows = []
+    for n in vertices:
+        for f in radii:
+            t0 = time.perf_counter()
+            r = _fit(mask, n, f * size, pixelSize, origin, **options)
+            rows.append({'N': n, 'r': f, 'radius': f * size, 'error': 100 * r['error'],
+                         'errorPixels': r['errorPixels'], 'T': n / math.sqrt(f), 'roundness': r['roundness'],
+                         'seconds': time.perf_counter() - t0})
+    tmax = max(x['T'] for x in rows)
+    for x in rows:
+        x['T'] /= tmax
+        x['O'] = x['T'] * x['error']
+    os.makedirs(outdir, exist_ok=True)
+    with open(os.path.join(outdir, 'ochart.csv'), 'w', newline='') as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    _ochartFigure(rows, vertices, radii, os.path.join(outdir, 'ochart.png'))
+    return rows
+
+
+def _ochartFigure(rows, vertices, radii, path):
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    N, R = np.meshgrid(np.array(vertices, float), np.array(radii, float), indexing='ij')
+    grid = {k: np.array([[next(x[k] for x in rows if x['N'] == n and x['r'] == r) for r in radii] for n in vertices])
+            for k in ('error', 'T', 'O')}
+    o = grid['O']
+    g = np.unravel_index(np.argmin(o), o.shape)
+    # the best non-trivial minimum: the least O among the (N, r) whose error is at most twice the least error
+    ok = grid['error'] <= 2 * grid['error'].min()
+    nt = np.unravel_index(np.argmin(np.where(ok, o, np.inf)), o.shape)
+    fig, axs = plt.subplots(1, 3, figsize=(15, 4.6), dpi=100)
+    for ax, (k, title) in zip(axs, (('error', 'error (% of the particle\'s pixels)'),
+                                    ('T', 'cost T ~ N / sqrt(r) (eq. 7), normalised'), ('O', 'O = T x error (eq. 8)'))):
+        cs = ax.contourf(N, R, grid[k], levels=14, cmap='viridis')
+        ax.contour(N, R, grid[k], levels=14, colors='k', linewidths=0.3)
+        fig.colorbar(cs, ax=ax)
+        ax.plot(N[g], R[g], 'r*', ms=14, label='global minimum of O')
+        ax.plot(N[nt], R[nt], 'wo', ms=9, mec='k', label='best with error <= 2x the least')
+        ax.set_xlabel('vertices N')
+        ax.set_ylabel('spheroradius r / particle size')
+        ax.set_title(title)
+    axs[2].legend(fontsize=8, loc='upper right')
+    fig.suptitle('O-chart (Dobrohotoff et al. 2012, Fig. 4): global minimum of O at N = %d, r = %.3g; best '
+                 'non-trivial at N = %d, r = %.3g' % (N[g], R[g], N[nt], R[nt]))
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def previewSpheropolygon(mask, result, path, pixelSize=1.0, origin=(0.0, 0.0)):
+    """The spheropolygon over the image: the particle grey, error pixels red (missed) and blue (extra)."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle, Polygon
+    m = np.asarray(mask) != 0
+    v = np.array(result['vertices'])
+    r = result['spheroradius']
+    sp = rasterizeNumpy(v, r, m.shape, pixelSize, origin)
+    img = np.ones(m.shape + (3,))
+    img[m & sp] = (0.75, 0.75, 0.72)
+    img[m & ~sp] = (0.85, 0.2, 0.15)
+    img[~m & sp] = (0.15, 0.35, 0.85)
+    fig, ax = plt.subplots(figsize=(9, 9 * m.shape[1] / m.shape[0] + 0.8), dpi=100)
+    ext = (origin[0] - pixelSize / 2, origin[0] + pixelSize * (m.shape[0] - 0.5),
+           origin[1] - pixelSize / 2, origin[1] + pixelSize * (m.shape[1] - 0.5))
+    ax.imshow(np.transpose(img, (1, 0, 2))[::-1], extent=ext, interpolation='nearest')
+    ax.add_patch(Polygon(v, closed=True, fill=False, ec='k', lw=1))
+    for p in v:
+        ax.add_patch(Circle(p, r, fill=False, ec='k', lw=0.4, alpha=0.6))
+    ax.plot(v[:, 0], v[:, 1], 'k.', ms=4)
+    ax.set_aspect('equal')
+    ax.set_title('N = %d, r = %.3g: error %.2f%% (%d pixels), roundness %.3f\nred: particle missed, blue: '
+                 'outside the particle' % (len(v), r, 100 * result['error'], result['errorPixels'], result['roundness']))
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def rasterizeNumpy(vertices, radius, shape, pixelSize=1.0, origin=(0.0, 0.0)):
+    """f(SP) computed here in numpy alone (matplotlib's point-in-polygon and segment distances): an
+    independent check of the C++ image of a spheropolygon."""
+    from matplotlib.path import Path
+    v = np.asarray(vertices, float)
+    i, j = np.meshgrid(np.arange(shape[0]), np.arange(shape[1]), indexing='ij')
+    P = np.stack([origin[0] + pixelSize * i, origin[1] + pixelSize * j], axis=-1).reshape(-1, 2)
+    inside = Path(v).contains_points(P) if len(v) >= 3 else np.zeros(len(P), bool)
+    near = np.zeros(len(P), bool)
+    for a, b in zip(v, np.roll(v, -1, axis=0)):
+        ab = b - a
+        t = np.clip(((P - a) @ ab) / max(ab @ ab, 1e-300), 0, 1)
+        near |= ((a + t[:, None] * ab - P) ** 2).sum(axis=1) <= radius * radius
+    return (inside | near).reshape(shape)
+
+
+def cow(width=420, height=300):
+    """A cow-like silhouette (body, head, four legs, a thin tail), as in the paper's Fig. 1: array [i, j]."""
+    x, y = np.meshgrid(np.arange(width), np.arange(height), indexing='ij')
+    body = ((x - 210) / 120.0) ** 2 + ((y - 170) / 60.0) ** 2 <= 1
+    head = ((x - 345) / 38.0) ** 2 + ((y - 205) / 30.0) ** 2 <= 1
+    neck = (x > 300) & (x < 340) & (y > 165) & (y < 215)
+    legs = np.zeros_like(body)
+    for x0 in (120, 155, 255, 290):
+        legs |= (x >= x0) & (x < x0 + 18) & (y >= 35) & (y < 130)
+    tail = (np.abs(y - (175 - 0.9 * (95 - x))) < 2.5) & (x > 40) & (x < 95)
+    horn = ((x - 360) / 6.0) ** 2 + ((y - 240) / 12.0) ** 2 <= 1
+    return body | head | neck | legs | tail | horn
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog='mss spheropolygon', description='2-D particle images to spheropolygons '
+                                '(Dobrohotoff et al. 2012)')
+    p.add_argument('image', help='.npy (non-zero: particle; labels: one spheropolygon each) or .png (dark: particle)')
+    p.add_argument('-o', '--output', required=True, help='the JSON to write')
+    p.add_argument('--vertices', type=int, default=30)
+    p.add_argument('--radius', type=float, default=None, help='spheroradius (world units); default: the least error')
+    p.add_argument('--init', default='auto', choices=('auto', 'circle', 'boundary', 'curvature'))
+    p.add_argument('--threshold', type=float, default=None, help='PNG: grey level under which a pixel is particle')
+    p.add_argument('--pixel-size', type=float, default=1.0)
+    p.add_argument('--origin', default='0,0', help='X,Y of pixel [0, 0]')
+    p.add_argument('--ochart', default=None, help='a folder: the (N, r) sweep as CSV and the three charts')
+    p.add_argument('--preview', default=None, help='a PNG of the result over the image')
+    a = p.parse_args(argv)
+    try:
+        img = readImage(a.image, a.threshold)
+        origin = [float(x) for x in a.origin.split(',')]
+        labels = [None] if img.dtype == bool or len(np.unique(img[img != 0])) <= 1 else \
+            [int(l) for l in np.unique(img[img != 0])]
+        out = {}
+        for l in labels:
+            r = spheropolygon(img, a.vertices, a.radius, a.pixel_size, origin, label=l, init=a.init)
+            keep = ('spheroradius', 'vertices', 'errorPixels', 'error', 'iterations', 'roundness', 'area', 'perimeter',
+                    'init')
+            out['particle' if l is None else str(l)] = {k: r[k] for k in keep}
+            print('%-10s N %d  r %.4g  error %.2f%% (%d pixels)  roundness %.3f  %d iterations'
+                  % ('particle' if l is None else 'label %d' % l, a.vertices, r['spheroradius'], 100 * r['error'],
+                     r['errorPixels'], r['roundness'], r['iterations']))
+            if a.preview:
+                base, ext = os.path.splitext(a.preview)
+                previewSpheropolygon(img != 0 if l is None else img == l, r, a.preview if l is None else
+                                     '%s_%d%s' % (base, l, ext), a.pixel_size, origin)
+        result = out['particle'] if labels == [None] else out
+        tmp = a.output + '.tmp%d' % os.getpid()
+        with open(tmp, 'w') as f:
+            json.dump(result, f, indent=1)
+        os.replace(tmp, a.output)
+        if a.ochart:
+            rows = ochart(img, a.ochart, pixelSize=a.pixel_size, origin=origin,
+                          label=None if labels == [None] else labels[0])
+            print('ochart     %d (N, r) pairs: %s' % (len(rows), os.path.join(a.ochart, 'ochart.csv')))
+    except (ValueError, RuntimeError, OSError) as e:
+        print('mss spheropolygon: error: %s' % e, file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
