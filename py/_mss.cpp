@@ -390,6 +390,7 @@ py::dict spheropolygonFit(const py::object& data, int nx, int ny, double pixel, 
     if (d.has_key("cutoff")) o.cutoff = py::extract<long long>(d["cutoff"]);
     if (d.has_key("tolerance")) o.tolerance = py::extract<double>(d["tolerance"]);
     if (d.has_key("maxIterations")) o.maxIterations = py::extract<int>(d["maxIterations"]);
+    if (d.has_key("relocations")) o.relocations = py::extract<int>(d["relocations"]);
     const mss::SpResult r = mss::fitSpheropolygon(image2(data, nx, ny, pixel, origin), o);
     py::dict out;
     py::list v, h;

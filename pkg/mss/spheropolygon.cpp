@@ -329,20 +329,16 @@ private:
 
 } // namespace
 
-SpResult fitSpheropolygon(const Image2& target, const SpOptions& o) {
-    if (o.samples < 1 || !(o.weight > 0 && o.weight < 1) || o.maxIterations < 0 || !(o.tolerance >= 0))
-        throw std::invalid_argument(
-            "spheropolygon: samples >= 1, 0 < weight < 1, maxIterations >= 0, tolerance >= 0");
-    SpResult res;
-    res.sp = initialSpheropolygon(target, o);
-    for (std::uint8_t v : target.data) res.particlePixels += v != 0;
+namespace {
+
+/// Algorithm 1 from the spheropolygon in @p res (its V in history.back()); counts iterations on.
+void algorithmOne(const Image2& target, const SpOptions& o, SpResult& res) {
     // r_s of eq. 4; departure: when nothing moves, r_s is halved down to half a pixel (coarse to fine), where
     // the paper keeps one r_s
     double rs = o.samplingRadius > 0 ? o.samplingRadius : 4 * target.pixel;
-    long long V = errorPixels(target, res.sp);
-    res.history.push_back(V);
+    long long V = res.history.back();
     std::vector<Vec2>& v = res.sp.vertices;
-    for (res.iterations = 0; res.iterations < o.maxIterations; ++res.iterations) {
+    for (int it = 0; it < o.maxIterations; ++it, ++res.iterations) {
         if (V <= o.tolerance * double(res.particlePixels)) break;
         bool moved = false;
         for (std::size_t i = 0; i < v.size(); ++i) {
@@ -380,6 +376,79 @@ SpResult fitSpheropolygon(const Image2& target, const SpOptions& o) {
             rs = std::max(0.5 * target.pixel, 0.5 * rs);
         }
     }
+}
+
+/// Relocation (beyond the paper, which keeps the initial count along the boundary): the vertex whose removal
+/// costs least goes to the edge with the most error pixels near it (at their centroid), then Algorithm 1 runs
+/// again; kept while V falls. A feature the start under-sampled (a leg, a tail) gets its vertices this way.
+bool relocate(const Image2& target, const SpOptions& o, SpResult& res) {
+    std::vector<Vec2>& v = res.sp.vertices;
+    const std::size_t n = v.size();
+    // error pixels by their nearest edge
+    const Image2 im = rasterize(res.sp, target);
+    std::vector<double> count(n, 0.0);
+    std::vector<Vec2> sum(n, Vec2::Zero());
+    for (int j = 0; j < target.ny; ++j)
+        for (int i = 0; i < target.nx; ++i) {
+            if ((im(i, j) != 0) == (target(i, j) != 0)) continue;
+            const Vec2 p = target.center(i, j);
+            std::size_t best = 0;
+            double d = 1e300;
+            for (std::size_t e = 0; e < n; ++e) {
+                const double de = segmentDistance2(p, v[e], v[(e + 1) % n]);
+                if (de < d) {
+                    d = de;
+                    best = e;
+                }
+            }
+            count[best] += 1;
+            sum[best] += p;
+        }
+    const std::size_t worst = std::size_t(std::max_element(count.begin(), count.end()) - count.begin());
+    // the cost of removing each vertex (not the worst edge's ends)
+    long long leastCost = std::numeric_limits<long long>::max();
+    std::size_t drop = n;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i == worst || i == (worst + 1) % n) continue;
+        Spheropolygon without = res.sp;
+        without.vertices.erase(without.vertices.begin() + std::ptrdiff_t(i));
+        const long long cost = errorPixels(target, without) - res.history.back();
+        if (cost < leastCost) {
+            leastCost = cost;
+            drop = i;
+        }
+    }
+    if (drop == n || double(leastCost) >= count[worst]) return false;
+    SpResult trial = res;
+    std::vector<Vec2>& w = trial.sp.vertices;
+    const Vec2 at = sum[worst] / count[worst];
+    const Vec2 a = w[worst], b = w[(worst + 1) % n];
+    const double t = std::clamp((at - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.05, 0.95);
+    w.insert(w.begin() + std::ptrdiff_t(worst + 1), a + t * (b - a) + 0.5 * (at - (a + t * (b - a))));
+    w.erase(w.begin() + std::ptrdiff_t(drop < worst + 1 ? drop : drop + 1));
+    trial.history.push_back(errorPixels(target, trial.sp));
+    SpOptions again = o;
+    again.maxIterations = std::max(10, o.maxIterations / 3);
+    algorithmOne(target, again, trial);
+    if (trial.history.back() >= res.history.back()) return false;
+    res = std::move(trial);
+    return true;
+}
+
+} // namespace
+
+SpResult fitSpheropolygon(const Image2& target, const SpOptions& o) {
+    if (o.samples < 1 || !(o.weight > 0 && o.weight < 1) || o.maxIterations < 0 || !(o.tolerance >= 0) ||
+        o.relocations < 0)
+        throw std::invalid_argument("spheropolygon: samples >= 1, 0 < weight < 1, maxIterations >= 0, "
+                                    "tolerance >= 0, relocations >= 0");
+    SpResult res;
+    res.sp = initialSpheropolygon(target, o);
+    for (std::uint8_t v : target.data) res.particlePixels += v != 0;
+    res.history.push_back(errorPixels(target, res.sp));
+    algorithmOne(target, o, res);
+    for (int k = 0; k < o.relocations && res.history.back() > o.tolerance * double(res.particlePixels); ++k)
+        if (!relocate(target, o, res)) break;
     res.errorPixels = errorPixels(target, res.sp);
     res.error = res.particlePixels ? double(res.errorPixels) / double(res.particlePixels) : 0.0;
     return res;

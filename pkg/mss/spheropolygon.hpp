@@ -69,6 +69,10 @@ struct SpOptions {
     long long cutoff = 0;      ///< Delta V_cutoff of step 5, pixels
     double tolerance = 0.0;    ///< stop when V <= tolerance x the particle's pixels (step 6)
     int maxIterations = 100;
+    /// Beyond the paper: up to this many relocations of the least useful vertex to the edge with the most
+    /// error pixels, each followed by Algorithm 1 again and kept only if V falls (0: the paper's Algorithm
+    /// 1).
+    int relocations = 0;
 };
 
 struct SpResult {

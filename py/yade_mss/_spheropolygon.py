@@ -17,7 +17,7 @@ import numpy as np
 
 from . import _mss
 
-_DEFAULT_RADII = (0.0025, 0.005, 0.01, 0.02, 0.04)  # fractions of the particle's size
+_DEFAULT_RADII = (0.0025, 0.004, 0.006, 0.01, 0.02)  # fractions of the particle's size
 
 
 def readImage(path, threshold=None):
@@ -67,13 +67,13 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
     :param image: 2-D array (non-zero: the particle) or a .npy/.png file
     :param int vertices: N
     :param float radius: the spheroradius r (world units); None: the one of least error among *radii*
-        (fractions of the particle's size; default 0.0025 to 0.04)
+        (fractions of the particle's size; default 0.0025 to 0.02)
     :param label: of a labelled image, the particle to describe
     :param str init: 'circle', 'boundary' or 'curvature' (section 3.1), or 'auto' (default): boundary and
         curvature both, the better kept
     :param bool inset: start the vertices one spheroradius inside the boundary (beyond the paper)
     :param options: samplingRadius (r_s, world units), samples (n_s), weight (g), cutoff, tolerance,
-        maxIterations
+        maxIterations, relocations (default 10; 0: the paper's Algorithm 1 alone)
     :return: dict with spheroradius, vertices [[x, y], ...], errorPixels, error (fraction of the particle's
         pixels), iterations, roundness (eq. 9), area, perimeter, history, seconds
     """
@@ -89,14 +89,15 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
     if not (float(pixelSize) > 0):
         raise ValueError('spheropolygon: pixelSize must be > 0, got %r' % (pixelSize,))
     t0 = time.perf_counter()
-    if radius is not None:
-        r = _fit(mask, vertices, radius, pixelSize, origin, init=init, inset=inset, **options)
-    else:
+    relocations = options.pop('relocations', 10)
+    if radius is None:  # the spheroradius of least error, found without relocations, then refined with them
         idx = np.argwhere(mask)
         size = pixelSize * (np.ptp(idx, axis=0).max() + 1)
         fits = [_fit(mask, vertices, f * size, pixelSize, origin, init=init, inset=inset, **options)
                 for f in (radii or _DEFAULT_RADII)]
-        r = min(fits, key=lambda x: (x['errorPixels'], -x['spheroradius']))
+        best = min(fits, key=lambda x: (x['errorPixels'], -x['spheroradius']))
+        radius, init = best['spheroradius'], best['init']
+    r = _fit(mask, vertices, radius, pixelSize, origin, init=init, inset=inset, relocations=relocations, **options)
     r['vertices'] = [list(v) for v in r['vertices']]
     r['seconds'] = time.perf_counter() - t0
     return r
@@ -108,7 +109,7 @@ def spheropolygons(image, **kw):
     return {int(l): spheropolygon(a, label=l, **kw) for l in np.unique(a[a != 0])}
 
 
-def ochart(image, outdir, vertices=(6, 10, 15, 20, 30, 40), radii=(0.005, 0.01, 0.02, 0.05, 0.1),
+def ochart(image, outdir, vertices=(4, 6, 10, 15, 20, 30), radii=(0.005, 0.01, 0.02, 0.05, 0.1),
            pixelSize=1.0, origin=(0.0, 0.0), label=None, **options):
     """Choosing N and r (section 3.2): the error for each (N, r), the normalised cost T ~ N / sqrt(r) (eq. 7)
     and O = T x error (eq. 8), written as ``ochart.csv`` and three contour charts (``ochart.png``: Fig. 4) in

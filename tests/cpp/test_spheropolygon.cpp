@@ -57,6 +57,10 @@ TEST(Spheropolygon, AlgorithmOneRecoversARoundedRectangle) {
         EXPECT_LE(r.history.back(), r.history.front()); // Algorithm 1 never raises V
         EXPECT_EQ(r.errorPixels, errorPixels(target, r.sp));
     }
+    o.relocations = 3; // relocations only ever lower V
+    const SpResult moved = fitSpheropolygon(target, o);
+    o.relocations = 0;
+    EXPECT_LE(moved.errorPixels, fitSpheropolygon(target, o).errorPixels);
     EXPECT_THROW(parseSpInit("spiral"), std::invalid_argument);
     o.vertices = 2;
     EXPECT_THROW(fitSpheropolygon(target, o), std::invalid_argument);

@@ -110,5 +110,36 @@ class Spheropolygons(unittest.TestCase):
             self.assertIn('missing.npy', bad.stderr)
 
 
+class Bars(unittest.TestCase):
+    def test_cow_thirty_vertices_within_two_percent(self):
+        # the bar: a cow-like silhouette of 420 x 300 pixels, --vertices 30, error <= 2% of the
+        # particle's pixels by an independent rasteriser, and the reported errorPixels agreeing
+        mss = os.environ.get('MSS_BINARY', 'mss')
+        c = cow()
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'cow.npy'), c)
+            out = os.path.join(d, 'cow.json')
+            subprocess.run([mss, 'spheropolygon', os.path.join(d, 'cow.npy'), '--vertices', '30', '-o', out],
+                           check=True, capture_output=True)
+            with open(out) as f:
+                r = json.load(f)
+        self.assertEqual(len(r['vertices']), 30)
+        independent = int((rasterizeNumpy(r['vertices'], r['spheroradius'], c.shape) != c).sum())
+        self.assertEqual(independent, r['errorPixels'])
+        self.assertLessEqual(independent / c.sum(), 0.02)
+
+    def test_ochart_through_the_command_line(self):
+        mss = os.environ.get('MSS_BINARY', 'mss')
+        img, _ = roundedRectangle()
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'r.npy'), img)
+            subprocess.run([mss, 'spheropolygon', os.path.join(d, 'r.npy'), '--vertices', '4', '--radius', '10',
+                            '-o', os.path.join(d, 'r.json'), '--ochart', os.path.join(d, 'chart')], check=True,
+                           capture_output=True)
+            with open(os.path.join(d, 'chart', 'ochart.csv')) as f:
+                self.assertGreaterEqual(len(f.readlines()) - 1, 12)
+            self.assertTrue(os.path.getsize(os.path.join(d, 'chart', 'ochart.png')) > 10000)
+
+
 if __name__ == '__main__':
     unittest.main()
