@@ -20,6 +20,7 @@ import time
 
 import numpy as np
 
+from ._files import atomicWrite
 from ._generate import GENERATE_OPTIONS
 from ._results import MssResult
 from ._specimen import _VOLUME_EXT, readVolume, regions
@@ -80,14 +81,7 @@ def _optionsKey(gen, extra):
 
 
 def _atomic(path, write):
-    tmp = '%s.tmp%d%s' % (path, os.getpid(), os.path.splitext(path)[1])
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
+    atomicWrite(path, write, 'batch')
 
 
 def _write(path, data):

@@ -5,6 +5,7 @@ import os
 import numpy as np
 
 from ._clumps import _clumpIds, _yade, bodyOptions, buildClump, stateTensor
+from ._files import atomicWrite
 from ._keywords import split
 
 HEADER = ('# yade-mss clumps: x y z r clumpId, one line per sphere (ymport.textClumps reads the spheres, with '
@@ -40,16 +41,10 @@ def writeClumps(path, clumpIds=None):
         for b in members:
             lines.append('%r %r %r %r %d\n' % (b.state.pos[0], b.state.pos[1], b.state.pos[2], b.shape.radius, cid))
             spheres += 1
-    path = os.fspath(path)
-    tmp = path + '.tmp%d' % os.getpid()
-    try:
+    def write(tmp):
         with open(tmp, 'w') as f:
             f.writelines(lines)
-        os.replace(tmp, path)
-    except OSError as e:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise RuntimeError('writeClumps: %s: cannot write (%s)' % (path, e))
+    atomicWrite(path, write, 'writeClumps')
     return len(ids), spheres
 
 

@@ -17,6 +17,7 @@ import time
 import numpy as np
 
 from . import _mss
+from ._files import atomicWrite
 from ._generate import compareMany, generate
 from ._results import MssResult, readSpheres
 from ._sources import _Mesh, _source
@@ -186,14 +187,8 @@ def _save(fig, path, plt):
     if not path.lower().endswith('.png'):
         plt.close(fig)
         raise ValueError('%s: pictures are written as .png' % path)
-    tmp = path + '.tmp%d.png' % os.getpid()
     try:
-        fig.savefig(tmp)
-        os.replace(tmp, path)
-    except OSError as e:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise RuntimeError('%s: cannot write (%s)' % (path, e))
+        atomicWrite(path, fig.savefig, 'picture')
     finally:
         plt.close(fig)
 

@@ -21,6 +21,19 @@ O = Omega()
 LABELS = os.path.join(DATA, 'two_grains_labels.npy')
 
 
+def smallestGap(clumps):
+    """The least distance between spheres of two different clumps (negative: they overlap)."""
+    members = [(np.array([vec(O.bodies[i].state.pos) for i in ids]), np.array([O.bodies[i].shape.radius for i in ids]))
+               for cid, ids in clumps]
+    gap = np.inf
+    for a in range(len(members)):
+        for b in range(a):
+            d = (np.linalg.norm(members[a][0][:, None] - members[b][0][None], axis=2) - members[a][1][:, None]
+                 - members[b][1][None])
+            gap = min(gap, d.min())
+    return gap
+
+
 class Base(unittest.TestCase):
     def setUp(self):
         O.reset()
@@ -138,14 +151,7 @@ class Packing(Base):
         d = np.array(d)
         self.assertTrue(np.all(d >= 0.002 * (1 - 1e-6)) and np.all(d <= 0.004 * (1 + 1e-6)), d)
         self.assertLess(abs(np.median(d) - 0.003), 0.0006)  # half below 3 mm
-        # no two clumps touch: no sphere of one overlaps a sphere of another
-        members = [(np.array([vec(O.bodies[i].state.pos) for i in ids]),
-                    np.array([O.bodies[i].shape.radius for i in ids])) for cid, ids in out]
-        for a in range(len(members)):
-            for b in range(a):
-                gap = (np.linalg.norm(members[a][0][:, None] - members[b][0][None], axis=2)
-                       - members[a][1][:, None] - members[b][1][None])
-                self.assertGreater(gap.min(), 0)
+        self.assertGreater(smallestGap(out), 0)  # no two clumps touch
         with self.assertRaises(ValueError):
             mssClumpCloud([t1], (0, 0, 0), (1, 1, 1), num=5, psdSizes=[1, 2], psdCumm=[0, 0.5])
 
@@ -157,13 +163,7 @@ class Packing(Base):
         n = len(O.bodies)
         out = mssReplaceByClumps([t], [1.0], seed=3)
         self.assertEqual(len(out), n)
-        members = [(np.array([vec(O.bodies[i].state.pos) for i in ids]),
-                    np.array([O.bodies[i].shape.radius for i in ids])) for cid, ids in out]
-        for a in range(len(members)):
-            for b in range(a):
-                gap = (np.linalg.norm(members[a][0][:, None] - members[b][0][None], axis=2)
-                       - members[a][1][:, None] - members[b][1][None])
-                self.assertGreater(gap.min(), -1e-12)
+        self.assertGreater(smallestGap(out), -1e-12)
         self.assertEqual(sorted(k for c, k in restoreClumpProperties()), ['grain'] * n)
 
 
