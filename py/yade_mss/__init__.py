@@ -17,16 +17,23 @@ Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, the
 ``_pictures`` (mss preview, mss curve), ``_spheropolygon`` (2-D: spheropolygons, the O-chart).
 """
 
-from ._results import MassProperties, MssResult, readSpheres
-from ._sources import massProperties
-from ._generate import compareMany, generate, score
-from ._clumps import mssClump, restoreClumpProperties
-from ._clumpfiles import readClumps, writeClumps
-from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate
-from ._batch import batch
-from ._assembly import mssAssembly
-from ._specimen import regions, syntheticSpecimen
-from ._spheropolygon import ochart, spheropolygon, spheropolygons
+import os as _os
+
+# OpenMP threads that spin collapse when the cores are shared (YADE, a batch): wait passively unless the user
+# chose. Effective when the OpenMP runtime loads with our module (plain python3); inside YADE, which loads it
+# first, set OMP_WAIT_POLICY=PASSIVE before starting yade.
+_os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
+
+from ._results import MassProperties, MssResult, readSpheres  # noqa: E402
+from ._sources import massProperties  # noqa: E402
+from ._generate import compareMany, generate, score  # noqa: E402
+from ._clumps import mssClump, restoreClumpProperties  # noqa: E402
+from ._clumpfiles import readClumps, writeClumps  # noqa: E402
+from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate  # noqa: E402
+from ._batch import batch  # noqa: E402
+from ._assembly import mssAssembly  # noqa: E402
+from ._specimen import regions, syntheticSpecimen  # noqa: E402
+from ._spheropolygon import ochart, spheropolygon, spheropolygons  # noqa: E402
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
