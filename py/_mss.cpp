@@ -230,13 +230,19 @@ py::tuple readMesh(const std::string& path) {
     return py::make_tuple(v, t);
 }
 
+/// A voxel grid's data as Python bytes (x fastest, one byte per voxel) and its shape.
+py::object voxelBytes(const mss::VoxelGrid& v) {
+    return py::object(py::handle<>(
+        PyBytes_FromStringAndSize(reinterpret_cast<const char*>(v.data.data()), Py_ssize_t(v.data.size()))));
+}
+py::tuple shape(const mss::VoxelGrid& v) {
+    return py::make_tuple(v.nx(), v.ny(), v.nz());
+}
+
 /// .npy file -> (bytes, x fastest, one per voxel: 1 solid), shape); the C++ reader's checks and messages.
 py::tuple readNpy(const std::string& path, long long label) {
     const mss::VoxelGrid v = mss::readNpy(path, 1.0, mss::Vec3::Zero(), label);
-    const std::string bytes(reinterpret_cast<const char*>(v.data.data()), v.data.size());
-    return py::make_tuple(
-        py::object(py::handle<>(PyBytes_FromStringAndSize(bytes.data(), Py_ssize_t(bytes.size())))),
-        py::make_tuple(v.nx(), v.ny(), v.nz()));
+    return py::make_tuple(voxelBytes(v), shape(v));
 }
 
 /// A mesh voxelised (voxel centres inside, section 2.2) on a grid of @p resolution voxels along its shortest
@@ -245,10 +251,7 @@ py::tuple voxelizeMesh(const py::object& vertices, const py::object& triangles, 
     mss::Resolution r;
     r.resolution = resolution;
     const mss::VoxelGrid v = mss::voxelizeMesh(mesh(vertices, triangles), r);
-    const std::string bytes(reinterpret_cast<const char*>(v.data.data()), v.data.size());
-    return py::make_tuple(
-        py::object(py::handle<>(PyBytes_FromStringAndSize(bytes.data(), Py_ssize_t(bytes.size())))),
-        py::make_tuple(v.nx(), v.ny(), v.nz()), v.spec.h, list(v.spec.origin));
+    return py::make_tuple(voxelBytes(v), shape(v), v.spec.h, list(v.spec.origin));
 }
 
 py::dict meshInfo(const py::object& vertices, const py::object& triangles) {

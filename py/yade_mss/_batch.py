@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ._files import atomicWrite
+from ._files import atomicWrite, parseOrigin
 from ._generate import GENERATE_OPTIONS
 from ._results import MssResult
 from ._specimen import _VOLUME_EXT, readVolume, regions
@@ -405,9 +405,7 @@ def main(argv=None):
     if a.clip:
         gen['clip'] = True
     try:
-        origin = [float(x) for x in a.origin.split(',')] if a.origin else None
-        if origin is not None and len(origin) != 3:
-            raise ValueError('--origin: expected X,Y,Z')
+        origin = parseOrigin(a.origin, 3)
         labels = [int(x) for x in a.labels.split(',')] if a.labels else None
         b = batch(a.inputs, a.output, workers=a.workers, scheduler=a.scheduler, minVoxels=a.min_voxels,
                   excludeBorder=a.exclude_border, labels=labels, voxelSize=a.voxel_size, origin=origin,

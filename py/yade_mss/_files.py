@@ -17,3 +17,16 @@ def atomicWrite(path, write, where):
         if isinstance(e, OSError):
             raise RuntimeError('%s: %s: cannot write (%s)' % (where, path, e))
         raise
+
+
+def parseOrigin(text, n):
+    """``--origin X,Y,Z`` (or X,Y for images) -> n floats; ValueError naming the option otherwise."""
+    if text is None:
+        return None
+    try:
+        v = [float(x) for x in text.split(',')]
+    except ValueError:
+        v = []
+    if len(v) != n or not all(x == x and abs(x) != float('inf') for x in v):
+        raise ValueError('--origin: expected %s (finite numbers), got %r' % (','.join('XYZ'[:n]), text))
+    return v

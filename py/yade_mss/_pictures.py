@@ -17,7 +17,7 @@ import time
 import numpy as np
 
 from . import _mss
-from ._files import atomicWrite
+from ._files import atomicWrite, parseOrigin
 from ._generate import compareMany, generate
 from ._results import MssResult, readSpheres
 from ._sources import _Mesh, _source
@@ -280,8 +280,8 @@ def main(argv=None):
         q.add_argument('--origin', default=None, help='X,Y,Z')
         q.add_argument('--label', type=int, default=None)
     a = p.parse_args(argv)
-    origin = [float(x) for x in a.origin.split(',')] if a.origin else None
     try:
+        origin = parseOrigin(a.origin, 3)
         if a.command == 'preview':
             row = preview(a.grain, a.spheres, a.output, a.resolution, voxelSize=a.npy_voxel_size, origin=origin,
                           label=a.label, title=os.path.basename(a.spheres))

@@ -9,6 +9,8 @@ import os
 
 import numpy as np
 
+from ._clumps import randomRotation
+
 _VOLUME_EXT = ('.npy', '.tif', '.tiff')
 
 
@@ -76,14 +78,6 @@ def regions(labels, only=None):
     return out
 
 
-def _rotation(rng):
-    q = rng.normal(size=4)
-    w, x, y, z = q / np.linalg.norm(q)
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
-
-
 def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, gap=1, maxTries=20000):
     """A labelled volume of random, non-overlapping, randomly oriented irregular grains (each the union of two
     or three ellipsoids), some cut by the volume's border: for tests and benchmarks.
@@ -101,7 +95,7 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
     for _ in range(maxTries):
         if placed == grains:
             break
-        R = _rotation(rng)
+        R = randomRotation(rng)
         parts = [(np.zeros(3), rng.uniform(lo, hi, 3))]
         for _ in range(rng.integers(1, 3)):
             parts.append((R.dot(rng.normal(0, 0.6 * lo, 3)), rng.uniform(0.6 * lo, 0.9 * hi, 3)))

@@ -16,6 +16,7 @@ import time
 import numpy as np
 
 from . import _mss
+from ._files import parseOrigin
 
 _DEFAULT_RADII = (0.0025, 0.004, 0.006, 0.01, 0.02)  # fractions of the particle's size
 
@@ -249,7 +250,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         img = readImage(a.image, a.threshold)
-        origin = [float(x) for x in a.origin.split(',')]
+        origin = parseOrigin(a.origin, 2)
         labels = [None] if img.dtype == bool or len(np.unique(img[img != 0])) <= 1 else \
             [int(l) for l in np.unique(img[img != 0])]
         out = {}

@@ -84,6 +84,10 @@ check "batch: both grains ok in grains.csv" [ "$(grep -c ',ok,' "$TMP/batch/grai
 check "batch: assembly with two clumps" [ "$(grep -c '^#mss clump' "$TMP/batch/assembly.txt")" -eq 2 ]
 expect_error "batch without -o" "required" "$MSS" batch "$DATA/two_grains_labels.npy" --spheres 5
 
+# the Python commands name a bad --origin
+expect_error "batch: bad origin" "--origin: expected X,Y,Z" "$MSS" batch "$DATA/two_grains_labels.npy" -o "$TMP/bo" --spheres 3 --origin 1,2
+expect_error "preview: bad origin" "--origin: expected X,Y,Z" "$MSS" preview "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" -o "$TMP/o.png" --origin 1,x,2
+
 # info
 "$MSS" info "$DATA/human_femur.stl" > "$TMP/info.log"
 check "info reports 13752 triangles" grep -qE '^triangles +13752' "$TMP/info.log"

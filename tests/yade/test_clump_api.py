@@ -56,6 +56,14 @@ class Base(unittest.TestCase):
     def members(self, cid):
         return sorted(O.bodies[cid].shape.members.keys())
 
+    def assertUnionOfMembers(self, cid, h, tol):
+        """The clump carries the mass properties of the union of its present members (numpy grid of step h)."""
+        m = self.members(cid)
+        c = np.array([vec(O.bodies[i].state.pos) for i in m])
+        rad = np.array([O.bodies[i].shape.radius for i in m])
+        V, cen, I = unionByGrid(c, rad, h)
+        self.assertExact(cid, RHO * V, cen, RHO * I, tol=tol)
+
 
 class Exact(Base):
     def test_members_are_exactly_the_spheres(self):
@@ -110,11 +118,7 @@ class SideBySide(Base):
         self.assertTrue(all(O.bodies[i].state.mass > 0 and not O.bodies[i].isClumpMember for i in ids[:-2]))
         # restoring gives the union of the two left, overlaps once
         self.assertEqual(restoreClumpProperties([cid]), [(cid, 'union')])
-        left = self.members(cid)
-        c = np.array([vec(O.bodies[i].state.pos) for i in left])
-        rad = np.array([O.bodies[i].shape.radius for i in left])
-        V, cen, I = unionByGrid(c, rad, 0.005)
-        self.assertExact(cid, RHO * V, cen, RHO * I, tol=0.005)
+        self.assertUnionOfMembers(cid, 0.005, 0.005)
 
     def test_add_to_clump(self):
         (cid, ids), (pc, pids) = self.pair()
@@ -125,11 +129,7 @@ class SideBySide(Base):
         self.assertEqual(len(self.members(cid)), len(ids) + 1)
         self.assertLess(abs(O.bodies[cid].state.mass / O.bodies[pc].state.mass - 1), 1e-12)
         self.assertEqual(restoreClumpProperties([cid]), [(cid, 'union')])
-        m = self.members(cid)
-        c = np.array([vec(O.bodies[i].state.pos) for i in m])
-        rad = np.array([O.bodies[i].shape.radius for i in m])
-        V, cen, I = unionByGrid(c, rad, 0.5)
-        self.assertExact(cid, RHO * V, cen, RHO * I, tol=0.01)
+        self.assertUnionOfMembers(cid, 0.5, 0.01)
 
     def test_erase_keeps_free_spheres_of_positive_mass(self):
         (cid, ids), (pc, pids) = self.pair()
