@@ -149,6 +149,8 @@ void printMetrics(const mss::Result& r) {
     std::cout << "dice        " << m.dice << "   (Dice mismatch, eq. 27, generation grid)\n";
     std::cout << "iterations  " << m.iterations << "   symmetry planes kept " << m.symmetryPlanes << "\n";
     if (m.clipped) std::cout << "clipped     " << m.clipped << " spheres shrunk by the final clipping\n";
+    std::cout << "protrusion  " << m.protrusion
+              << "   (largest beyond the grain, world units, <= " << m.protrusionLimit << ")\n";
     std::cout << std::setprecision(3) << "seconds     read " << m.secondsRead << "  voxelize "
               << m.secondsVoxelize << "  edt " << m.secondsEdt << "  select " << m.secondsSelect
               << "  refine " << m.secondsRefine << "  total " << m.secondsTotal << "\n";
@@ -177,6 +179,7 @@ int cmdGenerate(const Args& a) {
     o.keepSymmetry = !a.has("--no-symmetry");
     o.clip = a.has("--clip");
     o.refill = !a.has("--no-refill");
+    if (a.has("--max-protrusion")) o.maxProtrusion = number(a, "--max-protrusion", 0.0);
     o.planes = planes(a);
     const std::string method = a.has("--method") ? a.opts.at("--method") : "optimized";
     if (method == "optimized")
@@ -419,7 +422,12 @@ CLI::App* generateCommand(CLI::App& app, Args& a) {
     flag(g, a, "--no-symmetry", "do not detect and keep mirror planes");
     flag(g, a, "--clip",
          "no sphere protrudes from the grain (exact distance to the mesh; voxel faces for .npy)");
-    flag(g, a, "--no-refill", "with --clip: shrink the spheres afterwards instead of choosing them under it");
+    value(g, a, "--max-protrusion", "--max-protrusion",
+          "no sphere reaches farther than H beyond the grain (world units; default one voxel; 0 = --clip; "
+          "inf = unbounded)",
+          "H");
+    flag(g, a, "--no-refill",
+         "with --clip or --max-protrusion: shrink the spheres afterwards instead of choosing them under it");
     planeOption(g, a, "no sphere crosses this plane (spheres stay on the normal's side); may repeat");
     value(g, a, "--max-iterations", "--max-iterations", "iteration cap (default 100)", "N");
     value(g, a, "--threads", "--threads", "OpenMP threads (the result is the same for any T)", "T");

@@ -1,5 +1,6 @@
-"""Draws docs/femur70.png, the README's picture: the femur mesh, its 70 spheres (optimized), and 70 spheres
-clipped so that none protrudes, with D (eq. 27) on an independent grid.
+"""Draws docs/femur70.png, the README's picture: the femur mesh and 70 spheres three ways: unbounded (radii grow
+past the mesh wherever that lowers the mismatch), the default (no sphere more than one voxel beyond the mesh), and
+clipped (none beyond), with D (eq. 27) on an independent grid and the largest protrusion in voxels.
 usage: PYTHONPATH=build/py /usr/bin/python3 docs/make_figure.py   (build first; needs python3-matplotlib)"""
 import os
 
@@ -27,22 +28,32 @@ def spheres(ax, r, color):
                         c[2] + rad * np.cos(v), color=color, linewidth=0, shade=True)
 
 
+def bumps(r):
+    """The largest protrusion beyond the mesh, in voxels of the generation grid."""
+    return r.metrics['protrusion'] / r.grid['voxelSize']
+
+
 def main():
     tris = mesh_triangles(FEMUR)
-    free = yade_mss.generate(FEMUR, nSpheres=70, resolution=103)
+    free = yade_mss.generate(FEMUR, nSpheres=70, resolution=103, maxProtrusion=float('inf'))
+    bounded = yade_mss.generate(FEMUR, nSpheres=70, resolution=103)
     clipped = yade_mss.generate(FEMUR, nSpheres=70, resolution=103, clip=True)
-    fig = plt.figure(figsize=(12, 5.2))
+    fig = plt.figure(figsize=(15, 5.2))
     lo, hi = tris.reshape(-1, 3).min(0), tris.reshape(-1, 3).max(0)
     panels = [('femur mesh (X-ray CT), %d triangles' % len(tris), None),
-              ('70 spheres, D = %.4f' % yade_mss.score(FEMUR, free)['dice'], free),
-              ('70 spheres, none protrudes (clip), D = %.4f' % yade_mss.score(FEMUR, clipped)['dice'], clipped)]
+              ('unbounded: D = %.4f, bumps up to %.1f voxels' % (yade_mss.score(FEMUR, free)['dice'], bumps(free)),
+               free),
+              ('default: D = %.4f, at most %.1f voxel out' % (yade_mss.score(FEMUR, bounded)['dice'], bumps(bounded)),
+               bounded),
+              ('clipped: D = %.4f, none out' % yade_mss.score(FEMUR, clipped)['dice'], clipped)]
+    colors = {id(free): '#4f7cac', id(bounded): '#b0704f', id(clipped): '#6a9f58'}
     for i, (title, r) in enumerate(panels):
-        ax = fig.add_subplot(1, 3, i + 1, projection='3d')
+        ax = fig.add_subplot(1, 4, i + 1, projection='3d')
         if r is None:
             ax.plot_trisurf(tris[:, :, 0].ravel(), tris[:, :, 1].ravel(), tris[:, :, 2].ravel(),
                             triangles=np.arange(3 * len(tris)).reshape(-1, 3), color='#c8b89a', linewidth=0)
         else:
-            spheres(ax, r, '#4f7cac' if r is free else '#6a9f58')
+            spheres(ax, r, colors[id(r)])
         for set_lim, a, b in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), lo, hi):
             set_lim(a, b)
         ax.set_box_aspect(tuple(hi - lo), zoom=1.0)

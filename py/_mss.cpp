@@ -131,6 +131,7 @@ mss::GenerateOptions options(const py::dict& d) {
     if (d.has_key("threads")) o.threads = py::extract<int>(d["threads"]);
     if (d.has_key("clip")) o.clip = py::extract<bool>(d["clip"]);
     if (d.has_key("refill")) o.refill = py::extract<bool>(d["refill"]);
+    if (d.has_key("maxProtrusion")) o.maxProtrusion = py::extract<double>(d["maxProtrusion"]);
     if (d.has_key("planes")) {
         o.planes = planes(d["planes"]);
     }
@@ -181,6 +182,8 @@ py::dict result(const mss::Result& r) {
     md["sphereVoxels"] = m.sphereVoxels;
     md["symmetryPlanes"] = m.symmetryPlanes;
     md["clipped"] = m.clipped;
+    md["protrusion"] = m.protrusion;
+    md["protrusionLimit"] = m.protrusionLimit;
     py::list warnings;
     for (const std::string& w : m.warnings) warnings.append(w);
     md["warnings"] = warnings;

@@ -4,12 +4,16 @@
 #include "mss/engine/paper.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #ifdef _OPENMP
@@ -26,21 +30,39 @@ using engine::Clock;
 using engine::Orbit;
 using engine::secondsSince;
 
-/// The constraint of a voxel volume (clipping to the faces of its solid voxels, planes), world units.
-std::function<double(const Vec3&)> voxelVolumeBound(const VoxelGrid& grain, const ScalarGrid& Eg,
-                                                    const GenerateOptions& opt) {
+/// Signed clearance of a point (world units): the exact distance from it to the grain's surface, positive
+/// inside, negative (or -1 where the distance is not known) outside.
+using Clearance = std::function<double(const Vec3&)>;
+
+/// The clearance in a voxel volume: to the nearest background voxel's cube (voxelClearance), -1 outside.
+Clearance voxelVolumeClearance(const VoxelGrid& grain, const ScalarGrid& Eg) {
     const double h = grain.spec.h;
-    return [&grain, &Eg, &opt, h](const Vec3& c) {
-        double b = std::numeric_limits<double>::infinity();
-        for (const Plane& p : opt.planes) b = std::min(b, planeDistance(p, c));
-        if (!opt.clip || b < 0) return b;
+    return [&grain, &Eg, h](const Vec3& c) {
         const double e = voxelClearance(grain, Eg, grain.spec.toVoxel(c));
-        return e < 0 ? -1.0 : std::min(b, e * h);
+        return e < 0 ? -0.5 * h : e * h; // outside: at least half a voxel from the solid
+    };
+}
+
+/// The constraint on radii in world units: planes (never crossed) and the protrusion bound @p H beyond the
+/// clearance (no centre outside); empty when there is none.
+std::function<double(const Vec3&)> radiusBound(const Clearance& clearance, double H,
+                                               const std::vector<Plane>& planes) {
+    if (!std::isfinite(H) && planes.empty()) return {};
+    return [clearance, H, &planes](const Vec3& c) {
+        double b = std::numeric_limits<double>::infinity();
+        for (const Plane& p : planes) b = std::min(b, planeDistance(p, c));
+        if (!std::isfinite(H) || b < 0) return b;
+        const double e = clearance(c);
+        return e < 0 ? -1.0 : std::min(b, e + H);
     };
 }
 
 /// The constraint in voxel units of @p S, remembering its answers: the optimiser asks again and again at the
-/// same points (moves back and forth).
+/// same points (moves back and forth). Exact at every point asked: an interpolation of the clearance between
+/// voxel centres (from E, or from exact values there) with the final clipping putting right what it gets
+/// wrong was tried and was 1.5-2x faster but lost fidelity (femur 70, bounded: D 0.0281 exact, 0.0349 from
+/// E - 1/2, 0.0301 from exact values at voxel centres, which is also slower: exact queries on the medial
+/// surface, where much of the surface is nearly equidistant, cost ~130 us each).
 class CachedBound {
 public:
     CachedBound(std::function<double(const Vec3&)> world, const GridSpec& g)
@@ -75,14 +97,14 @@ private:
 /// continue"). Neither start wins always (clipped, independent grid: ellipsoid 10 spheres 0.0104 cold /
 /// 0.0081 warm; octahedron 40: 0.130 / 0.101; ellipsoid 40: 0.00134 / 0.00139; cube 40: 0.0753 / 0.0768).
 std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
-                              const BoundVox& boundVox, Metrics& m) {
+                              const BoundVox& boundVox, bool twoStarts, Metrics& m) {
     double secondsRefine = 0.0;
     std::vector<Ball> balls;
     const auto t0 = Clock::now();
     if (opt.method == Method::Paper) {
         balls = engine::runPaper(S, E, opt, m, boundVox);
         m.secondsSelect = secondsSince(t0);
-    } else if (boundVox) {
+    } else if (boundVox && twoStarts) {
         Metrics warmM = m, coldM = m;
         std::vector<Orbit> free;
         engine::runOptimized(S, E, opt, BoundVox{}, warmM, secondsRefine, {}, &free);
@@ -92,6 +114,9 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
         std::vector<Ball> cold =
             engine::runOptimized(S, E, opt, boundVox, coldM, secondsRefine, {}, nullptr, &coldMismatch);
         const double select = warmM.secondsSelect + coldM.secondsSelect;
+        if (std::getenv("MSS_DEBUG"))
+            std::fprintf(stderr, "warm %lld (%zu) cold %lld (%zu)\n", warmMismatch, warm.size(), coldMismatch,
+                         cold.size());
         // with a quality target (problem (ii)) fewer spheres win first, else less mismatch
         const auto w = std::make_pair(double(warmMismatch), double(warm.size()));
         const auto c = std::make_pair(double(coldMismatch), double(cold.size()));
@@ -108,6 +133,47 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
     return balls;
 }
 
+/// The OpenMP settings of one generation, restored afterwards (the host, YADE say, keeps its own): @p threads
+/// if given. Otherwise, unless the waiting policy is passive (the mss command and yade_mss set it), dynamic
+/// team sizes: the runtime then takes fewer threads on a busy machine. A waiting thread spins by default,
+/// and the optimiser's many short parallel regions made two processes of 2 threads on 2 cores each take 17x
+/// longer than alone (the fidelity tests under ctest -j2: 54.7 s; dynamic or passive: 3.2 s).
+class OmpScope {
+public:
+    explicit OmpScope(int threads) {
+#ifdef _OPENMP
+        threads_ = omp_get_max_threads();
+        dynamic_ = omp_get_dynamic();
+        if (threads > 0) {
+            omp_set_num_threads(threads);
+            omp_set_dynamic(0);
+        } else if (!passiveWaiting()) {
+            omp_set_dynamic(1);
+        }
+#else
+        (void)threads;
+#endif
+    }
+    ~OmpScope() {
+#ifdef _OPENMP
+        omp_set_num_threads(threads_);
+        omp_set_dynamic(dynamic_);
+#endif
+    }
+    OmpScope(const OmpScope&) = delete;
+    OmpScope& operator=(const OmpScope&) = delete;
+
+private:
+    static bool passiveWaiting() {
+        const char* p = std::getenv("OMP_WAIT_POLICY");
+        if (!p) return false;
+        std::string s(p);
+        for (char& ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        return s == "passive";
+    }
+    int threads_ = 1, dynamic_ = 0;
+};
+
 /// A criterion left nothing: say which, never return an empty set silently.
 [[noreturn]] void noSphereLeft(const ScalarGrid& E, const GenerateOptions& opt) {
     const double h = E.spec.h;
@@ -118,20 +184,27 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
            << " of the grain: no sphere can be placed";
     else
         os << "generate: no sphere is left" << (opt.rMin > 0.0 ? " at or above rMin" : "")
-           << (opt.clip || !opt.planes.empty() ? " under the clipping constraint" : "")
+           << (opt.clip || !opt.planes.empty()          ? " under the clipping constraint"
+               : std::isfinite(protrusionLimit(opt, h)) ? " under the protrusion bound"
+                                                        : "")
            << " (largest inscribed radius " << inscribed << ")";
     throw std::invalid_argument(os.str());
 }
 
-/// @p meshBound: the mesh's constraint in world units (clipping to the mesh, planes), or empty: then clipping
-/// and planes apply to the voxel volume S.
-Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metrics m, Clock::time_point start,
-                      std::function<double(const Vec3&)> meshBound = {}) {
-    if (opt.threads > 0) {
-#ifdef _OPENMP
-        omp_set_num_threads(opt.threads);
-#endif
+/// The largest protrusion of @p spheres: radius minus the centre's signed clearance, an upper bound (a
+/// centre in a background voxel of a volume counts half a voxel).
+double largestProtrusion(const SphereSet& spheres, const Clearance& clearance) {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < spheres.size(); ++i) {
+        double e = clearance(spheres.centers[i]);
+        worst = std::max(worst, spheres.radii[i] - e);
     }
+    return worst;
+}
+
+/// @p meshClearance: the mesh's clearance (exact distance to its surface), or empty: then the voxel volume's.
+Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metrics m, Clock::time_point start,
+                      Clearance meshClearance = {}) {
     if (countSolid(grain) == 0)
         throw std::invalid_argument("generate: the voxelised solid is empty (resolution too coarse?)");
     // Constraint planes cut the target as well: the spheres are fitted to, and scored against, the part of
@@ -149,14 +222,25 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     const ScalarGrid E = distanceTransform(S); // eq. 8
     m.secondsEdt = secondsSince(t0);
     const double h = S.spec.h;
-    std::function<double(const Vec3&)> bound = meshBound;
+    const double H = protrusionLimit(opt, h);
+    m.protrusionLimit = H;
     ScalarGrid grainEdt; // the whole grain's, for the voxel clearance when planes cut it
-    if (!bound && opt.clip && !opt.planes.empty()) grainEdt = distanceTransform(grain);
-    if (!bound && (opt.clip || !opt.planes.empty())) // stay in the union of the solid voxels' cubes, exactly
-        bound = voxelVolumeBound(grain, opt.planes.empty() ? E : grainEdt, opt);
+    Clearance clearance = meshClearance;
+    if (!clearance) { // stay in the union of the solid voxels' cubes, exactly
+        if (!opt.planes.empty()) grainEdt = distanceTransform(grain);
+        clearance = voxelVolumeClearance(grain, opt.planes.empty() ? E : grainEdt);
+    }
+    const auto bound = radiusBound(clearance, H, opt.planes);
     BoundVox boundVox;
-    if (bound && (opt.refill || !opt.clip)) boundVox = CachedBound(bound, S.spec);
-    const std::vector<Ball> balls = chooseBalls(S, E, opt, boundVox, m);
+    if (bound && (opt.refill || !std::isfinite(H))) boundVox = CachedBound(bound, S.spec);
+    // Two starts where the constraint cuts deep (clipping, a bound under a voxel, planes) and where they cost
+    // little (small grains, where one start is also the noisier: a CT grain of 2122 voxels, 12 spheres: D
+    // 0.114 warm, 0.120 cold). Under the default bound of one voxel on larger grains they differ by 0-3%
+    // (femur 70: 28816 / 29740 mismatched voxels warm / cold, cube 30 128710 / 127368, ellipsoid 10 equal):
+    // one run from nothing under the bound, a third of the time.
+    constexpr std::size_t kSmallGrain = 30000; // solid voxels
+    const bool twoStarts = H < h || !opt.planes.empty() || countSolid(S) < kSmallGrain;
+    const std::vector<Ball> balls = chooseBalls(S, E, opt, boundVox, twoStarts, m);
     Result r;
     r.grid = S.spec;
     const double rMin = std::max(opt.rMin, 1e-9 * h);
@@ -173,6 +257,7 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
         if (radius >= rMin) r.spheres.add(c, radius);
     }
     if (r.spheres.size() == 0) noSphereLeft(E, opt);
+    m.protrusion = largestProtrusion(r.spheres, clearance);
     const Mismatch mm = mismatch(S, voxelizeSpheres(r.spheres, S.spec));
     m.spheres = r.spheres.size();
     m.eta = mm.eta;
@@ -199,10 +284,18 @@ void validateOptions(const GenerateOptions& o) {
     if (o.maxIterations < 1) bad("maxIterations must be >= 1", o.maxIterations);
     if (!(o.deltaMin >= 0.0) || !std::isfinite(o.deltaMin)) bad("deltaMin must be >= 0", o.deltaMin);
     if (o.threads < 0) bad("threads must be >= 0", o.threads);
+    if (o.maxProtrusion && !(*o.maxProtrusion >= 0.0))
+        bad("maxProtrusion must be >= 0 (world units; inf: unbounded)", *o.maxProtrusion);
+    if (o.clip && o.maxProtrusion && *o.maxProtrusion != 0.0)
+        bad("clip means maxProtrusion 0: give one of them", *o.maxProtrusion);
     for (const Plane& p : o.planes) validatePlane(p, "generate");
     if (o.nSpheres == 0 && o.eta == 0.0 && o.dice == 0.0 && o.rMin == 0.0)
         throw std::invalid_argument(
             "generate: give at least one termination criterion (sphere count, eta, dice or rMin)");
+}
+
+double protrusionLimit(const GenerateOptions& o, double h) {
+    return o.clip ? 0.0 : o.maxProtrusion.value_or(h);
 }
 
 Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx) {
@@ -226,18 +319,23 @@ Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx) {
 //   of near-equal maxima next to each other: the budget goes to near-duplicates. Instead each candidate is
 //   scored by the exact mismatch it removes given the spheres already placed (a greedy set cover with a
 //   penalty for covering background), lazily re-evaluated.
-// - The candidates are MSS's maxima of E plus a sampling of the medial ridge of E (every voxel where E has no
-//   face neighbour more than half a voxel higher, thinned to at most 40,000), since the maxima alone are
-//   often fewer than the budget and poorly placed for it. E* = 2E - Ẽ (eq. 25) is not needed: the exact gain
-//   already measures what a candidate adds beyond the current union.
+// - The candidates are MSS's maxima of E plus a sampling of the medial surface of E (engine/candidates.cpp:
+//   voxels where E has no face neighbour more than half a voxel higher or |grad E| < 0.9, thinned to 10,000
+//   by a hash of the position), since the maxima alone are often fewer than the budget and poorly placed for
+//   it. E* = 2E - Ẽ (eq. 25) is not needed: the exact gain already measures what a candidate adds beyond the
+//   current union.
 // - Centres and radii are then tuned by coordinate descent on the voxel mismatch (moves: a centre coordinate,
-//   the radius, or a centre coordinate with the radius following E, so a ball can slide along the surface);
-//   radii may exceed E by the discretisation the paper accepts (section 3.5), unless clipping is asked for
-//   (GenerateOptions::clip).
+//   the radius, or a centre coordinate with the radius following E, so a ball can slide along the surface).
+//   Radii may exceed the clearance by the discretisation the paper accepts (section 3.5), one voxel, and no
+//   more (GenerateOptions::maxProtrusion): without that bound the mismatch is lowest with bumps of several
+//   voxels (femur 70: 4.4 voxels, 53 of the 70 spheres beyond one voxel; a cube: 6).
+// - Problem (ii) (a quality target): the budget grows in steps with refinement in between (growToTarget in
+//   engine/optimized.cpp), since a greedy run to the target overshoots the count a refined set needs.
 // - Mirror planes of the voxelised grain through the grid centre are detected; candidates are placed with
 //   their mirror images so the sphere set keeps the grain's symmetry (paper section 4.2 values this).
 Result generate(const VoxelGrid& volume, const GenerateOptions& options) {
     validateOptions(options);
+    const OmpScope omp(options.threads);
     const auto start = Clock::now();
     Metrics m;
     const VoxelGrid S = padVoxels(volume, 2); // eq. 6
@@ -247,6 +345,7 @@ Result generate(const VoxelGrid& volume, const GenerateOptions& options) {
 Result generate(const TriangleMesh& mesh, const Resolution& resolution, const GenerateOptions& options,
                 int supersample) {
     validateOptions(options);
+    const OmpScope omp(options.threads);
     const auto start = Clock::now();
     Metrics m;
     auto t0 = Clock::now();
@@ -256,32 +355,25 @@ Result generate(const TriangleMesh& mesh, const Resolution& resolution, const Ge
         throw std::invalid_argument(
             "generate: the mesh voxelises to no solid voxel (open mesh or too coarse a "
             "resolution?)");
-    if (!options.clip && options.planes.empty()) return generateOnGrid(S, options, m, start);
-    // Clipping (paper section 3.5, with the exact distance to the surface instead of the nearest vertex): a
-    // sphere's radius is at most the distance from its centre to the nearest point of any triangle (CGAL AABB
-    // tree), and a centre outside the solid is not allowed. Inside: the voxel centre nearest to c when the
-    // surface is farther from c than that centre (same side), else the generalised winding number.
-    std::unique_ptr<MeshQuery> query;
-    VoxelGrid centres;
-    if (options.clip) {
-        query = std::make_unique<MeshQuery>(mesh);
-        if (supersample != 1) centres = voxelizeMesh(mesh, S.spec, 1);
-    }
-    const VoxelGrid& inside = supersample != 1 ? centres : S;
-    auto bound = [&](const Vec3& c) {
-        double b = std::numeric_limits<double>::infinity();
-        for (const Plane& p : options.planes) b = std::min(b, planeDistance(p, c));
-        if (!query || b < 0) return b;
+    // The clearance (paper section 3.5, with the exact distance to the surface instead of the nearest
+    // vertex): distance from the centre to the nearest point of any triangle (CGAL AABB tree), positive
+    // inside. Inside: the voxel centre nearest to c when the surface is farther from c than that centre (same
+    // side), else the generalised winding number.
+    const auto query = std::make_shared<MeshQuery>(mesh);
+    auto centres = std::make_shared<VoxelGrid>();
+    if (supersample != 1) *centres = voxelizeMesh(mesh, S.spec, 1);
+    const VoxelGrid& inside = supersample != 1 ? *centres : S;
+    const Clearance clearance = [query, centres, &inside, spec = S.spec](const Vec3& c) {
         const double dist = query->distance(c);
-        const auto v = S.spec.voxelOf(c);
+        const auto v = spec.voxelOf(c);
         bool in;
-        if (S.spec.contains(v[0], v[1], v[2]) && dist > (c - S.spec.voxelCenter(v[0], v[1], v[2])).norm())
+        if (spec.contains(v[0], v[1], v[2]) && dist > (c - spec.voxelCenter(v[0], v[1], v[2])).norm())
             in = inside(v[0], v[1], v[2]) != 0;
         else
             in = query->inside(c);
-        return in ? std::min(b, dist) : -1.0;
+        return in ? dist : -dist;
     };
-    return generateOnGrid(S, options, m, start, bound);
+    return generateOnGrid(S, options, m, start, clearance);
 }
 
 } // namespace mss

@@ -7,6 +7,7 @@
 #include "mss/spheres.hpp"
 #include "mss/voxelize.hpp"
 
+#include <optional>
 #include <string>
 
 namespace mss {
@@ -42,10 +43,17 @@ struct GenerateOptions {
     /// voxel volume's spheres stay inside the union of its solid voxels (exact distance to the nearest
     /// background voxel cube, voxelClearance).
     bool clip = false;
-    /// With clip: choose and tune spheres under the constraint, so that coverage lost to clipping is
-    /// regained (optimized: from nothing and from the free optimum cut down, the better kept; paper: the MSS
-    /// iterations continue with the clipped spheres). Without: generate freely, then shrink the radii (and
-    /// drop spheres whose centre is outside).
+    /// Largest protrusion of a sphere beyond the grain, world units: every radius is at most the exact
+    /// distance from its centre to the mesh surface (voxels: to the nearest background voxel's cube) plus
+    /// this, and no centre lies outside, so no point of a sphere is farther than this from the grain.
+    /// Unset (the default): one voxel of the generation grid, the discretisation tolerance the paper accepts
+    /// (section 3.5). 0 is the same as clip. +infinity: unbounded, radii grow past the grain wherever that
+    /// lowers the voxel mismatch (the behaviour before this option; bumps of several voxels).
+    std::optional<double> maxProtrusion;
+    /// With clip or a finite maxProtrusion: choose and tune spheres under the constraint, so that coverage
+    /// lost to clipping is regained (optimized: from nothing and from the free optimum cut down, the better
+    /// kept; paper: the MSS iterations continue with the clipped spheres). Without: generate freely, then
+    /// shrink the radii (and drop spheres whose centre is outside).
     bool refill = true;
     std::vector<Plane>
         planes; ///< planes no sphere may cross (system walls, a fragmentation plane), always applied
@@ -57,10 +65,14 @@ struct Metrics {
     double eta = 0.0;  ///< relative mismatch, eq. 7
     double dice = 0.0; ///< Dice mismatch, eq. 27
     int iterations = 0;
-    std::size_t solidVoxels = 0;       ///< sum of S
-    std::size_t sphereVoxels = 0;      ///< sum of S~
-    int symmetryPlanes = 0;            ///< mirror planes detected and kept (optimized mode)
-    std::size_t clipped = 0;           ///< spheres whose radius the final clipping reduced
+    std::size_t solidVoxels = 0;  ///< sum of S
+    std::size_t sphereVoxels = 0; ///< sum of S~
+    int symmetryPlanes = 0;       ///< mirror planes detected and kept (optimized mode)
+    std::size_t clipped = 0;      ///< spheres whose radius the final clipping reduced
+    /// Largest protrusion beyond the grain, world units, an upper bound: max over spheres of the radius minus
+    /// the exact distance from the centre to the surface (mesh) or to the nearest background voxel's cube.
+    double protrusion = 0.0;
+    double protrusionLimit = 0.0;      ///< the bound that applied (maxProtrusion resolved; +inf: unbounded)
     std::vector<std::string> warnings; ///< what was wrong with the input and how it was handled
     double secondsRead = 0.0, secondsVoxelize = 0.0, secondsEdt = 0.0, secondsSelect = 0.0,
            secondsRefine = 0.0, secondsTotal = 0.0;
@@ -87,6 +99,10 @@ struct Mismatch {
     std::size_t target = 0, approx = 0, both = 0;
 };
 Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx);
+
+/// The protrusion bound that applies on a grid of voxel edge @p h: 0 with clip, else maxProtrusion, else @p
+/// h.
+double protrusionLimit(const GenerateOptions& options, double h);
 
 /// Checks options; throws std::invalid_argument naming the bad value.
 void validateOptions(const GenerateOptions& options);

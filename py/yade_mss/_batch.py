@@ -26,7 +26,7 @@ from ._results import MssResult
 from ._specimen import _VOLUME_EXT, readVolume, regions
 from ._sources import _MESH_EXT
 
-COLUMNS = ['label', 'file', 'status', 'voxels', 'spheres', 'dice', 'eta', 'seconds', 'touches_border', 'message']
+COLUMNS = ['label', 'file', 'status', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'seconds', 'touches_border', 'message']
 
 
 class GrainTask(object):
@@ -53,6 +53,7 @@ def runGrain(task):
         else:
             r = generate(task.path, **opts)
         row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
+                   protrusion=r.metrics.get('protrusion', ''),
                    seconds=time.perf_counter() - t0)
         if getattr(task, 'preview', False):  # drawn where the grain is, sent back as PNG bytes
             import tempfile
@@ -391,6 +392,9 @@ def main(argv=None):
     p.add_argument('--rmin', type=float, help='no sphere of radius below R (world units)')
     p.add_argument('--resolution', type=int, help='meshes: voxels along the shortest edge (default 100)')
     p.add_argument('--clip', action='store_true', help='no sphere protrudes from its grain')
+    p.add_argument('--max-protrusion', type=float, default=None,
+                   help='no sphere reaches farther than H beyond its grain (world units; default one voxel; '
+                   'inf: unbounded)')
     p.add_argument('--voxel-size', type=float, default=None, help='voxel edge of the volumes (default 1)')
     p.add_argument('--origin', default=None, help='X,Y,Z: centre of voxel (0, 0, 0)')
     p.add_argument('--workers', type=int, default=None, help='processes side by side (default: the cores)')
@@ -404,6 +408,8 @@ def main(argv=None):
                              ('resolution', a.resolution)) if v is not None}
     if a.clip:
         gen['clip'] = True
+    if a.max_protrusion is not None:
+        gen['maxProtrusion'] = a.max_protrusion
     try:
         origin = parseOrigin(a.origin, 3)
         labels = [int(x) for x in a.labels.split(',')] if a.labels else None

@@ -10,7 +10,7 @@ from ._sources import _Mesh, _flat, _plane, _source
 
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None,
              method='optimized', supersample=1, keepSymmetry=True, maxIterations=100, deltaMin=1.0, threads=0,
-             origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=()):
+             origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=(), maxProtrusion=None):
     """Generates the sphere set of a grain (MSS paper, sections 2-3).
 
     :param source: mesh file (.stl .obj .off .ply), voxel file (.npy), 3-D numpy array (bool or int), a tuple
@@ -33,7 +33,12 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     :param float memoryLimit: mesh: refuse grids needing more than this many GiB (default 8), as ``--memory-limit``
     :param bool clip: no sphere protrudes from the grain (mesh: exact distance to the surface; voxels: the faces
         of the solid voxels)
-    :param bool refill: with clip, choose the spheres under the constraint to regain coverage (default)
+    :param bool refill: with clip or a protrusion bound, choose the spheres under the constraint to regain coverage
+        (default); False: generate freely, then shrink the radii
+    :param float maxProtrusion: no point of a sphere farther than this beyond the grain (world units; the radius is
+        at most the exact distance from the centre to the surface plus this). None (default): one voxel of the
+        generation grid, the tolerance of the paper (section 3.5); 0: as ``clip``; ``float('inf')``: unbounded
+        (radii grow past the grain wherever that lowers the voxel mismatch: bumps of several voxels)
     :param planes: planes no sphere may cross, as ((px, py, pz), (nx, ny, nz)); spheres stay on the side the
         normal points to. Planes that cut the grain make the target its part on that side (a fragment): the
         mismatch, the quality targets and ``targetMass`` refer to it.
@@ -46,6 +51,14 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     opts = {'maxIterations': int(maxIterations), 'deltaMin': float(deltaMin), 'keepSymmetry': bool(keepSymmetry),
             'threads': int(threads), 'method': method, 'clip': bool(clip), 'refill': bool(refill),
             'planes': [_plane(p) for p in planes]}
+    if maxProtrusion is not None:
+        mp = float(maxProtrusion)
+        if not (mp >= 0):
+            raise ValueError('generate: maxProtrusion must be >= 0 (world units; inf: unbounded), got %r'
+                             % (maxProtrusion,))
+        if clip and mp != 0:
+            raise ValueError('generate: clip means maxProtrusion 0: give one of them, got %r' % (maxProtrusion,))
+        opts['maxProtrusion'] = mp
     if nSpheres is not None:
         if int(nSpheres) != nSpheres or nSpheres < 1:
             raise ValueError('generate: nSpheres must be an integer >= 1, got %r' % (nSpheres,))

@@ -201,10 +201,11 @@ def counts(lo, hi, points=12):
 
 
 def curve(grain, lo, hi, path, points=12, compare=(), resolution=103, scoreResolution=100, voxelSize=None,
-          origin=None, label=None):
+          origin=None, label=None, maxProtrusion=None):
     """D (independent grid) and generation time against the sphere count, as a chart (PNG) and a CSV beside it
     (``OUT.csv``: generator, n, D, eta, protrusion, seconds). Sphere files of other generators (*compare*) are
     added as labelled points (and rows named after their files). The grain is read once for the whole sweep.
+    *maxProtrusion*: as :func:`generate` (default one voxel; ``inf``: unbounded).
 
     :return: the rows written (list of dicts)
     """
@@ -216,7 +217,7 @@ def curve(grain, lo, hi, path, points=12, compare=(), resolution=103, scoreResol
     rows = []
     for n in counts(lo, hi, points):
         t0 = time.perf_counter()
-        r = generate(src, nSpheres=n, **kw)
+        r = generate(src, nSpheres=n, maxProtrusion=maxProtrusion, **kw)
         sec = time.perf_counter() - t0
         c = compareMany(src, [r], resolution=scoreResolution, **({} if isinstance(s, _Mesh) else
                                                                  {'voxelSize': s.voxelSize, 'origin': s.origin}))[0]
@@ -275,6 +276,8 @@ def main(argv=None):
     cv.add_argument('--resolution', type=int, default=103, help='generation grid of a mesh')
     cv.add_argument('--compare', nargs='*', default=[], help='sphere files of other generators, as points')
     cv.add_argument('-o', '--output', required=True, help='the PNG; the CSV is written beside it')
+    cv.add_argument('--max-protrusion', type=float, default=None,
+                    help='no sphere farther than H beyond the grain (world units; default one voxel; inf: unbounded)')
     for q in (pv, cv):
         q.add_argument('--npy-voxel-size', type=float, default=None)
         q.add_argument('--origin', default=None, help='X,Y,Z')
@@ -293,7 +296,7 @@ def main(argv=None):
             except ValueError:
                 raise ValueError('curve: --spheres takes A:B (two integers), got %r' % a.spheres)
             rows = curve(a.grain, lo, hi, a.output, a.points, a.compare, a.resolution, voxelSize=a.npy_voxel_size,
-                         origin=origin, label=a.label)
+                         origin=origin, label=a.label, maxProtrusion=a.max_protrusion)
             print('wrote       %s and %s.csv  (%d counts, D %.4f at n %d to %.4f at n %d)'
                   % (a.output, os.path.splitext(a.output)[0], len(rows), rows[0]['D'], rows[0]['n'], rows[-1]['D'],
                      rows[-1]['n']))

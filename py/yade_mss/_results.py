@@ -42,7 +42,8 @@ class MssResult(object):
 
     :ivar centers: sphere centres, numpy array (n, 3), world units
     :ivar radii: sphere radii, numpy array (n,)
-    :ivar metrics: dict of figures on the generation grid (spheres, eta, dice, iterations, seconds...)
+    :ivar metrics: dict of figures on the generation grid (spheres, eta, dice, protrusion: the largest beyond the
+        grain in world units, an upper bound; protrusionLimit: the bound that applied; iterations, seconds...)
     :ivar grid: dict (dims, voxelSize, origin) of the generation grid, or None
     :ivar targetMass: :class:`MassProperties` of the target solid (unit density), or None if unknown
     :ivar source: description of the input (file name or 'array')

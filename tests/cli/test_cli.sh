@@ -38,6 +38,20 @@ check "paper mode meets eta or stops" grep -q '^eta' "$TMP/p.log"
 "$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --clip -o "$TMP/clip.csv" > /dev/null
 "$MSS" compare "$DATA/human_femur.stl" "$TMP/clip.csv" --resolution 40 > "$TMP/clip.log"
 check "clipped spheres have nothing outside" grep -qE '^outside +0$' "$TMP/clip.log"
+# the protrusion bound: one voxel by default, as given, inf = unbounded; printed, and measured by compare
+"$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 -o "$TMP/b1.csv" > "$TMP/b1.log"
+h=$(awk '/^grid/{print $NF}' "$TMP/b1.log")
+p=$(awk '/^protrusion/{print $2}' "$TMP/b1.log")
+pc=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/b1.csv" --resolution 40 | awk '/^protrusion/{print $2}')
+check "default: protrusion $p (compare: $pc) <= one voxel $h" \
+  awk -v p="$p" -v c="$pc" -v h="$h" 'BEGIN{exit !(p > 0 && p <= h * 1.000001 && c <= h * 1.000001)}'
+"$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --max-protrusion inf -o "$TMP/binf.csv" > "$TMP/binf.log"
+check "--max-protrusion inf: unbounded, more than a voxel" \
+  awk -v h="$h" '/^protrusion/{found = 1; if ($2 > 1.3 * h && $NF == "inf)") ok = 1} END{exit !(found && ok)}' "$TMP/binf.log"
+"$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --max-protrusion 0.5 -o "$TMP/b05.csv" > "$TMP/b05.log"
+check "--max-protrusion 0.5 world units" awk '/^protrusion/{exit !($2 <= 0.5 * 1.000001)}' "$TMP/b05.log"
+expect_error "negative bound" "maxProtrusion must be >= 0" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --max-protrusion -1 -o "$TMP/x.csv"
+expect_error "--clip with a bound" "clip means maxProtrusion 0" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --clip --max-protrusion 2 -o "$TMP/x.csv"
 "$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --plane 0,0,-90,0,0,1 -o "$TMP/plane.csv" > /dev/null
 check "no sphere crosses the plane z = -90" awk -F, 'NR > 1 && $3 - $4 < -90 - 1e-9 {bad = 1} END {exit bad}' "$TMP/plane.csv"
 d_frag=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,-90,0,0,1 | awk '/^dice/{print $2}')

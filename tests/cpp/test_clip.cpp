@@ -381,3 +381,16 @@ TEST(Clip, SelfIntersectingMeshIsReportedAndVoxelisedAsTheUnion) {
     const VoxelGrid v = voxelizeMesh(two, res);
     EXPECT_NEAR(double(countSolid(v)) * std::pow(0.02, 3), 1.5, 0.01); // the union, not the parity of the two
 }
+
+// A per-thread hint of the last closest point sped up runs of nearby queries; it was keyed by the query
+// object's address, which the next object can reuse: a hint from another mesh gave distance 0 (a sphere
+// generated after another of a different size got a radius of one voxel).
+TEST(Clip, DistanceHintIsNotSharedBetweenMeshes) {
+    const TriangleMesh ball = readMesh(kData + "/sphere_r1.stl");
+    for (double scale : {1e-6, 1.0, 1e3, 1.0}) {
+        TriangleMesh m = ball;
+        for (Vec3& v : m.vertices) v *= scale;
+        const MeshQuery q(m);
+        EXPECT_NEAR(q.distance(Vec3::Zero()), bruteDistance(m, Vec3::Zero()), 1e-9 * scale);
+    }
+}

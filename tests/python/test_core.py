@@ -73,6 +73,27 @@ class Generate(unittest.TestCase):
 
 
 class Clipping(unittest.TestCase):
+    def test_protrusion_bound(self):
+        femur = os.path.join(DATA, 'human_femur.stl')
+        r = generate(femur, nSpheres=15, resolution=30)  # default: one voxel of the generation grid
+        h = r.grid['voxelSize']
+        self.assertAlmostEqual(r.metrics['protrusionLimit'], h)
+        self.assertLessEqual(r.metrics['protrusion'], h * (1 + 1e-9))
+        self.assertLessEqual(yade_mss.compareMany(femur, [r], resolution=40)[0]['protrusion'], h * (1 + 1e-9))
+        free = generate(femur, nSpheres=15, resolution=30, maxProtrusion=float('inf'))
+        self.assertEqual(free.metrics['protrusionLimit'], float('inf'))
+        self.assertGreater(free.metrics['protrusion'], 1.3 * h)
+        two = generate(femur, nSpheres=15, resolution=30, maxProtrusion=2.0)
+        self.assertLessEqual(two.metrics['protrusion'], 2.0 * (1 + 1e-9))
+        with tempfile.TemporaryDirectory() as d:  # an infinite limit survives saving
+            free.save(os.path.join(d, 'f.npz'))
+            self.assertEqual(MssResult.load(os.path.join(d, 'f.npz')).metrics['protrusionLimit'], float('inf'))
+        for bad, msg in ((-1, 'maxProtrusion must be >= 0'), (float('nan'), 'maxProtrusion must be >= 0')):
+            with self.assertRaisesRegex(ValueError, msg):
+                generate(femur, nSpheres=3, resolution=20, maxProtrusion=bad)
+        with self.assertRaisesRegex(ValueError, 'clip means maxProtrusion 0'):
+            generate(femur, nSpheres=3, resolution=20, clip=True, maxProtrusion=1.0)
+
     def test_clip_and_planes(self):
         r = generate(FEMUR, nSpheres=20, resolution=40, clip=True,
                      planes=[((0, 0, -90), (0, 0, 1))])

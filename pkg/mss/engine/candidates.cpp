@@ -4,13 +4,27 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <set>
 
 namespace mss::engine {
 
 namespace {
+/// A well-mixed hash of a voxel position (splitmix64 finaliser).
+std::uint64_t mix(const std::array<int, 3>& v) {
+    std::uint64_t x = (std::uint64_t(std::uint32_t(v[0])) << 42) ^
+                      (std::uint64_t(std::uint32_t(v[1])) << 21) ^ std::uint64_t(std::uint32_t(v[2]));
+    x += 0x9E3779B97F4A7C15ULL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    return x ^ (x >> 31);
+}
+
 /// The ridge voxels of E in voxel order, whatever the threads.
 std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E) {
+    // |grad E| < 0.9 (central differences span two voxels: squared length < 1.8^2); the octahedron's edge
+    // sheets have 0.816
+    constexpr float kSheet = 3.24f;
     const auto& d = E.spec.dims;
     std::vector<std::vector<std::array<int, 3>>> ridgeSlices(std::size_t(std::max(d[2], 1)));
 #pragma omp parallel for schedule(dynamic, 4)
@@ -22,7 +36,15 @@ std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E) {
                 const float up = std::max({E(i - 1, j, k), E(i + 1, j, k), E(i, j - 1, k), E(i, j + 1, k),
                                            E(i, j, k - 1), E(i, j, k + 1)}) -
                                  e;
-                if (up < 0.5f) ridgeSlices[std::size_t(k)].push_back({i, j, k});
+                // central differences: |grad E| is 1 off the medial surface and cos(half the angle
+                // between the two nearest faces' normals) on it: a sheet toward an edge of dihedral
+                // angle alpha rises by sin(alpha / 2) per voxel along it, which the test above misses when
+                // that direction is a grid axis and alpha < 60 degrees (the axis-aligned tetrahedron's
+                // edges: 0.577 per voxel, none of its six edge sheets was a candidate)
+                const float gx = E(i + 1, j, k) - E(i - 1, j, k), gy = E(i, j + 1, k) - E(i, j - 1, k),
+                            gz = E(i, j, k + 1) - E(i, j, k - 1);
+                if (up < 0.5f || gx * gx + gy * gy + gz * gz < kSheet)
+                    ridgeSlices[std::size_t(k)].push_back({i, j, k});
             }
     std::vector<std::array<int, 3>> ridge;
     for (const auto& slice : ridgeSlices) ridge.insert(ridge.end(), slice.begin(), slice.end());
@@ -52,9 +74,15 @@ std::vector<Orbit> candidateOrbits(const ScalarGrid& E, const Symmetry& sym, dou
     const std::vector<std::array<int, 3>> ridge = medialRidge(E);
     if (ridgeCount) *ridgeCount = ridge.size();
     constexpr std::size_t kMaxRidge = 10000;
-    const std::size_t stride = std::max<std::size_t>(1, (ridge.size() + kMaxRidge - 1) / kMaxRidge);
-    for (std::size_t q = 0; q < ridge.size(); q += stride) {
-        const auto& v = ridge[q];
+    // thinning: keep a ridge voxel when a hash of its position falls under kMaxRidge / size, so that the
+    // sample is uniform in space; every k-th voxel in voxel order aliased with the grid (an axis-aligned
+    // tetrahedron got candidates on some of its edges' sheets and not on others)
+    const std::uint64_t keep =
+        ridge.size() <= kMaxRidge
+            ? UINT64_MAX
+            : std::uint64_t(double(UINT64_MAX) / double(ridge.size()) * double(kMaxRidge));
+    for (const auto& v : ridge) {
+        if (keep != UINT64_MAX && mix(v) > keep) continue;
         addCandidate(Vec3(v[0], v[1], v[2]), E(v[0], v[1], v[2]) - 0.5 + kRadiusSlack);
     }
     return cands;

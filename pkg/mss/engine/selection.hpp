@@ -25,7 +25,7 @@ struct Selection {
     Coverage cov;         ///< coverage of S by the chosen orbits' balls
     bool exactSymmetry = false; ///< S is exactly invariant under the mirror planes
     const Symmetry sym;
-    const Targets t;
+    Targets t;                 ///< termination; the budget may be raised step by step (problem (ii))
     std::vector<Orbit> cands;  ///< candidates (radius cut to the constraint once bounded)
     std::vector<double> key;   ///< greedy key per candidate: an upper bound, then its last gain per ball
     std::vector<char> used;    ///< candidate placed or dropped
