@@ -7,6 +7,9 @@
 #include "mss.hpp"
 
 #include <boost/python.hpp>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <cstring>
 #include <stdexcept>
@@ -450,10 +453,19 @@ void translateRuntime(const std::runtime_error& e) {
 
 } // namespace
 
+/// The OpenMP thread count of this process from now on (a forked batch worker: 1, see _batch.py).
+void setOmpThreads(int n) {
+    if (n < 1) throw std::invalid_argument("setOmpThreads: n must be >= 1, got " + std::to_string(n));
+#ifdef _OPENMP
+    omp_set_num_threads(n);
+#endif
+}
+
 BOOST_PYTHON_MODULE(_mss) {
     py::register_exception_translator<std::invalid_argument>(&translateInvalid);
     py::register_exception_translator<std::runtime_error>(&translateRuntime);
     py::scope().attr("__doc__") = "yade-mss core (C++). Use the yade_mss package, which wraps this module.";
+    py::def("setOmpThreads", setOmpThreads, (py::arg("n")), "OpenMP threads of this process from now on.");
     py::def("readMesh", readMesh, (py::arg("path")), "Mesh file -> (flat vertices, flat triangles).");
     py::def("readNpy", readNpy, (py::arg("path"), py::arg("label") = -1));
     py::def("voxelizeMesh", voxelizeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("resolution")));

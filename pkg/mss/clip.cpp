@@ -156,6 +156,39 @@ double solidAngle(const Vec3& a, const Vec3& b, const Vec3& c) {
     const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
     return 2.0 * std::atan2(det, den);
 }
+
+/// Squared distance from p to triangle (a, b, c): the closest point by its Voronoi region (Ericson, Real-Time
+/// Collision Detection, 2005, section 5.1.5). O(1).
+double squaredDistanceToTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const Vec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return ap.squaredNorm(); // vertex a
+    const Vec3 bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return bp.squaredNorm(); // vertex b
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return (ap - ab * (d1 / (d1 - d3))).squaredNorm(); // edge ab
+    const Vec3 cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return cp.squaredNorm(); // vertex c
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return (ap - ac * (d2 / (d2 - d6))).squaredNorm(); // edge ac
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) // edge bc
+        return (bp - (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))).squaredNorm();
+    const double denom = 1.0 / (va + vb + vc); // inside the face
+    return (ap - ab * (vb * denom) - ac * (vc * denom)).squaredNorm();
+}
+
+/// Squared distance from p to the box [lo, hi].
+double squaredDistanceToBox(const Vec3& p, const Vec3& lo, const Vec3& hi) {
+    double s = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        const double g = std::max({lo[a] - p[a], 0.0, p[a] - hi[a]});
+        s += g * g;
+    }
+    return s;
+}
 } // namespace
 
 struct MeshQuery::Impl {
@@ -166,8 +199,83 @@ struct MeshQuery::Impl {
         static std::atomic<std::uint64_t> counter{0};
         return ++counter;
     }
-    std::vector<Tri> tris;
-    Tree tree;
+    std::vector<std::array<Vec3, 3>> tris; // the non-degenerate triangles, in distance-hierarchy order
+    // distance hierarchy: axis-aligned boxes, children of node q at q + 1 and right; leaves hold <= 4
+    // triangles
+    struct Box {
+        Vec3 lo, hi;
+        int first, count, right; // triangle range of a leaf (count > 0), or the right child (count == 0)
+    };
+    std::vector<Box> boxes;
+    int buildBoxes(int first, int count) {
+        Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300), clo = lo, chi = hi;
+        for (int q = first; q < first + count; ++q)
+            for (const Vec3& v : tris[std::size_t(q)]) {
+                lo = lo.cwiseMin(v);
+                hi = hi.cwiseMax(v);
+            }
+        for (int q = first; q < first + count; ++q) {
+            const Vec3 c = centroid(tris[std::size_t(q)]);
+            clo = clo.cwiseMin(c);
+            chi = chi.cwiseMax(c);
+        }
+        const int id = int(boxes.size());
+        boxes.push_back({lo, hi, first, count, -1});
+        if (count <= 4) return id;
+        int axis = 0;
+        (chi - clo).maxCoeff(&axis);
+        const int mid = first + count / 2;
+        std::nth_element(tris.begin() + first, tris.begin() + mid, tris.begin() + first + count,
+                         [axis](const std::array<Vec3, 3>& x, const std::array<Vec3, 3>& y) {
+                             return centroid(x)[axis] < centroid(y)[axis];
+                         });
+        boxes[std::size_t(id)].count = 0;
+        buildBoxes(first, mid - first);
+        const int right = buildBoxes(mid, first + count - mid);
+        boxes[std::size_t(id)].right = right;
+        return id;
+    }
+    static Vec3 centroid(const std::array<Vec3, 3>& t) { return (t[0] + t[1] + t[2]) / 3.0; }
+    /// Squared distance to the nearest triangle, starting from the bound that triangle @p hint gives (the
+    /// previous query's nearest, usually near); @p hint receives this query's nearest. Branch and bound over
+    /// the boxes, nearer child first: O(log T) typical.
+    double squaredDistance(const Vec3& p, int& hint) const {
+        double best = 1e300;
+        int bestTri = -1;
+        auto test = [&](int q) {
+            const auto& t = tris[std::size_t(q)];
+            const double d = squaredDistanceToTriangle(p, t[0], t[1], t[2]);
+            if (d < best) {
+                best = d;
+                bestTri = q;
+            }
+        };
+        if (hint >= 0 && hint < int(tris.size())) test(hint);
+        std::pair<int, double> stack[128];
+        int top = 0;
+        stack[top++] = {0, squaredDistanceToBox(p, boxes[0].lo, boxes[0].hi)};
+        while (top > 0) {
+            const auto [q, gap] = stack[--top];
+            if (gap >= best) continue;
+            const Box& b = boxes[std::size_t(q)];
+            if (b.count > 0) {
+                for (int t = b.first; t < b.first + b.count; ++t) test(t);
+                continue;
+            }
+            const int l = q + 1, r = b.right;
+            const double gl = squaredDistanceToBox(p, boxes[std::size_t(l)].lo, boxes[std::size_t(l)].hi),
+                         gr = squaredDistanceToBox(p, boxes[std::size_t(r)].lo, boxes[std::size_t(r)].hi);
+            if (gl <= gr) { // the nearer one on top
+                stack[top++] = {r, gr};
+                stack[top++] = {l, gl};
+            } else {
+                stack[top++] = {l, gl};
+                stack[top++] = {r, gr};
+            }
+        }
+        hint = bestTri;
+        return best;
+    }
     // winding-number hierarchy: nodes over a permutation of the triangles
     struct Node {
         Vec3 center;      // area-weighted centroid
@@ -183,13 +291,7 @@ struct MeshQuery::Impl {
     std::once_flag hierarchy;
     void buildHierarchy() {
         std::call_once(hierarchy, [this] {
-            std::vector<std::array<Vec3, 3>> all;
-            all.reserve(tris.size());
-            for (const Tri& t : tris) {
-                std::array<Vec3, 3> c;
-                for (int k = 0; k < 3; ++k) c[k] = Vec3(t.vertex(k).x(), t.vertex(k).y(), t.vertex(k).z());
-                all.push_back(c);
-            }
+            const std::vector<std::array<Vec3, 3>>& all = tris;
             std::vector<int> idx(all.size());
             std::iota(idx.begin(), idx.end(), 0);
             build(idx, 0, static_cast<int>(idx.size()), all);
@@ -248,31 +350,26 @@ MeshQuery::MeshQuery(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>())
     for (const auto& t : mesh.triangles) {
         const std::array<Vec3, 3> c{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
         if ((c[1] - c[0]).cross(c[2] - c[0]).squaredNorm() == 0.0) continue; // no area: no distance, no angle
-        impl_->tris.emplace_back(K::Point_3(c[0].x(), c[0].y(), c[0].z()),
-                                 K::Point_3(c[1].x(), c[1].y(), c[1].z()),
-                                 K::Point_3(c[2].x(), c[2].y(), c[2].z()));
+        impl_->tris.push_back(c);
     }
     if (impl_->tris.empty())
         throw std::invalid_argument("MeshQuery: every triangle of the mesh is degenerate");
-    impl_->tree.rebuild(impl_->tris.begin(), impl_->tris.end());
-    impl_->tree.accelerate_distance_queries();
-    impl_->tree.squared_distance(K::Point_3(0, 0, 0)); // build the search structure now: queries stay const
+    impl_->boxes.reserve(impl_->tris.size() / 2 + 1);
+    impl_->buildBoxes(0, int(impl_->tris.size()));
 }
 
 MeshQuery::~MeshQuery() = default;
 
 double MeshQuery::distance(const Vec3& p) const {
-    // Queries come in runs of nearby points (a sphere being moved about): the last closest point, kept per
-    // thread and mesh, is a hint that bounds the search from the start.
+    // Queries come in runs of nearby points (a sphere being moved about): the last nearest triangle, kept per
+    // thread and query object, bounds the search from the start.
     thread_local std::uint64_t owner = 0;
-    thread_local K::Point_3 hint;
-    const K::Point_3 q(p.x(), p.y(), p.z());
+    thread_local int hint = -1;
     if (owner != impl_->id) {
         owner = impl_->id;
-        hint = impl_->tree.closest_point(q);
+        hint = -1;
     }
-    hint = impl_->tree.closest_point(q, hint);
-    return std::sqrt(CGAL::squared_distance(q, hint));
+    return std::sqrt(impl_->squaredDistance(p, hint));
 }
 
 double MeshQuery::winding(const Vec3& p) const {

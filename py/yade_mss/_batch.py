@@ -71,6 +71,11 @@ def runGrain(task):
         return task.key, row, None
 
 
+def _oneThread():
+    from . import _mss
+    _mss.setOmpThreads(1)
+
+
 def runGrains(tasks):
     """Several grains in one task (Dask)."""
     return [runGrain(t) for t in tasks]
@@ -216,9 +221,11 @@ def _executor(workers, scheduler):
         return (lambda tasks: (runGrain(t) for t in tasks)), (lambda: None)
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
-    # fork: a user's script needs no __main__ guard (spawn would import it again in every child). Each grain runs
-    # on one OpenMP thread, so a child never needs the parent's OpenMP thread pool.
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context('fork'))
+    # fork: a user's script needs no __main__ guard (spawn would import it again in every child). A child runs on
+    # one OpenMP thread throughout (generation, previews): GNU OpenMP hangs in a forked child that asks for the
+    # parent's thread pool (it did in a preview's scoring once generate stopped leaving 1 thread behind).
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context('fork'),
+                               initializer=_oneThread)
 
     def run(tasks):
         futures = [pool.submit(runGrain, t) for t in tasks]
