@@ -20,34 +20,51 @@ std::uint64_t mix(const std::array<int, 3>& v) {
     return x ^ (x >> 31);
 }
 
-/// The ridge voxels of E in voxel order, whatever the threads.
-std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E) {
+/// Whether voxel (i, j, k) lies on the medial surface of E (ridge or sheet).
+bool onRidge(const ScalarGrid& E, int i, int j, int k) {
     // |grad E| < 0.9 (central differences span two voxels: squared length < 1.8^2); the octahedron's edge
     // sheets have 0.816
     constexpr float kSheet = 3.24f;
+    const float e = E(i, j, k);
+    if (e < 1.0f) return false;
+    const float up = std::max({E(i - 1, j, k), E(i + 1, j, k), E(i, j - 1, k), E(i, j + 1, k), E(i, j, k - 1),
+                               E(i, j, k + 1)}) -
+                     e;
+    // central differences: |grad E| is 1 off the medial surface and cos(half the angle between the two
+    // nearest faces' normals) on it: a sheet toward an edge of dihedral angle alpha rises by sin(alpha / 2)
+    // per voxel along it, which the test above misses when that direction is a grid axis and alpha < 60
+    // degrees (the axis-aligned tetrahedron's edges: 0.577 per voxel, none of its six edge sheets was a
+    // candidate)
+    const float gx = E(i + 1, j, k) - E(i - 1, j, k), gy = E(i, j + 1, k) - E(i, j - 1, k),
+                gz = E(i, j, k + 1) - E(i, j, k - 1);
+    return up < 0.5f || gx * gx + gy * gy + gz * gz < kSheet;
+}
+
+/// The ridge voxels of E kept by the thinning, in voxel order, whatever the threads; @p total receives the
+/// ridge's size. Thinning keeps a voxel when a hash of its position falls under @p maxKeep / total, so that
+/// the sample is uniform in space (every k-th voxel in voxel order aliased with the grid: an axis-aligned
+/// tetrahedron got candidates on some of its edges' sheets and not on others). Two passes (count, then
+/// collect), so that only the kept voxels are ever stored: the femur's ridge is 78,000 voxels.
+std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E, std::size_t maxKeep, std::size_t& total) {
     const auto& d = E.spec.dims;
-    std::vector<std::vector<std::array<int, 3>>> ridgeSlices(std::size_t(std::max(d[2], 1)));
+    std::vector<std::size_t> counts(std::size_t(std::max(d[2], 1)), 0);
 #pragma omp parallel for schedule(dynamic, 4)
     for (int k = 1; k < d[2] - 1; ++k)
         for (int j = 1; j < d[1] - 1; ++j)
-            for (int i = 1; i < d[0] - 1; ++i) {
-                const float e = E(i, j, k);
-                if (e < 1.0f) continue;
-                const float up = std::max({E(i - 1, j, k), E(i + 1, j, k), E(i, j - 1, k), E(i, j + 1, k),
-                                           E(i, j, k - 1), E(i, j, k + 1)}) -
-                                 e;
-                // central differences: |grad E| is 1 off the medial surface and cos(half the angle
-                // between the two nearest faces' normals) on it: a sheet toward an edge of dihedral
-                // angle alpha rises by sin(alpha / 2) per voxel along it, which the test above misses when
-                // that direction is a grid axis and alpha < 60 degrees (the axis-aligned tetrahedron's
-                // edges: 0.577 per voxel, none of its six edge sheets was a candidate)
-                const float gx = E(i + 1, j, k) - E(i - 1, j, k), gy = E(i, j + 1, k) - E(i, j - 1, k),
-                            gz = E(i, j, k + 1) - E(i, j, k - 1);
-                if (up < 0.5f || gx * gx + gy * gy + gz * gz < kSheet)
-                    ridgeSlices[std::size_t(k)].push_back({i, j, k});
-            }
+            for (int i = 1; i < d[0] - 1; ++i) counts[std::size_t(k)] += onRidge(E, i, j, k);
+    total = 0;
+    for (std::size_t c : counts) total += c;
+    const std::uint64_t keep =
+        total <= maxKeep ? UINT64_MAX : std::uint64_t(double(UINT64_MAX) / double(total) * double(maxKeep));
+    std::vector<std::vector<std::array<int, 3>>> slices(counts.size());
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int k = 1; k < d[2] - 1; ++k)
+        for (int j = 1; j < d[1] - 1; ++j)
+            for (int i = 1; i < d[0] - 1; ++i)
+                if (onRidge(E, i, j, k) && (keep == UINT64_MAX || mix({i, j, k}) <= keep))
+                    slices[std::size_t(k)].push_back({i, j, k});
     std::vector<std::array<int, 3>> ridge;
-    for (const auto& slice : ridgeSlices) ridge.insert(ridge.end(), slice.begin(), slice.end());
+    for (const auto& slice : slices) ridge.insert(ridge.end(), slice.begin(), slice.end());
     return ridge;
 }
 } // namespace
@@ -71,20 +88,11 @@ std::vector<Orbit> candidateOrbits(const ScalarGrid& E, const Symmetry& sym, dou
         const Maximum mx = refineMaximum(E, v);
         addCandidate(mx.position, mx.value - 0.5 + kRadiusSlack);
     }
-    const std::vector<std::array<int, 3>> ridge = medialRidge(E);
-    if (ridgeCount) *ridgeCount = ridge.size();
     constexpr std::size_t kMaxRidge = 10000;
-    // thinning: keep a ridge voxel when a hash of its position falls under kMaxRidge / size, so that the
-    // sample is uniform in space; every k-th voxel in voxel order aliased with the grid (an axis-aligned
-    // tetrahedron got candidates on some of its edges' sheets and not on others)
-    const std::uint64_t keep =
-        ridge.size() <= kMaxRidge
-            ? UINT64_MAX
-            : std::uint64_t(double(UINT64_MAX) / double(ridge.size()) * double(kMaxRidge));
-    for (const auto& v : ridge) {
-        if (keep != UINT64_MAX && mix(v) > keep) continue;
+    std::size_t total = 0;
+    for (const auto& v : medialRidge(E, kMaxRidge, total))
         addCandidate(Vec3(v[0], v[1], v[2]), E(v[0], v[1], v[2]) - 0.5 + kRadiusSlack);
-    }
+    if (ridgeCount) *ridgeCount = total;
     return cands;
 }
 
