@@ -252,7 +252,9 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
         if (bound) { // final clipping in world units: the guarantee does not rest on the voxel maths
             const double limit = bound(c);
             if (limit < radius) {
-                ++m.clipped;
+                // counted when more than rounding (a voxel-unit radius at its limit, scaled back to world
+                // units, lands an ulp or so either side of it)
+                if (radius - limit > 1e-9 * h) ++m.clipped;
                 radius = limit;
             }
         }

@@ -53,6 +53,14 @@ TEST(Fidelity, DefaultProtrusionIsOneVoxel) {
     EXPECT_LE(bounded.metrics.protrusion, h * (1 + 1e-9));
     EXPECT_GT(bounded.metrics.protrusion, 0.5 * h); // the bound is used, not just respected
     EXPECT_LE(sampledProtrusion(cube, bounded.spheres), h * (1 + 1e-9));
+    // chosen under the bound: the final clipping in world units shrinks nothing beyond rounding; generated
+    // freely and shrunk afterwards (refill off), the bulging ones are shrunk
+    EXPECT_EQ(bounded.metrics.clipped, 0u);
+    o.refill = false;
+    const Result shrunk = generate(cube, res, o);
+    EXPECT_GE(shrunk.metrics.clipped, 5u); // 8 of 30 here
+    EXPECT_LE(shrunk.metrics.protrusion, h * (1 + 1e-9));
+    o.refill = true;
     // unbounded: the behaviour before the bound, bumps of more than a voxel (6 at resolution 103)
     o.maxProtrusion = kInf;
     const Result free = generate(cube, res, o);
