@@ -46,13 +46,15 @@ double voxelClearance(const VoxelGrid& solid, const ScalarGrid& edt, const Vec3&
 
 /// Distance and inside queries against a triangle mesh.
 ///
-/// distance(): exact Euclidean distance to the nearest point of any triangle, through CGAL's AABB tree
-/// (O(log T) typical). winding(): the generalised winding number (Jacobson, Kavan and Sorkine-Hornung,
-/// "Robust inside-outside segmentation using generalized winding numbers", SIGGRAPH 2013), the sum of the
-/// triangles' signed solid angles over 4 pi (Van Oosterom and Strackee 1983), evaluated with the hierarchical
-/// dipole approximation of Barill et al. ("Fast winding numbers for soups and clouds", SIGGRAPH 2018) for far
-/// clusters: 1 inside a closed mesh, 0 outside, and a smooth value across the holes of an open one.
-/// inside() thresholds |winding| at 1/2, so inside-out meshes work too.
+/// distance(): exact Euclidean distance to the nearest point of any triangle, by branch and bound over a box
+/// hierarchy of the triangles, the previous query's nearest triangle (per thread) as the first bound
+/// (O(log T) typical; on a medial surface, where much of a smooth surface is nearly equidistant, more).
+/// winding(): the generalised winding number (Jacobson, Kavan and Sorkine-Hornung, "Robust inside-outside
+/// segmentation using generalized winding numbers", SIGGRAPH 2013), the sum of the triangles' signed solid
+/// angles over 4 pi (Van Oosterom and Strackee 1983), evaluated with the hierarchical dipole approximation of
+/// Barill et al. ("Fast winding numbers for soups and clouds", SIGGRAPH 2018) for far clusters: 1 inside a
+/// closed mesh, 0 outside, and a smooth value across the holes of an open one. inside() thresholds |winding|
+/// at 1/2, so inside-out meshes work too.
 class MeshQuery {
 public:
     explicit MeshQuery(const TriangleMesh& mesh);
