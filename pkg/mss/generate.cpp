@@ -235,12 +235,14 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     const auto bound = radiusBound(clearance, H, opt.planes);
     BoundVox boundVox;
     if (bound && (opt.refill || !std::isfinite(H))) boundVox = CachedBound(bound, S.spec);
-    // Two starts where the constraint cuts deep (clipping, a bound under a voxel, planes) and where they cost
-    // little (small grains, where one start is also the noisier: a CT grain of 2122 voxels, 12 spheres: D
-    // 0.114 warm, 0.120 cold). Under the default bound of one voxel on larger grains they differ by 0-3%
-    // (femur 70: 28816 / 29740 mismatched voxels warm / cold, cube 30 128710 / 127368, ellipsoid 10 equal):
-    // one run from nothing under the bound, a third of the time.
-    constexpr std::size_t kSmallGrain = 30000; // solid voxels
+    // Two starts where the constraint cuts deep (clipping, a bound under a voxel, planes) and on tiny grains
+    // (under 5000 solid voxels), where one start is also the noisier (a CT grain of 2122 voxels, 12 spheres:
+    // D 0.114 warm, 0.120 cold) and three runs cost milliseconds. Under the default bound of one voxel on
+    // larger grains the two differ by 0-3% (femur 70: 28816 / 29740 mismatched voxels warm / cold, cube 30
+    // 128710 / 127368, ellipsoid 10 equal): one run from nothing under the bound, a third of the time. (A
+    // limit of 30000 voxels halved the throughput of bench/batch_scale.py, grains of 3900-8700 voxels: 21.6
+    // grains/s against 41.0, with the same worst D on the specimen of test_batch.)
+    constexpr std::size_t kSmallGrain = 5000; // solid voxels
     const bool twoStarts = H < h || !opt.planes.empty() || countSolid(S) < kSmallGrain;
     const std::vector<Ball> balls = chooseBalls(S, E, opt, boundVox, twoStarts, m);
     Result r;
