@@ -218,6 +218,18 @@ std::vector<std::string_view> words(std::string_view line) {
     return out;
 }
 
+/// The vertex in words @p first .. @p first + 2 of a line (OBJ "v x y z", OFF "x y z"); @p at names the line.
+Vec3 vertexOf(const std::vector<std::string_view>& w, std::size_t first, const std::string& path,
+              const std::string& at) {
+    double x, y, z;
+    if (w.size() < first + 3 || !parseDouble(w[first], x) || !parseDouble(w[first + 1], y) ||
+        !parseDouble(w[first + 2], z))
+        fail(path, at + ": a vertex needs three numbers");
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+        fail(path, at + ": non-finite coordinate");
+    return Vec3(x, y, z);
+}
+
 /// Line by line, with its number, '#' comments removed.
 template <class F> void forLines(const std::vector<char>& buf, F&& f) {
     std::size_t i = 0, lineNo = 0;
@@ -246,12 +258,7 @@ TriangleMesh readObj(const std::string& path, const std::vector<char>& buf) {
         if (w.empty()) return true;
         const std::string at = "OBJ line " + std::to_string(no);
         if (w[0] == "v") {
-            double x, y, z;
-            if (w.size() < 4 || !parseDouble(w[1], x) || !parseDouble(w[2], y) || !parseDouble(w[3], z))
-                fail(path, at + ": a vertex needs three numbers");
-            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
-                fail(path, at + ": non-finite coordinate");
-            mesh.vertices.emplace_back(x, y, z);
+            mesh.vertices.push_back(vertexOf(w, 1, path, at));
         } else if (w[0] == "f") {
             poly.clear();
             for (std::size_t k = 1; k < w.size(); ++k) {
@@ -299,12 +306,7 @@ TriangleMesh readOff(const std::string& path, const std::vector<char>& buf) {
             return true;
         }
         if (seenV < nv) {
-            double x, y, z;
-            if (w.size() < 3 || !parseDouble(w[0], x) || !parseDouble(w[1], y) || !parseDouble(w[2], z))
-                fail(path, at + ": a vertex needs three numbers");
-            if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
-                fail(path, at + ": non-finite coordinate");
-            mesh.vertices.emplace_back(x, y, z);
+            mesh.vertices.push_back(vertexOf(w, 0, path, at));
             ++seenV;
             return true;
         }

@@ -51,14 +51,12 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     opts = {'maxIterations': int(maxIterations), 'deltaMin': float(deltaMin), 'keepSymmetry': bool(keepSymmetry),
             'threads': int(threads), 'method': method, 'clip': bool(clip), 'refill': bool(refill),
             'planes': [_plane(p) for p in planes]}
-    if maxProtrusion is not None:
-        mp = float(maxProtrusion)
-        if not (mp >= 0):
-            raise ValueError('generate: maxProtrusion must be >= 0 (world units; inf: unbounded), got %r'
+    if maxProtrusion is not None:  # its range is checked by the core (validateOptions), with the same message
+        try:
+            opts['maxProtrusion'] = float(maxProtrusion)
+        except (TypeError, ValueError):
+            raise ValueError('generate: maxProtrusion must be a number (world units; inf: unbounded), got %r'
                              % (maxProtrusion,))
-        if clip and mp != 0:
-            raise ValueError('generate: clip means maxProtrusion 0: give one of them, got %r' % (maxProtrusion,))
-        opts['maxProtrusion'] = mp
     if nSpheres is not None:
         if int(nSpheres) != nSpheres or nSpheres < 1:
             raise ValueError('generate: nSpheres must be an integer >= 1, got %r' % (nSpheres,))

@@ -384,7 +384,9 @@ TEST(Clip, SelfIntersectingMeshIsReportedAndVoxelisedAsTheUnion) {
 
 // A per-thread hint of the last closest point sped up runs of nearby queries; it was keyed by the query
 // object's address, which the next object can reuse: a hint from another mesh gave distance 0 (a sphere
-// generated after another of a different size got a radius of one voxel).
+// generated after another of a different size got a radius of one voxel). The hint is now a triangle index,
+// checked against the object's own triangles and keyed by a unique id, so a stale one could only loosen the
+// first bound; this checks that successive objects at whatever address answer exactly.
 TEST(Clip, DistanceHintIsNotSharedBetweenMeshes) {
     const TriangleMesh ball = readMesh(kData + "/sphere_r1.stl");
     for (double scale : {1e-6, 1.0, 1e3, 1.0}) {

@@ -192,6 +192,12 @@ TEST(Fidelity, FewestSpheresForATarget) {
         }
         EXPECT_LE(k, int(std::floor(1.1 * fewest)) + 1) << "target " << target << ": fewest " << fewest;
         std::printf("dice %.3f: %d spheres, a fixed count needs %d\n", target, k, fewest);
+        // the growth is the first greedy round: one iteration allowed still reaches the target, with as few
+        GenerateOptions one = o;
+        one.maxIterations = 1;
+        const Result r1 = generate(femur, res, one);
+        EXPECT_LE(r1.metrics.dice, target);
+        EXPECT_EQ(r1.spheres.size(), r.spheres.size());
         // a cap below what the target needs: the cap wins
         o.nSpheres = k / 2;
         const Result capped = generate(femur, res, o);

@@ -70,7 +70,9 @@ void growToTarget(Selection& s, Metrics& m, double& secondsRefine) {
         const std::vector<Orbit> touched(s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
         refine(s, &touched, 2);
         secondsRefine += secondsSince(t0);
-        ++m.iterations;
+        // stop at the target, the cap, or when nothing more could be placed (the main loop then goes on as
+        // without growth); the growth is the first greedy round of the main loop, spread out, so it does not
+        // count against maxIterations (a geometric budget ends in O(log) steps anyway)
         if (s.met() || budget >= cap || (s.chosen.size() == kept && s.placed < std::size_t(budget))) break;
         budget =
             int(std::min<long long>(cap, std::max<long long>(budget + 1, std::llround(budget * kGrowth))));
