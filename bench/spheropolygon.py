@@ -27,3 +27,22 @@ s = time.perf_counter() - t
 independent = int((rasterizeNumpy(r['vertices'], r['spheroradius'], c.shape) != c).sum())
 print('%-22s %8.2f %8d %6d %8.2f   (r = %.3g chosen; independent rasteriser: %d error pixels)'
       % ('default (auto)', 100 * r['error'], r['errorPixels'], r['iterations'], s, r['spheroradius'], independent))
+
+# beyond the paper (its sections 4-5): a radius per vertex (none below the spheroradius, or below half of it), and
+# a vertex in every convex or concave region turning by >= 90 degrees; at r = 2 px from the boundary start
+print('%-34s %8s %8s %8s %8s' % ('beyond the paper, r = 2 px', 'error %', 'pixels', 'radii', 'seconds'))
+for label, kw in (('one radius (relocations)', {}),
+                  ('radius per vertex, min r', dict(vertexRadii=True)),
+                  ('radius per vertex, min r / 2', dict(vertexRadii=True, minRadius=1.0)),
+                  ('a vertex in every region', dict(regionVertices=True)),
+                  ('both, min r / 2', dict(vertexRadii=True, minRadius=1.0, regionVertices=True))):
+    t = time.perf_counter()
+    r = spheropolygon(c, 30, radius=2.0, init='boundary', **kw)
+    s = time.perf_counter() - t
+    radii = r.get('radii', [r['spheroradius']])
+    independent = int((rasterizeNumpy(r['vertices'], radii if 'radii' in r else r['spheroradius'], c.shape) != c).sum())
+    assert independent == r['errorPixels'], (independent, r['errorPixels'])
+    extra = '  regions %d, %d filled, %d empty' % (r['regions'], r['regionsFilled'], r['regionsMissed']) \
+        if 'regions' in r else ''
+    print('%-34s %8.2f %8d %8s %8.2f%s' % (label, 100 * r['error'], r['errorPixels'],
+                                           '%.2g-%.2g' % (min(radii), max(radii)), s, extra))

@@ -400,6 +400,11 @@ py::dict spheropolygonFit(const py::object& data, int nx, int ny, double pixel, 
     if (d.has_key("tolerance")) o.tolerance = py::extract<double>(d["tolerance"]);
     if (d.has_key("maxIterations")) o.maxIterations = py::extract<int>(d["maxIterations"]);
     if (d.has_key("relocations")) o.relocations = py::extract<int>(d["relocations"]);
+    if (d.has_key("regionVertices")) o.regionVertices = py::extract<bool>(d["regionVertices"]);
+    if (d.has_key("regionTurning")) o.regionTurning = py::extract<double>(d["regionTurning"]);
+    if (d.has_key("vertexRadii")) o.vertexRadii = py::extract<bool>(d["vertexRadii"]);
+    if (d.has_key("minRadius") && !py::object(d["minRadius"]).is_none())
+        o.minRadius = py::extract<double>(d["minRadius"]);
     const mss::SpResult r = mss::fitSpheropolygon(image2(data, nx, ny, pixel, origin), o);
     py::dict out;
     py::list v, h;
@@ -407,6 +412,16 @@ py::dict spheropolygonFit(const py::object& data, int nx, int ny, double pixel, 
     for (long long e : r.history) h.append(e);
     out["vertices"] = v;
     out["spheroradius"] = r.sp.radius;
+    if (!r.sp.radii.empty()) {
+        py::list radii;
+        for (double x : r.sp.radii) radii.append(x);
+        out["radii"] = radii;
+    }
+    if (o.regionVertices) {
+        out["regions"] = r.regions;
+        out["regionsFilled"] = r.regionsFilled;
+        out["regionsMissed"] = r.regionsMissed;
+    }
     out["errorPixels"] = r.errorPixels;
     out["particlePixels"] = r.particlePixels;
     out["error"] = r.error;
@@ -417,6 +432,19 @@ py::dict spheropolygonFit(const py::object& data, int nx, int ny, double pixel, 
     out["area"] = R.area;
     out["perimeter"] = R.perimeter;
     return out;
+}
+
+/// The convex and concave regions of a particle's boundary: ([(first, last, centre, turning), ...],
+/// [(x, y), ...] of the smoothed boundary the indices refer to).
+py::tuple spheropolygonRegions(const py::object& data, int nx, int ny, double pixel, const py::object& origin,
+                               double minTurning) {
+    std::vector<mss::Vec2> boundary;
+    const std::vector<mss::SpRegion> regions =
+        mss::boundaryRegions(image2(data, nx, ny, pixel, origin), minTurning, &boundary);
+    py::list r, b;
+    for (const mss::SpRegion& x : regions) r.append(py::make_tuple(x.first, x.last, x.centre, x.turning));
+    for (const mss::Vec2& p : boundary) b.append(py::make_tuple(p.x(), p.y()));
+    return py::make_tuple(r, b);
 }
 
 py::tuple readSpheres(const std::string& path, long long clumpId) {
@@ -497,6 +525,9 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("spheropolygon", spheropolygonFit,
             (py::arg("data"), py::arg("nx"), py::arg("ny"), py::arg("pixel"), py::arg("origin"),
              py::arg("options")));
+    py::def("spheropolygonRegions", spheropolygonRegions,
+            (py::arg("data"), py::arg("nx"), py::arg("ny"), py::arg("pixel"), py::arg("origin"),
+             py::arg("minTurning")));
     py::def("readSpheres", readSpheres, (py::arg("path"), py::arg("clumpId") = -1));
     py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
 }

@@ -1,4 +1,8 @@
+// Spheropolygons from 2-D particle images (Dobrohotoff et al. 2012): the image of a spheropolygon, the error
+// pixels (eq. 3), roundness (eq. 9), the particle boundary, its convex and concave regions, and the three
+// initialisations of section 3.1. Algorithm 1 is in spheropolygon_fit.cpp.
 #include "mss/spheropolygon.hpp"
+#include "mss/spheropolygon_geometry.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,27 +14,17 @@ namespace mss {
 
 namespace {
 
+using namespace spgeom;
+
 constexpr double kPi = 3.14159265358979323846;
 
-double segmentDistance2(const Vec2& p, const Vec2& a, const Vec2& b) {
-    const Vec2 ab = b - a;
-    const double len2 = ab.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-    return (a + t * ab - p).squaredNorm();
-}
-
-/// Whether the horizontal ray from p to +x crosses edge a-b (half-open in y: every crossing counted once).
-bool crosses(const Vec2& p, const Vec2& a, const Vec2& b) {
-    if ((a.y() > p.y()) == (b.y() > p.y())) return false;
-    return p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
-}
-
-bool inside(const std::vector<Vec2>& v, double r2, const Vec2& p) {
+bool inside(const Spheropolygon& sp, const Vec2& p) {
+    const std::vector<Vec2>& v = sp.vertices;
     const std::size_t n = v.size();
-    if (n == 1) return (p - v[0]).squaredNorm() <= r2;
+    if (n == 1) return (p - v[0]).squaredNorm() <= sp.radiusOf(0) * sp.radiusOf(0);
     bool in = false;
     for (std::size_t a = 0, b = n - 1; a < n; b = a++) {
-        if (segmentDistance2(p, v[b], v[a]) <= r2) return true;
+        if (nearEdge(p, v[b], sp.radiusOf(b), v[a], sp.radiusOf(a))) return true;
         if (crosses(p, v[b], v[a])) in = !in;
     }
     return in;
@@ -50,6 +44,17 @@ void validate(const Spheropolygon& sp, const char* where) {
         if (!v.allFinite()) throw std::invalid_argument(std::string(where) + ": a vertex is not finite");
     if (!(sp.radius >= 0) || !std::isfinite(sp.radius))
         throw std::invalid_argument(std::string(where) + ": the spheroradius must be >= 0 and finite");
+    if (!sp.radii.empty() && sp.radii.size() != sp.vertices.size())
+        throw std::invalid_argument(std::string(where) + ": radii must be one per vertex (or none)");
+    for (double r : sp.radii)
+        if (!(r >= 0) || !std::isfinite(r))
+            throw std::invalid_argument(std::string(where) + ": every vertex radius must be >= 0 and finite");
+}
+
+double largestRadius(const Spheropolygon& sp) {
+    double r = sp.radius;
+    if (!sp.radii.empty()) r = *std::max_element(sp.radii.begin(), sp.radii.end());
+    return r;
 }
 
 /// The pixels of the largest 4-connected component of the image (the particle), as a mask.
@@ -118,20 +123,20 @@ Image2 rasterize(const Spheropolygon& sp, const Image2& like) {
     validate(like, "rasterize");
     validate(sp, "rasterize");
     Image2 out(like.nx, like.ny, like.pixel, like.origin);
-    const double r2 = sp.radius * sp.radius;
+    const double reach = largestRadius(sp);
     Vec2 lo = sp.vertices[0], hi = sp.vertices[0];
     for (const Vec2& v : sp.vertices) {
         lo = lo.cwiseMin(v);
         hi = hi.cwiseMax(v);
     }
-    lo -= Vec2::Constant(sp.radius);
-    hi += Vec2::Constant(sp.radius);
+    lo -= Vec2::Constant(reach);
+    hi += Vec2::Constant(reach);
     const int i0 = std::max(0, int(std::floor((lo.x() - like.origin.x()) / like.pixel))),
               i1 = std::min(like.nx - 1, int(std::ceil((hi.x() - like.origin.x()) / like.pixel)));
     const int j0 = std::max(0, int(std::floor((lo.y() - like.origin.y()) / like.pixel))),
               j1 = std::min(like.ny - 1, int(std::ceil((hi.y() - like.origin.y()) / like.pixel)));
     for (int j = j0; j <= j1; ++j)
-        for (int i = i0; i <= i1; ++i) out(i, j) = inside(sp.vertices, r2, like.center(i, j));
+        for (int i = i0; i <= i1; ++i) out(i, j) = inside(sp, like.center(i, j));
     return out;
 }
 
@@ -152,8 +157,24 @@ Roundness roundness(const Spheropolygon& sp) {
         if (n > 1) p += (v - u).norm();
     }
     Roundness r;
-    r.area = 0.5 * std::abs(a) + p * sp.radius + kPi * sp.radius * sp.radius;
-    r.perimeter = p + 2 * kPi * sp.radius;
+    if (sp.radii.empty()) {
+        r.area = 0.5 * std::abs(a) + p * sp.radius + kPi * sp.radius * sp.radius;
+        r.perimeter = p + 2 * kPi * sp.radius;
+    } else { // bands of the mean radius along the edges, sectors of the exterior angle at the vertices
+        const double orient = a >= 0 ? 1.0 : -1.0;
+        r.area = 0.5 * std::abs(a);
+        r.perimeter = p;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec2 &u = sp.vertices[(i + n - 1) % n], &v = sp.vertices[i], &w = sp.vertices[(i + 1) % n];
+            const Vec2 e = v - u, f = w - v;
+            const double ri = sp.radii[i];
+            const double theta = n > 2 ? orient * std::atan2(e.x() * f.y() - e.y() * f.x(), e.dot(f))
+                                       : (n == 2 ? kPi : 2 * kPi);
+            if (n > 1) r.area += 0.5 * f.norm() * (ri + sp.radii[(i + 1) % n]);
+            r.area += 0.5 * theta * ri * ri;
+            r.perimeter += theta * ri;
+        }
+    }
     r.roundness = r.perimeter > 0 ? 4 * kPi * r.area / (r.perimeter * r.perimeter) : 0.0;
     return r;
 }
@@ -210,6 +231,74 @@ std::vector<Vec2> particleBoundary(const Image2& image) {
     return out;
 }
 
+namespace {
+
+/// The particle's boundary with the staircase of pixel edges rounded over about 5 pixels: what is left is
+/// the particle's own turning.
+std::vector<Vec2> smoothedBoundary(const Image2& image) {
+    return smooth(particleBoundary(image), 5);
+}
+
+} // namespace
+
+std::vector<SpRegion> boundaryRegions(const Image2& image, double minTurning, std::vector<Vec2>* smoothed) {
+    validate(image, "spheropolygon");
+    if (!(minTurning > 0) || !std::isfinite(minTurning))
+        throw std::invalid_argument("spheropolygon: regionTurning must be > 0 degrees and finite");
+    const std::vector<Vec2> b = smoothedBoundary(image);
+    const std::size_t n = b.size();
+    std::vector<double> turn(n); // signed, radians: > 0 turns left, convex for the counter-clockwise boundary
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec2 u = b[i] - b[(i + n - 1) % n], v = b[(i + 1) % n] - b[i];
+        turn[i] = std::atan2(u.x() * v.y() - u.y() * v.x(), u.dot(v));
+    }
+    // the sign of the turning over 13 points; below about a degree it is no sign (a straight stretch)
+    std::vector<int> sign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        double k = 0.0;
+        for (int d = -6; d <= 6; ++d) k += turn[(i + n + std::size_t(d + int(n))) % n];
+        sign[i] = k > 0.02 ? 1 : (k < -0.02 ? -1 : 0);
+    }
+    std::vector<SpRegion> out;
+    std::size_t start = 0; // a run's first point, so that no run wraps past the scan's end
+    while (start < n && sign[start] == sign[(start + n - 1) % n]) ++start;
+    if (start == n) { // one sign all round: a convex particle (or a straight nothing)
+        double total = 0.0;
+        for (double t : turn) total += t;
+        if (sign[0] != 0 && std::abs(total) * 180 / kPi >= minTurning) {
+            SpRegion r;
+            r.first = 0;
+            r.last = n - 1;
+            r.turning = total * 180 / kPi;
+            out.push_back(r);
+        }
+    } else {
+        for (std::size_t k = 0; k < n;) {
+            const std::size_t first = (start + k) % n;
+            std::size_t len = 1;
+            while (k + len < n && sign[(first + len) % n] == sign[first]) ++len;
+            k += len;
+            if (sign[first] == 0) continue;
+            double total = 0.0;
+            for (std::size_t d = 0; d < len; ++d) total += turn[(first + d) % n];
+            if (std::abs(total) * 180 / kPi < minTurning) continue;
+            SpRegion r;
+            r.first = first;
+            r.last = (first + len - 1) % n;
+            r.turning = total * 180 / kPi;
+            double half = 0.0; // the centre: where half the region's turning is done
+            for (std::size_t d = 0; d < len; ++d) {
+                half += turn[(first + d) % n];
+                r.centre = (first + d) % n;
+                if (std::abs(half) >= 0.5 * std::abs(total)) break;
+            }
+            out.push_back(r);
+        }
+    }
+    if (smoothed) *smoothed = b;
+    return out;
+}
+
 Spheropolygon initialSpheropolygon(const Image2& image, const SpOptions& o) {
     validate(image, "spheropolygon");
     if (o.vertices < 3)
@@ -237,9 +326,7 @@ Spheropolygon initialSpheropolygon(const Image2& image, const SpOptions& o) {
                 c + R * Vec2(std::cos(2 * kPi * k / o.vertices), std::sin(2 * kPi * k / o.vertices)));
         return sp;
     }
-    const std::vector<Vec2> raw = particleBoundary(image);
-    // the staircase of pixel edges, rounded over about 5 pixels: what is left is the particle's own turning
-    const std::vector<Vec2> b = smooth(raw, 5);
+    const std::vector<Vec2> b = smoothedBoundary(image);
     const std::size_t n = b.size();
     std::vector<double> len(n), turn(n);
     for (std::size_t i = 0; i < n; ++i) len[i] = (b[(i + 1) % n] - b[i]).norm();
@@ -268,190 +355,6 @@ Spheropolygon initialSpheropolygon(const Image2& image, const SpOptions& o) {
         sp.vertices.push_back(p);
     }
     return sp;
-}
-
-namespace {
-
-/// The pixels a move of vertex i can change, with what the other edges contribute to them fixed: a trial
-/// then only tests the two edges at the vertex (the paper's section 4 speed-up).
-class LocalRegion {
-public:
-    LocalRegion(const Image2& target, const std::vector<Vec2>& v, std::size_t i, double r, double reach)
-        : t_(target) {
-        const std::size_t n = v.size();
-        prev_ = v[(i + n - 1) % n];
-        next_ = v[(i + 1) % n];
-        Vec2 lo = prev_.cwiseMin(next_).cwiseMin(v[i] - Vec2::Constant(reach));
-        Vec2 hi = prev_.cwiseMax(next_).cwiseMax(v[i] + Vec2::Constant(reach));
-        lo -= Vec2::Constant(r + t_.pixel);
-        hi += Vec2::Constant(r + t_.pixel);
-        i0_ = std::max(0, int(std::floor((lo.x() - t_.origin.x()) / t_.pixel)));
-        i1_ = std::min(t_.nx - 1, int(std::ceil((hi.x() - t_.origin.x()) / t_.pixel)));
-        j0_ = std::max(0, int(std::floor((lo.y() - t_.origin.y()) / t_.pixel)));
-        j1_ = std::min(t_.ny - 1, int(std::ceil((hi.y() - t_.origin.y()) / t_.pixel)));
-        r2_ = r * r;
-        for (int j = j0_; j <= j1_; ++j)
-            for (int ii = i0_; ii <= i1_; ++ii) {
-                const Vec2 p = t_.center(ii, j);
-                bool near = false, parity = false;
-                for (std::size_t a = 0, b = n - 1; a < n; b = a++) {
-                    if (a == i || b == i) continue; // the two edges at vertex i
-                    near = near || segmentDistance2(p, v[b], v[a]) <= r2_;
-                    parity = parity != crosses(p, v[b], v[a]);
-                }
-                state_.push_back(std::uint8_t(near) | std::uint8_t(parity << 1) |
-                                 std::uint8_t(t_(ii, j) ? 4 : 0));
-            }
-    }
-    /// Error pixels in the region with vertex i at @p q.
-    long long errors(const Vec2& q) const {
-        long long e = 0;
-        std::size_t s = 0;
-        for (int j = j0_; j <= j1_; ++j)
-            for (int ii = i0_; ii <= i1_; ++ii, ++s) {
-                const std::uint8_t st = state_[s];
-                const Vec2 p = t_.center(ii, j);
-                bool in =
-                    (st & 1) || segmentDistance2(p, prev_, q) <= r2_ || segmentDistance2(p, q, next_) <= r2_;
-                if (!in) in = ((st >> 1) & 1) != (crosses(p, prev_, q) != crosses(p, q, next_));
-                e += in != bool(st & 4);
-            }
-        return e;
-    }
-
-private:
-    const Image2& t_;
-    Vec2 prev_, next_;
-    int i0_ = 0, i1_ = -1, j0_ = 0, j1_ = -1;
-    double r2_ = 0;
-    std::vector<std::uint8_t> state_;
-};
-
-} // namespace
-
-namespace {
-
-/// Algorithm 1 from the spheropolygon in @p res (its V in history.back()); counts iterations on.
-void algorithmOne(const Image2& target, const SpOptions& o, SpResult& res) {
-    // r_s of eq. 4; departure: when nothing moves, r_s is halved down to half a pixel (coarse to fine), where
-    // the paper keeps one r_s
-    double rs = o.samplingRadius > 0 ? o.samplingRadius : 4 * target.pixel;
-    long long V = res.history.back();
-    std::vector<Vec2>& v = res.sp.vertices;
-    for (int it = 0; it < o.maxIterations; ++it, ++res.iterations) {
-        if (V <= o.tolerance * double(res.particlePixels)) break;
-        bool moved = false;
-        for (std::size_t i = 0; i < v.size(); ++i) {
-            const LocalRegion region(target, v, i, o.radius, rs + target.pixel);
-            for (int axis = 0; axis < 2; ++axis) {
-                const long long here = region.errors(v[i]);
-                long long best = here;
-                int bestK = 0;
-                for (int k = -o.samples; k <= o.samples; ++k) { // eq. 4: 2 n_s + 1 samples
-                    if (k == 0) continue;
-                    Vec2 q = v[i];
-                    q[axis] += rs * k / o.samples;
-                    const long long e = region.errors(q);
-                    if (e < best || (e == best && bestK != 0 && std::abs(k) < std::abs(bestK))) {
-                        best = e;
-                        bestK = k;
-                    }
-                }
-                if (bestK == 0) continue;
-                // step 5: a local minimum inside the range that gains more than the cutoff is taken; else
-                // the offset is weighted by g
-                const bool local = std::abs(bestK) < o.samples && here - best > o.cutoff;
-                Vec2 q = v[i];
-                q[axis] += (local ? 1.0 : o.weight) * rs * bestK / o.samples;
-                const long long e = local ? best : region.errors(q);
-                if (e > here) continue; // a weighted step that would lose: not taken
-                V += e - here;
-                moved = moved || q != v[i];
-                v[i] = q;
-            }
-        }
-        res.history.push_back(V);
-        if (!moved) {
-            if (rs <= 0.5 * target.pixel) break;
-            rs = std::max(0.5 * target.pixel, 0.5 * rs);
-        }
-    }
-}
-
-/// Relocation (beyond the paper, which keeps the initial count along the boundary): the vertex whose removal
-/// costs least goes to the edge with the most error pixels near it (at their centroid), then Algorithm 1 runs
-/// again; kept while V falls. A feature the start under-sampled (a leg, a tail) gets its vertices this way.
-bool relocate(const Image2& target, const SpOptions& o, SpResult& res) {
-    std::vector<Vec2>& v = res.sp.vertices;
-    const std::size_t n = v.size();
-    // error pixels by their nearest edge
-    const Image2 im = rasterize(res.sp, target);
-    std::vector<double> count(n, 0.0);
-    std::vector<Vec2> sum(n, Vec2::Zero());
-    for (int j = 0; j < target.ny; ++j)
-        for (int i = 0; i < target.nx; ++i) {
-            if ((im(i, j) != 0) == (target(i, j) != 0)) continue;
-            const Vec2 p = target.center(i, j);
-            std::size_t best = 0;
-            double d = 1e300;
-            for (std::size_t e = 0; e < n; ++e) {
-                const double de = segmentDistance2(p, v[e], v[(e + 1) % n]);
-                if (de < d) {
-                    d = de;
-                    best = e;
-                }
-            }
-            count[best] += 1;
-            sum[best] += p;
-        }
-    const std::size_t worst = std::size_t(std::max_element(count.begin(), count.end()) - count.begin());
-    // the cost of removing each vertex (not the worst edge's ends)
-    long long leastCost = std::numeric_limits<long long>::max();
-    std::size_t drop = n;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (i == worst || i == (worst + 1) % n) continue;
-        Spheropolygon without = res.sp;
-        without.vertices.erase(without.vertices.begin() + std::ptrdiff_t(i));
-        const long long cost = errorPixels(target, without) - res.history.back();
-        if (cost < leastCost) {
-            leastCost = cost;
-            drop = i;
-        }
-    }
-    if (drop == n || double(leastCost) >= count[worst]) return false;
-    SpResult trial = res;
-    std::vector<Vec2>& w = trial.sp.vertices;
-    const Vec2 at = sum[worst] / count[worst];
-    const Vec2 a = w[worst], b = w[(worst + 1) % n];
-    const double t = std::clamp((at - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.05, 0.95);
-    w.insert(w.begin() + std::ptrdiff_t(worst + 1), a + t * (b - a) + 0.5 * (at - (a + t * (b - a))));
-    w.erase(w.begin() + std::ptrdiff_t(drop < worst + 1 ? drop : drop + 1));
-    trial.history.push_back(errorPixels(target, trial.sp));
-    SpOptions again = o;
-    again.maxIterations = std::max(10, o.maxIterations / 3);
-    algorithmOne(target, again, trial);
-    if (trial.history.back() >= res.history.back()) return false;
-    res = std::move(trial);
-    return true;
-}
-
-} // namespace
-
-SpResult fitSpheropolygon(const Image2& target, const SpOptions& o) {
-    if (o.samples < 1 || !(o.weight > 0 && o.weight < 1) || o.maxIterations < 0 || !(o.tolerance >= 0) ||
-        o.relocations < 0)
-        throw std::invalid_argument("spheropolygon: samples >= 1, 0 < weight < 1, maxIterations >= 0, "
-                                    "tolerance >= 0, relocations >= 0");
-    SpResult res;
-    res.sp = initialSpheropolygon(target, o);
-    for (std::uint8_t v : target.data) res.particlePixels += v != 0;
-    res.history.push_back(errorPixels(target, res.sp));
-    algorithmOne(target, o, res);
-    for (int k = 0; k < o.relocations && res.history.back() > o.tolerance * double(res.particlePixels); ++k)
-        if (!relocate(target, o, res)) break;
-    res.errorPixels = errorPixels(target, res.sp);
-    res.error = res.particlePixels ? double(res.errorPixels) / double(res.particlePixels) : 0.0;
-    return res;
 }
 
 } // namespace mss

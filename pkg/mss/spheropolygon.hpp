@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,14 +31,19 @@ struct Image2 {
     Vec2 center(int i, int j) const { return origin + pixel * Vec2(i, j); }
 };
 
-/// A polygon's Minkowski sum with a disc: vertices (world units, in order) and the spheroradius.
+/// A polygon's Minkowski sum with a disc: vertices (world units, in order) and the spheroradius. With a
+/// radius per vertex (beyond the paper, its section 5), each edge is swept by a disc whose radius changes
+/// linearly from one vertex's to the next: the convex hull of the two vertex discs.
 struct Spheropolygon {
     std::vector<Vec2> vertices;
-    double radius = 0.0;
+    double radius = 0.0;       ///< the spheroradius (of all vertices when radii is empty; else the least)
+    std::vector<double> radii; ///< one per vertex, or empty
+    double radiusOf(std::size_t i) const { return radii.empty() ? radius : radii[i]; }
 };
 
 /// f(SP): a pixel is inside when its centre is inside the polygon (even-odd rule) or within the spheroradius
-/// of an edge (or of the vertex, for N = 1). O(pixels in the bounding box x N).
+/// of an edge (with radii per vertex: inside the convex hull of the edge's two vertex discs; for N = 1 the
+/// vertex's disc). O(pixels in the bounding box x N).
 Image2 rasterize(const Spheropolygon& sp, const Image2& like);
 
 /// V = |I_SP - I_0| (eq. 3): the number of error pixels. @throws std::invalid_argument on bad input.
@@ -45,6 +51,8 @@ long long errorPixels(const Image2& target, const Spheropolygon& sp);
 
 /// Area, perimeter and roundness R = 4 pi A / P^2 (eq. 9) of a spheropolygon: A = A_polygon + P_polygon r +
 /// pi r^2 and P = P_polygon + 2 pi r, exact for a convex polygon (an approximation for a non-convex one).
+/// With radii per vertex: A = A_polygon + sum over edges L (r_a + r_b) / 2 + sum over vertices theta r^2 / 2
+/// and P = P_polygon + sum theta r (theta: the exterior angle), exact for equal radii, else approximate.
 struct Roundness {
     double area = 0.0, perimeter = 0.0, roundness = 0.0;
 };
@@ -73,6 +81,16 @@ struct SpOptions {
     /// error pixels, each followed by Algorithm 1 again and kept only if V falls (0: the paper's Algorithm
     /// 1).
     int relocations = 0;
+    /// Beyond the paper (its section 4): at least one vertex in every convex or concave region of the
+    /// boundary (a run of one sign of the smoothed turning that turns by at least regionTurning degrees),
+    /// placed at the region's centre where Algorithm 1 left none, and kept there by every later move.
+    bool regionVertices = false;
+    double regionTurning = 90.0;
+    /// Beyond the paper (its section 5): a spheroradius per vertex (3N parameters), Algorithm 1 sampling
+    /// (x, y, r) after the equal-radius fit. No radius falls below minRadius (the contact stiffness, hence
+    /// the time step, is set by the smallest; unset: the spheroradius, so the time step never gets worse).
+    bool vertexRadii = false;
+    std::optional<double> minRadius;
 };
 
 struct SpResult {
@@ -82,7 +100,22 @@ struct SpResult {
     double error = 0.0;           ///< V / particle pixels
     int iterations = 0;
     std::vector<long long> history; ///< V after each iteration (the first: the initial spheropolygon)
+    int regions = 0;                ///< convex or concave regions found (regionVertices)
+    int regionsFilled = 0;          ///< of those, how many needed a vertex put in
+    int regionsMissed = 0;          ///< of those, how many have no vertex (more regions than N can hold)
 };
+
+/// A convex or concave region of a particle's boundary: a run of one sign of the smoothed turning.
+struct SpRegion {
+    std::size_t first = 0, last = 0; ///< indices into the smoothed boundary (cyclic, first to last)
+    std::size_t centre = 0;          ///< where half the region's turning is done
+    double turning = 0.0;            ///< signed, degrees (> 0: convex for the counter-clockwise boundary)
+};
+
+/// The convex and concave regions of the particle's boundary (smoothed over about 5 pixels) turning by at
+/// least @p minTurning degrees, and that smoothed boundary.
+std::vector<SpRegion> boundaryRegions(const Image2& image, double minTurning,
+                                      std::vector<Vec2>* smoothed = nullptr);
 
 /// The particle's outer boundary (the largest 4-connected component), as the polygon of its pixels' outer
 /// edges, counter-clockwise, world units. @throws std::invalid_argument for an empty image.

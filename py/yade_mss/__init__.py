@@ -33,10 +33,10 @@ from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTempl
 from ._batch import batch  # noqa: E402
 from ._assembly import mssAssembly  # noqa: E402
 from ._specimen import regions, syntheticSpecimen  # noqa: E402
-from ._spheropolygon import ochart, spheropolygon, spheropolygons  # noqa: E402
+from ._spheropolygon import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
            'restoreClumpProperties', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
            'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen',
-           'spheropolygon', 'spheropolygons', 'ochart']
+           'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart']

@@ -62,7 +62,8 @@ def _fit(mask, vertices, radius, pixelSize, origin, init='auto', **options):
 
 
 def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0.0), label=None, init='auto',
-                  inset=True, radii=None, **options):
+                  inset=True, radii=None, vertexRadii=False, minRadius=None, regionVertices=False,
+                  regionTurning=90.0, **options):
     """The spheropolygon of N vertices that best matches a particle image (Algorithm 1).
 
     :param image: 2-D array (non-zero: the particle) or a .npy/.png file
@@ -73,10 +74,18 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
     :param str init: 'circle', 'boundary' or 'curvature' (section 3.1), or 'auto' (default): boundary and
         curvature both, the better kept
     :param bool inset: start the vertices one spheroradius inside the boundary (beyond the paper)
+    :param bool vertexRadii: a spheroradius per vertex (3N parameters; the paper's section 5), tuned after the
+        equal-radius fit; none below *minRadius* (world units; default the spheroradius, so that the contact
+        stiffness and time step, set by the smallest radius, are never worse than with one radius)
+    :param bool regionVertices: at least one vertex in every convex or concave region of the boundary that
+        turns by at least *regionTurning* degrees (the paper's section 4), put at the region's centre where
+        the fit left none and kept there
     :param options: samplingRadius (r_s, world units), samples (n_s), weight (g), cutoff, tolerance,
         maxIterations, relocations (default 10; 0: the paper's Algorithm 1 alone)
-    :return: dict with spheroradius, vertices [[x, y], ...], errorPixels, error (fraction of the particle's
-        pixels), iterations, roundness (eq. 9), area, perimeter, history, seconds
+    :return: dict with spheroradius (with vertexRadii the smallest), vertices [[x, y], ...], radii (with
+        vertexRadii), errorPixels, error (fraction of the particle's pixels), iterations, roundness (eq. 9),
+        area, perimeter, history, seconds; with regionVertices also regions, regionsFilled (vertices put in)
+        and regionsMissed (regions left without a vertex: more regions than vertices)
     """
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     if a.ndim != 2 or a.size == 0:
@@ -89,19 +98,41 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
                          'spheropolygons() for all')
     if not (float(pixelSize) > 0):
         raise ValueError('spheropolygon: pixelSize must be > 0, got %r' % (pixelSize,))
+    if minRadius is not None and not vertexRadii:
+        raise ValueError('spheropolygon: minRadius bounds the radii per vertex: it needs vertexRadii=True')
+    if minRadius is not None and not (float(minRadius) >= 0 and math.isfinite(float(minRadius))):
+        raise ValueError('spheropolygon: minRadius must be >= 0 and finite, got %r' % (minRadius,))
     t0 = time.perf_counter()
     relocations = options.pop('relocations', 10)
+    final = dict(options, vertexRadii=bool(vertexRadii), regionVertices=bool(regionVertices),
+                 regionTurning=float(regionTurning))
+    if minRadius is not None:
+        final['minRadius'] = float(minRadius)
     if radius is None:  # the spheroradius of least error, found without relocations, then refined with them
         idx = np.argwhere(mask)
         size = pixelSize * (np.ptp(idx, axis=0).max() + 1)
-        fits = [_fit(mask, vertices, f * size, pixelSize, origin, init=init, inset=inset, **options)
-                for f in (radii or _DEFAULT_RADII)]
+        lowest = 0.0 if minRadius is None else float(minRadius)  # no spheroradius under the bound
+        candidates = sorted({max(f * size, lowest) for f in (radii or _DEFAULT_RADII)})
+        fits = [_fit(mask, vertices, c, pixelSize, origin, init=init, inset=inset, **options) for c in candidates]
         best = min(fits, key=lambda x: (x['errorPixels'], -x['spheroradius']))
         radius, init = best['spheroradius'], best['init']
-    r = _fit(mask, vertices, radius, pixelSize, origin, init=init, inset=inset, relocations=relocations, **options)
+    r = _fit(mask, vertices, radius, pixelSize, origin, init=init, inset=inset, relocations=relocations, **final)
     r['vertices'] = [list(v) for v in r['vertices']]
     r['seconds'] = time.perf_counter() - t0
     return r
+
+
+def boundaryRegions(image, minTurning=90.0, pixelSize=1.0, origin=(0.0, 0.0), label=None):
+    """The convex and concave regions of a particle's boundary (as regionVertices uses them): a list of dicts
+    with first, last, centre (indices into the smoothed boundary), turning (degrees; > 0 convex), and that
+    smoothed boundary as an (n, 2) array."""
+    a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
+    m = (a == label) if label is not None else (a != 0)
+    data = np.ascontiguousarray(m.T.astype(np.uint8)).tobytes()
+    regions, boundary = _mss.spheropolygonRegions(data, m.shape[0], m.shape[1], float(pixelSize),
+                                                  [float(x) for x in origin], float(minTurning))
+    return ([dict(first=f, last=l, centre=c, turning=t) for f, l, c, t in regions],
+            np.array(boundary, float).reshape(-1, 2))
 
 
 def spheropolygons(image, **kw):
@@ -182,7 +213,7 @@ def previewSpheropolygon(mask, result, path, pixelSize=1.0, origin=(0.0, 0.0)):
     from matplotlib.patches import Circle, Polygon
     m = np.asarray(mask) != 0
     v = np.array(result['vertices'])
-    r = result['spheroradius']
+    r = result.get('radii') or [result['spheroradius']] * len(v)
     sp = rasterizeNumpy(v, r, m.shape, pixelSize, origin)
     img = np.ones(m.shape + (3,))
     img[m & sp] = (0.75, 0.75, 0.72)
@@ -193,12 +224,14 @@ def previewSpheropolygon(mask, result, path, pixelSize=1.0, origin=(0.0, 0.0)):
            origin[1] - pixelSize / 2, origin[1] + pixelSize * (m.shape[1] - 0.5))
     ax.imshow(np.transpose(img, (1, 0, 2))[::-1], extent=ext, interpolation='nearest')
     ax.add_patch(Polygon(v, closed=True, fill=False, ec='k', lw=1))
-    for p in v:
-        ax.add_patch(Circle(p, r, fill=False, ec='k', lw=0.4, alpha=0.6))
+    for p, rp in zip(v, r):
+        ax.add_patch(Circle(p, rp, fill=False, ec='k', lw=0.4, alpha=0.6))
     ax.plot(v[:, 0], v[:, 1], 'k.', ms=4)
     ax.set_aspect('equal')
-    ax.set_title('N = %d, r = %.3g: error %.2f%% (%d pixels), roundness %.3f\nred: particle missed, blue: '
-                 'outside the particle' % (len(v), r, 100 * result['error'], result['errorPixels'], result['roundness']))
+    rtext = 'r = %.3g' % r[0] if 'radii' not in result else 'r = %.3g to %.3g' % (min(r), max(r))
+    ax.set_title('N = %d, %s: error %.2f%% (%d pixels), roundness %.3f\nred: particle missed, blue: '
+                 'outside the particle' % (len(v), rtext, 100 * result['error'], result['errorPixels'],
+                                           result['roundness']))
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
@@ -206,17 +239,29 @@ def previewSpheropolygon(mask, result, path, pixelSize=1.0, origin=(0.0, 0.0)):
 
 def rasterizeNumpy(vertices, radius, shape, pixelSize=1.0, origin=(0.0, 0.0)):
     """f(SP) computed here in numpy alone (matplotlib's point-in-polygon and segment distances): an
-    independent check of the C++ image of a spheropolygon."""
+    independent check of the C++ image of a spheropolygon. *radius*: one, or one per vertex (an edge is then
+    the hull of its two vertex discs: the least of |p - c(t)| - r(t) over t found by golden-section search,
+    not by the C++ closed form)."""
     from matplotlib.path import Path
     v = np.asarray(vertices, float)
+    rv = np.broadcast_to(np.asarray(radius, float), (len(v),))
     i, j = np.meshgrid(np.arange(shape[0]), np.arange(shape[1]), indexing='ij')
     P = np.stack([origin[0] + pixelSize * i, origin[1] + pixelSize * j], axis=-1).reshape(-1, 2)
     inside = Path(v).contains_points(P) if len(v) >= 3 else np.zeros(len(P), bool)
     near = np.zeros(len(P), bool)
-    for a, b in zip(v, np.roll(v, -1, axis=0)):
+    for a, b, ra, rb in zip(v, np.roll(v, -1, axis=0), rv, np.roll(rv, -1)):
         ab = b - a
-        t = np.clip(((P - a) @ ab) / max(ab @ ab, 1e-300), 0, 1)
-        near |= ((a + t[:, None] * ab - P) ** 2).sum(axis=1) <= radius * radius
+        if ra == rb:
+            t = np.clip(((P - a) @ ab) / max(ab @ ab, 1e-300), 0, 1)
+            near |= ((a + t[:, None] * ab - P) ** 2).sum(axis=1) <= ra * ra
+            continue
+        f = lambda t: np.hypot(*(a + t[:, None] * ab - P).T) - (ra + t * (rb - ra))
+        lo, hi, g = np.zeros(len(P)), np.ones(len(P)), (math.sqrt(5) - 1) / 2
+        for _ in range(60):  # f is convex in t
+            x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+            left = f(x1) < f(x2)
+            hi, lo = np.where(left, x2, hi), np.where(left, lo, x1)
+        near |= np.minimum(np.minimum(f(lo), f(hi)), np.minimum(f(np.zeros(len(P))), f(np.ones(len(P))))) <= 0
     return (inside | near).reshape(shape)
 
 
@@ -247,6 +292,14 @@ def main(argv=None):
     p.add_argument('--origin', default='0,0', help='X,Y of pixel [0, 0]')
     p.add_argument('--ochart', default=None, help='a folder: the (N, r) sweep as CSV and the three charts')
     p.add_argument('--preview', default=None, help='a PNG of the result over the image')
+    p.add_argument('--vertex-radii', action='store_true',
+                   help='a spheroradius per vertex (3N parameters), none below --min-radius')
+    p.add_argument('--min-radius', type=float, default=None,
+                   help='with --vertex-radii: the least radius (world units; default the spheroradius)')
+    p.add_argument('--region-vertices', action='store_true',
+                   help='at least one vertex in every convex or concave region of the boundary')
+    p.add_argument('--region-turning', type=float, default=90.0,
+                   help='degrees a stretch of the boundary must turn to be a region (default 90)')
     a = p.parse_args(argv)
     try:
         img = readImage(a.image, a.threshold)
@@ -255,13 +308,20 @@ def main(argv=None):
             [int(l) for l in np.unique(img[img != 0])]
         out = {}
         for l in labels:
-            r = spheropolygon(img, a.vertices, a.radius, a.pixel_size, origin, label=l, init=a.init)
-            keep = ('spheroradius', 'vertices', 'errorPixels', 'error', 'iterations', 'roundness', 'area', 'perimeter',
-                    'init')
-            out['particle' if l is None else str(l)] = {k: r[k] for k in keep}
-            print('%-10s N %d  r %.4g  error %.2f%% (%d pixels)  roundness %.3f  %d iterations'
-                  % ('particle' if l is None else 'label %d' % l, a.vertices, r['spheroradius'], 100 * r['error'],
-                     r['errorPixels'], r['roundness'], r['iterations']))
+            r = spheropolygon(img, a.vertices, a.radius, a.pixel_size, origin, label=l, init=a.init,
+                              vertexRadii=a.vertex_radii, minRadius=a.min_radius,
+                              regionVertices=a.region_vertices, regionTurning=a.region_turning)
+            keep = ('spheroradius', 'vertices', 'radii', 'errorPixels', 'error', 'iterations', 'roundness', 'area',
+                    'perimeter', 'init', 'regions', 'regionsFilled', 'regionsMissed')
+            out['particle' if l is None else str(l)] = {k: r[k] for k in keep if k in r}
+            print('%-10s N %d  r %s  error %.2f%% (%d pixels)  roundness %.3f  %d iterations%s'
+                  % ('particle' if l is None else 'label %d' % l, a.vertices,
+                     '%.4g' % r['spheroradius'] if 'radii' not in r else
+                     '%.4g to %.4g' % (min(r['radii']), max(r['radii'])), 100 * r['error'],
+                     r['errorPixels'], r['roundness'], r['iterations'],
+                     '  regions %d (%d filled, %d without a vertex)' % (r['regions'], r['regionsFilled'],
+                                                                      r['regionsMissed'])
+                     if 'regions' in r else ''))
             if a.preview:
                 base, ext = os.path.splitext(a.preview)
                 previewSpheropolygon(img != 0 if l is None else img == l, r, a.preview if l is None else

@@ -9,7 +9,7 @@ import unittest
 
 import numpy as np
 
-from yade_mss import ochart, spheropolygon
+from yade_mss import boundaryRegions, ochart, spheropolygon
 from yade_mss._spheropolygon import cow, rasterizeNumpy
 
 
@@ -108,6 +108,79 @@ class Spheropolygons(unittest.TestCase):
                                  capture_output=True, text=True)
             self.assertEqual(bad.returncode, 1)
             self.assertIn('missing.npy', bad.stderr)
+
+
+def regionOfVertices(regions, boundary, vertices):
+    """The region of each vertex (of its nearest point on the smoothed boundary), computed here in numpy."""
+    out = []
+    for v in np.asarray(vertices, float):
+        q = int(np.argmin(((boundary - v) ** 2).sum(axis=1)))
+        k = [i for i, r in enumerate(regions) if (r['first'] <= q <= r['last'] if r['first'] <= r['last']
+                                                  else q >= r['first'] or q <= r['last'])]
+        out.append(k[0] if k else -1)
+    return out
+
+
+class BeyondThePaper(unittest.TestCase):
+    def test_radius_per_vertex(self):
+        # an exact spheropolygon with radii 3, 8 and 12 (the hull of the vertex discs), drawn by the numpy
+        # rasteriser (golden-section search, not the C++ closed form)
+        truth = np.array([[30.0, 30.0], [110.0, 40.0], [60.0, 95.0]])
+        img = rasterizeNumpy(truth, [3.0, 8.0, 12.0], (140, 120))
+        one = spheropolygon(img, vertices=3, radius=3.0, init='boundary')
+        each = spheropolygon(img, vertices=3, radius=3.0, init='boundary', vertexRadii=True)
+        self.assertNotIn('radii', one)
+        self.assertGreater(one['error'], 0.02)
+        self.assertLess(each['error'], 0.01)
+        self.assertEqual(len(each['radii']), 3)
+        self.assertEqual(sorted(round(x) for x in each['radii']), [4, 8, 12])  # 3 fits as 3.75 here
+        self.assertAlmostEqual(each['spheroradius'], min(each['radii']))
+        mine = rasterizeNumpy(each['vertices'], each['radii'], img.shape)
+        self.assertEqual(int((mine != img).sum()), each['errorPixels'])
+        # the lower bound holds, and is checked
+        low = spheropolygon(cow(), vertices=20, radius=3.0, init='boundary', maxIterations=15, vertexRadii=True,
+                            minRadius=1.5)
+        self.assertGreaterEqual(min(low['radii']), 1.5 - 1e-12)
+        for bad in (dict(minRadius=1.0), dict(vertexRadii=True, minRadius=-1.0),
+                    dict(vertexRadii=True, minRadius=5.0)):
+            with self.assertRaises(ValueError) as ctx:
+                spheropolygon(img, vertices=3, radius=3.0, **bad)
+            self.assertIn('minRadius', str(ctx.exception))
+
+    def test_a_vertex_in_every_convex_or_concave_region(self):
+        c = cow()
+        regions, boundary = boundaryRegions(c, 90.0)
+        self.assertGreaterEqual(len(regions), 10)  # four feet, the tail's tip, a horn, the head, concave joints
+        self.assertTrue(any(r['turning'] < 0 for r in regions) and any(r['turning'] > 0 for r in regions))
+        r = spheropolygon(c, vertices=30, radius=2.0, init='boundary', regionVertices=True)
+        self.assertEqual(r['regions'], len(regions))
+        self.assertEqual(r['regionsMissed'], 0)
+        held = regionOfVertices(regions, boundary, r['vertices'])
+        self.assertEqual(sorted(set(held) - {-1}), list(range(len(regions))))
+        self.assertLess(r['error'], 0.03)
+        with self.assertRaises(ValueError):
+            spheropolygon(c, vertices=30, radius=2.0, regionVertices=True, regionTurning=0.0)
+
+    def test_command_line_options_beyond_the_paper(self):
+        mss = os.environ.get('MSS_BINARY', 'mss')
+        img, _ = roundedRectangle()
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'r.npy'), img)
+            out = os.path.join(d, 'r.json')
+            run = subprocess.run([mss, 'spheropolygon', os.path.join(d, 'r.npy'), '--vertices', '4', '--radius', '6',
+                                  '--vertex-radii', '--min-radius', '4', '--region-vertices', '-o', out,
+                                  '--preview', os.path.join(d, 'r.png')], check=True, capture_output=True, text=True)
+            self.assertIn('regions 4', run.stdout)
+            with open(out) as f:
+                res = json.load(f)
+            self.assertEqual(len(res['radii']), 4)
+            self.assertGreaterEqual(min(res['radii']), 4.0)
+            self.assertEqual(res['regionsMissed'], 0)
+            self.assertLess(res['error'], 0.01)  # the true radius 10 is found per vertex
+            bad = subprocess.run([mss, 'spheropolygon', os.path.join(d, 'r.npy'), '--min-radius', '1', '-o', out],
+                                 capture_output=True, text=True)
+            self.assertEqual(bad.returncode, 1)
+            self.assertIn('minRadius', bad.stderr)
 
 
 class Bars(unittest.TestCase):
