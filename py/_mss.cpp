@@ -434,7 +434,8 @@ py::dict spheropolygonFit(const py::object& data, int nx, int ny, double pixel, 
     return out;
 }
 
-/// The convex and concave regions of a particle's boundary: ([(first, last, centre, turning), ...],
+/// The convex and concave regions of a particle's boundary: ([(first, last, coreFirst, coreLast, centre,
+/// turning), ...],
 /// [(x, y), ...] of the smoothed boundary the indices refer to).
 py::tuple spheropolygonRegions(const py::object& data, int nx, int ny, double pixel, const py::object& origin,
                                double minTurning) {
@@ -442,7 +443,8 @@ py::tuple spheropolygonRegions(const py::object& data, int nx, int ny, double pi
     const std::vector<mss::SpRegion> regions =
         mss::boundaryRegions(image2(data, nx, ny, pixel, origin), minTurning, &boundary);
     py::list r, b;
-    for (const mss::SpRegion& x : regions) r.append(py::make_tuple(x.first, x.last, x.centre, x.turning));
+    for (const mss::SpRegion& x : regions)
+        r.append(py::make_tuple(x.first, x.last, x.coreFirst, x.coreLast, x.centre, x.turning));
     for (const mss::Vec2& p : boundary) b.append(py::make_tuple(p.x(), p.y()));
     return py::make_tuple(r, b);
 }

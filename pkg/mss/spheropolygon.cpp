@@ -267,8 +267,8 @@ std::vector<SpRegion> boundaryRegions(const Image2& image, double minTurning, st
         for (double t : turn) total += t;
         if (sign[0] != 0 && std::abs(total) * 180 / kPi >= minTurning) {
             SpRegion r;
-            r.first = 0;
-            r.last = n - 1;
+            r.first = r.coreFirst = 0;
+            r.last = r.coreLast = n - 1;
             r.turning = total * 180 / kPi;
             out.push_back(r);
         }
@@ -286,12 +286,24 @@ std::vector<SpRegion> boundaryRegions(const Image2& image, double minTurning, st
             r.first = first;
             r.last = (first + len - 1) % n;
             r.turning = total * 180 / kPi;
-            double half = 0.0; // the centre: where half the region's turning is done
+            // the core (a quarter to three quarters of the turning) and the centre (half of it)
+            double done = 0.0;
+            bool inCore = false, pastCentre = false;
             for (std::size_t d = 0; d < len; ++d) {
-                half += turn[(first + d) % n];
-                r.centre = (first + d) % n;
-                if (std::abs(half) >= 0.5 * std::abs(total)) break;
+                const std::size_t q = (first + d) % n;
+                done += turn[q];
+                const double f = std::abs(done) / std::abs(total);
+                if (!inCore && f >= 0.25) {
+                    inCore = true;
+                    r.coreFirst = q;
+                }
+                if (!pastCentre && f >= 0.5) {
+                    pastCentre = true;
+                    r.centre = q;
+                }
+                if (f <= 0.75 || d == 0) r.coreLast = q;
             }
+            if (!inCore) r.coreFirst = r.coreLast = r.centre = first;
             out.push_back(r);
         }
     }

@@ -105,11 +105,14 @@ struct SpResult {
     int regionsMissed = 0;          ///< of those, how many have no vertex (more regions than N can hold)
 };
 
-/// A convex or concave region of a particle's boundary: a run of one sign of the smoothed turning.
+/// A convex or concave region of a particle's boundary: a run of one sign of the smoothed turning. A vertex
+/// is in the region when its nearest point on the smoothed boundary lies in the region's core, where the
+/// middle half of its turning is done (a vertex at a horn's base is not in the horn).
 struct SpRegion {
-    std::size_t first = 0, last = 0; ///< indices into the smoothed boundary (cyclic, first to last)
-    std::size_t centre = 0;          ///< where half the region's turning is done
-    double turning = 0.0;            ///< signed, degrees (> 0: convex for the counter-clockwise boundary)
+    std::size_t first = 0, last = 0;         ///< indices into the smoothed boundary (cyclic, first to last)
+    std::size_t coreFirst = 0, coreLast = 0; ///< the core: from a quarter to three quarters of the turning
+    std::size_t centre = 0;                  ///< where half the region's turning is done
+    double turning = 0.0; ///< signed, degrees (> 0: convex for the counter-clockwise boundary)
 };
 
 /// The convex and concave regions of the particle's boundary (smoothed over about 5 pixels) turning by at

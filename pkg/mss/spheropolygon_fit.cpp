@@ -74,17 +74,17 @@ private:
     std::vector<std::uint8_t> state_;
 };
 
-/// Which convex or concave region of the boundary each vertex is in (that of its nearest point on the
-/// smoothed boundary), so that no move empties a region (SpOptions::regionVertices).
+/// Which convex or concave region of the boundary each vertex is in (that whose core holds its nearest point
+/// on the smoothed boundary), so that no move empties a region (SpOptions::regionVertices).
 class Membership {
 public:
     Membership(const Image2& image, double minTurning) {
         regions_ = boundaryRegions(image, minTurning, &boundary_);
         regionOf_.assign(boundary_.size(), -1);
         for (std::size_t k = 0; k < regions_.size(); ++k)
-            for (std::size_t q = regions_[k].first;; q = (q + 1) % boundary_.size()) {
+            for (std::size_t q = regions_[k].coreFirst;; q = (q + 1) % boundary_.size()) {
                 regionOf_[q] = int(k);
-                if (q == regions_[k].last) break;
+                if (q == regions_[k].coreLast) break;
             }
     }
     const std::vector<SpRegion>& regions() const { return regions_; }
@@ -292,9 +292,10 @@ bool relocate(const Image2& target, const SpOptions& o, SpResult& res, Membershi
     return true;
 }
 
-/// A vertex at the centre of every region Algorithm 1 left without one (one spheroradius inside, if inset),
-/// on the nearest edge, for the vertex whose removal costs least and leaves no region empty. Regions are
-/// taken by their turning, largest first, while such a vertex is left. @return the regions filled.
+/// A vertex at the centre of every region Algorithm 1 left without one (one spheroradius inside, if inset):
+/// inserted on the nearest edge in place of a vertex that holds no region alone, or such a vertex moved
+/// there, whichever of the three cheapest ways ends lowest after a short Algorithm 1. Regions are taken by
+/// their turning, largest first, while such a vertex is left. @return the regions filled.
 int fillRegions(const Image2& target, const SpOptions& o, SpResult& res, Membership& m) {
     const std::vector<SpRegion>& regions = m.regions();
     std::vector<std::size_t> order(regions.size());
@@ -324,26 +325,45 @@ int fillRegions(const Image2& target, const SpOptions& o, SpResult& res, Members
                 edge = e;
             }
         }
-        long long leastCost = std::numeric_limits<long long>::max();
-        std::size_t drop = n;
+        // the ways to free a vertex for the region: drop one that holds no region alone and insert the new
+        // one on the nearest edge, or move such a vertex there; the three that cost least at once are each
+        // tuned by a short Algorithm 1, and the best is kept
+        std::vector<std::pair<long long, Spheropolygon>> ways;
         for (std::size_t i = 0; i < n; ++i) {
             if (m.sole(i)) continue;
             Spheropolygon without = res.sp;
             eraseVertex(without, i);
             insertVertex(without, i < edge + 1 ? edge : edge + 1, p, o.radius);
-            const long long cost = errorPixels(target, without);
-            if (cost < leastCost) {
-                leastCost = cost;
-                drop = i;
+            ways.emplace_back(errorPixels(target, without), std::move(without));
+            Spheropolygon moved = res.sp;
+            moved.vertices[i] = p;
+            ways.emplace_back(errorPixels(target, moved), std::move(moved));
+        }
+        if (ways.empty()) break; // every vertex holds a region alone: N is too small for the regions
+        std::stable_sort(ways.begin(), ways.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        SpOptions shortRun = o;
+        shortRun.maxIterations = 8;
+        std::optional<SpResult> best;
+        std::optional<Membership> bestM;
+        for (std::size_t w = 0; w < std::min<std::size_t>(3, ways.size()); ++w) {
+            SpResult trial = res;
+            trial.sp = ways[w].second;
+            trial.history.push_back(ways[w].first);
+            Membership tm = m;
+            tm.assign(trial.sp.vertices);
+            if (tm.count(k) == 0) continue; // a moved vertex left another region empty: not this way
+            algorithmOne(target, shortRun, trial, false, 0.0, &tm);
+            if (!best || trial.history.back() < best->history.back()) {
+                best = std::move(trial);
+                bestM = std::move(tm);
             }
         }
-        if (drop == n) break; // every vertex holds a region alone: N is too small for the regions
-        insertVertex(res.sp, edge + 1, p, o.radius);
-        eraseVertex(res.sp, drop < edge + 1 ? drop : drop + 1);
-        m.assign(res.sp.vertices);
+        if (!best) continue;
+        res = std::move(*best);
+        m = std::move(*bestM);
         ++filled;
     }
-    if (filled) res.history.push_back(errorPixels(target, res.sp));
     return filled;
 }
 

@@ -124,14 +124,16 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
 
 def boundaryRegions(image, minTurning=90.0, pixelSize=1.0, origin=(0.0, 0.0), label=None):
     """The convex and concave regions of a particle's boundary (as regionVertices uses them): a list of dicts
-    with first, last, centre (indices into the smoothed boundary), turning (degrees; > 0 convex), and that
-    smoothed boundary as an (n, 2) array."""
+    with first, last, coreFirst, coreLast (the stretch where the middle half of the turning is done: a vertex
+    whose nearest boundary point lies there is in the region), centre (indices into the smoothed boundary),
+    turning (degrees; > 0 convex), and that smoothed boundary as an (n, 2) array."""
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     m = (a == label) if label is not None else (a != 0)
     data = np.ascontiguousarray(m.T.astype(np.uint8)).tobytes()
     regions, boundary = _mss.spheropolygonRegions(data, m.shape[0], m.shape[1], float(pixelSize),
                                                   [float(x) for x in origin], float(minTurning))
-    return ([dict(first=f, last=l, centre=c, turning=t) for f, l, c, t in regions],
+    return ([dict(first=f, last=l, coreFirst=cf, coreLast=cl, centre=c, turning=t)
+             for f, l, cf, cl, c, t in regions],
             np.array(boundary, float).reshape(-1, 2))
 
 

@@ -111,12 +111,13 @@ class Spheropolygons(unittest.TestCase):
 
 
 def regionOfVertices(regions, boundary, vertices):
-    """The region of each vertex (of its nearest point on the smoothed boundary), computed here in numpy."""
+    """The region of each vertex (whose core holds its nearest point on the smoothed boundary), in numpy."""
     out = []
     for v in np.asarray(vertices, float):
         q = int(np.argmin(((boundary - v) ** 2).sum(axis=1)))
-        k = [i for i, r in enumerate(regions) if (r['first'] <= q <= r['last'] if r['first'] <= r['last']
-                                                  else q >= r['first'] or q <= r['last'])]
+        k = [i for i, r in enumerate(regions) if (r['coreFirst'] <= q <= r['coreLast']
+                                                  if r['coreFirst'] <= r['coreLast']
+                                                  else q >= r['coreFirst'] or q <= r['coreLast'])]
         out.append(k[0] if k else -1)
     return out
 
