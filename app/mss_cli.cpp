@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -474,15 +475,59 @@ CLI::App* infoCommand(CLI::App& app, Args& a) {
     return i;
 }
 
+/// The processes running now (/proc/stat's procs_running, this one included); -1 if unknown.
+long processesRunning() {
+    std::ifstream f("/proc/stat");
+    std::string key;
+    while (f >> key) {
+        if (key == "procs_running") {
+            long running = -1;
+            f >> running;
+            return running;
+        }
+        f.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    return -1;
+}
+
+/// Whether every OpenMP thread this run will start finds a core nobody else is running on: the least of five
+/// looks at the processes running, 0.2 ms apart (a shell starting the rest of a pipeline runs for a moment),
+/// against the cores. The threads are --threads T if given, else one per core.
+bool coresFree(int argc, char** argv) {
+    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long threads = cores;
+    for (int k = 1; k < argc; ++k) {
+        const std::string w = argv[k];
+        if (w == "--threads" && k + 1 < argc) threads = std::atol(argv[k + 1]);
+        if (w.rfind("--threads=", 0) == 0) threads = std::atol(w.c_str() + 10);
+    }
+    long running = processesRunning();
+    for (int k = 0; k < 4 && running > 1; ++k) {
+        usleep(200);
+        const long now = processesRunning();
+        if (now >= 0) running = std::min(running, now);
+    }
+    return cores > 0 && threads > 0 && running >= 1 && (running - 1) + threads <= cores;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     // Spinning OpenMP threads collapse when the cores are shared: femur 70 spheres, 2 threads, 3 busy
-    // processes on 2 cores: median 1.42 s, against 0.68 s on 1 thread and 0.57 s with passive waiting
-    // (bench/load.sh). libgomp reads its environment when it loads, so unless the user chose, this program
-    // runs itself again with OMP_WAIT_POLICY=PASSIVE (idle, passive waiting costs nothing measurable).
+    // processes on 2 cores: 1.5-2.2 s, against 0.66 s on 1 thread and 0.46-0.63 s with passive waiting
+    // (bench/load.sh). But passive waiting wakes each thread through the kernel at every parallel region, and
+    // refinement runs thousands of short ones: idle, 2 passive threads took 0.30 s, as long as one thread,
+    // and threads that spin 10000 rounds before they sleep 0.23 s. libgomp reads its environment when it
+    // loads, so unless the user chose, this program runs itself again with a short spin
+    // (OMP_WAIT_POLICY=ACTIVE, GOMP_SPINCOUNT=10000) when every thread finds a free core now, else with
+    // OMP_WAIT_POLICY=PASSIVE.
     if (!std::getenv("OMP_WAIT_POLICY") && argc > 0) {
-        setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+        if (coresFree(argc, argv)) {
+            setenv("OMP_WAIT_POLICY", "ACTIVE", 1);
+            setenv("GOMP_SPINCOUNT", "10000", 0);
+        } else {
+            setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+        }
         execv("/proc/self/exe", argv); // returns only on failure: then go on as we are
     }
     CLI::App app{"mss: multi-sphere shape generator (MSS) for DEM clumps"};

@@ -136,10 +136,12 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
 }
 
 /// The OpenMP settings of one generation, restored afterwards (the host, YADE say, keeps its own): @p threads
-/// if given. Otherwise, unless the waiting policy is passive (the mss command and yade_mss set it), dynamic
-/// team sizes: the runtime then takes fewer threads on a busy machine. A waiting thread spins by default,
-/// and the optimiser's many short parallel regions made two processes of 2 threads on 2 cores each take 17x
-/// longer than alone (the fidelity tests under ctest -j2: 54.7 s; dynamic or passive: 3.2 s).
+/// if given. Otherwise, unless waiting threads sleep soon (a passive policy, or GOMP_SPINCOUNT of at most a
+/// million rounds: the mss command and yade_mss set one), dynamic team sizes: the runtime then takes fewer
+/// threads on a busy machine. A waiting thread spins by default, and the optimiser's many short parallel
+/// regions made two processes of 2 threads on 2 cores each take 17x longer than alone (the fidelity tests
+/// under ctest -j2: 54.7 s; dynamic or passive: 3.2 s). (Dynamic sizes follow the one-minute load average,
+/// so they stay small for a minute after the load is gone: not what a bounded spin needs.)
 class OmpScope {
 public:
     explicit OmpScope(int threads) {
@@ -149,7 +151,7 @@ public:
         if (threads > 0) {
             omp_set_num_threads(threads);
             omp_set_dynamic(0);
-        } else if (!passiveWaiting()) {
+        } else if (!waitersSleep()) {
             omp_set_dynamic(1);
         }
 #else
@@ -166,7 +168,12 @@ public:
     OmpScope& operator=(const OmpScope&) = delete;
 
 private:
-    static bool passiveWaiting() {
+    static bool waitersSleep() {
+        if (const char* c = std::getenv("GOMP_SPINCOUNT")) {
+            char* end = nullptr;
+            const double spins = std::strtod(c, &end);
+            if (end != c && *end == '\0' && spins >= 0 && spins <= 1e6) return true;
+        }
         const char* p = std::getenv("OMP_WAIT_POLICY");
         if (!p) return false;
         std::string s(p);

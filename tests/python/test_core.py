@@ -264,3 +264,38 @@ class Scoring(unittest.TestCase):
 
 if __name__ == '__main__':
     unittest.main()
+
+
+class SharingTheCores(unittest.TestCase):
+    def test_busy_cores_make_the_command_wait_passively(self):
+        # with more busy processes than cores, `mss` must run its OpenMP threads with passive waiting (no
+        # spin); it chooses as it starts and runs itself again with the policy in its environment
+        import subprocess
+        import time
+        mss = os.environ.get('MSS_BINARY', 'mss')
+        busy = [subprocess.Popen([sys.executable, '-c', 'while True: pass']) for _ in range((os.cpu_count() or 1) + 1)]
+        try:
+            time.sleep(0.3)
+            env = {k: v for k, v in os.environ.items() if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT')}
+            with tempfile.TemporaryDirectory() as d:
+                p = subprocess.Popen([mss, 'generate', FEMUR, '--spheres', '70', '--resolution', '150', '-o',
+                                      os.path.join(d, 's.csv')], env=env, stdout=subprocess.DEVNULL)
+                seen = None
+                deadline = time.time() + 10
+                while seen is None and time.time() < deadline and p.poll() is None:
+                    try:
+                        with open('/proc/%d/environ' % p.pid, 'rb') as f:
+                            vars = dict(x.split(b'=', 1) for x in f.read().split(b'\0') if b'=' in x)
+                    except OSError:
+                        break
+                    if b'OMP_WAIT_POLICY' in vars:
+                        seen = vars
+                    time.sleep(0.005)
+                self.assertEqual(p.wait(), 0)
+        finally:
+            for b in busy:
+                b.kill()
+                b.wait()
+        self.assertIsNotNone(seen, 'the command did not set its waiting policy before it ended')
+        self.assertEqual(seen[b'OMP_WAIT_POLICY'], b'PASSIVE')
+        self.assertNotIn(b'GOMP_SPINCOUNT', seen)
