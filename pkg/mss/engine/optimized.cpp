@@ -95,9 +95,9 @@ void fillAlone(Selection& s) {
 std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
                                const BoundVox& bound, Metrics& m, double& secondsRefine,
                                const std::vector<Orbit>& start, std::vector<Orbit>* orbitsOut,
-                               long long* mismatchOut) {
+                               long long* mismatchOut, SharedCandidates* shared) {
     const auto tStart = Clock::now();
-    Selection s(S, E, opt, bound);
+    Selection s(S, E, opt, bound, shared);
     m.symmetryPlanes = s.sym.planes();
     debug(tStart, "candidates");
     s.warmStart(start);

@@ -10,7 +10,12 @@
 namespace mss::engine {
 
 namespace {
-Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const GenerateOptions& opt, bool& exact) {
+Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const GenerateOptions& opt, bool& exact,
+                        SharedCandidates* shared) {
+    if (shared && shared->filled) {
+        exact = shared->exactSymmetry;
+        return Symmetry(S.spec, shared->axes);
+    }
     std::array<bool, 3> axes{false, false, false};
     if (opt.keepSymmetry) axes = mirrorAxes(S, solid, exact);
     // a constraint plane is mirrored onto itself only if it is parallel to the mirror's normal; any other
@@ -23,13 +28,25 @@ Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const GenerateOpt
 } // namespace
 
 Selection::Selection(const VoxelGrid& S_, const ScalarGrid& E_, const GenerateOptions& opt_,
-                     const BoundVox& bound_)
+                     const BoundVox& bound_, SharedCandidates* shared)
     : S(S_), E(E_), opt(opt_), bound(bound_), rMinVox(std::max(0.5, opt_.rMin / S_.spec.h)), cov(S_),
-      sym(detectSymmetry(S_, cov.solid(), opt_, exactSymmetry)), t{opt_.nSpheres > 0 ? opt_.nSpheres
-                                                                                     : INT32_MAX,
-                                                                   opt_.eta, opt_.dice} {
+      sym(detectSymmetry(S_, cov.solid(), opt_, exactSymmetry, shared)), t{opt_.nSpheres > 0 ? opt_.nSpheres
+                                                                                             : INT32_MAX,
+                                                                           opt_.eta, opt_.dice} {
     if (exactSymmetry) cov.setMirrorPlanes(sym.axes());
-    cands = candidateOrbits(E, sym, rMinVox, &ridge);
+    if (shared && shared->filled) {
+        cands = shared->cands;
+        ridge = shared->ridge;
+    } else {
+        cands = candidateOrbits(E, sym, rMinVox, &ridge);
+        if (shared) {
+            shared->cands = cands;
+            shared->ridge = ridge;
+            shared->axes = sym.axes();
+            shared->exactSymmetry = exactSymmetry;
+            shared->filled = true;
+        }
+    }
     used.assign(cands.size(), 0);
     // heap keys: first an upper bound (a ball fully inside), later the last evaluated gain per sphere, kept
     // between greedy rounds so that a later round starts from good estimates

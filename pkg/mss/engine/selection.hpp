@@ -9,13 +9,25 @@
 
 namespace mss::engine {
 
+/// Candidates and symmetry found once for several runs of the optimised method on one grain (clipping runs
+/// three).
+struct SharedCandidates {
+    bool filled = false;
+    std::vector<Orbit> cands;
+    std::size_t ridge = 0;
+    std::array<bool, 3> axes{false, false, false};
+    bool exactSymmetry = false;
+};
+
 /// What the optimised method works on, shared by its steps (candidates, greedy, refinement, pruning,
 /// symmetry repair): the target and its coverage by the orbits chosen so far, the mirror symmetry, the
 /// candidate orbits with their greedy keys, and the constraint on radii.
 struct Selection {
     /// Detects the mirror symmetry of @p S (kept only for planes parallel to every constraint plane's normal)
-    /// and takes the candidates of candidateOrbits().
-    Selection(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, const BoundVox& bound);
+    /// and takes the candidates of candidateOrbits(), or those in @p shared when it holds them (runs on the
+    /// same S, E and options have the same candidates: the first run fills it, later runs copy them).
+    Selection(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, const BoundVox& bound,
+              SharedCandidates* shared = nullptr);
 
     const VoxelGrid& S;
     const ScalarGrid& E;
