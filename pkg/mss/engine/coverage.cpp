@@ -9,7 +9,8 @@ using mss::detail::ceilInt;
 using mss::detail::floorInt;
 
 Coverage::Coverage(const VoxelGrid& target)
-    : S_(target), cover_(target.size(), 0), prefix_(target.size()), nx_(target.nx()) {
+    : S_(target), cover_(target.size(), 0), prefix_(target.size()),
+      base_(target.size() / std::size_t(target.nx()), 0), nx_(target.nx()) {
     solid_ = countSolid(target);
     mismatch_ = static_cast<long long>(solid_);
     const long long rows = static_cast<long long>(target.size() / std::size_t(nx_));
@@ -120,7 +121,7 @@ long long Coverage::gainMerged(const std::vector<Ball>& balls, bool mirrored) co
 }
 
 void Coverage::rebuildRow(std::size_t row, int from) {
-    std::int32_t acc = from > 0 ? prefix_[row + from - 1] : 0;
+    std::int32_t acc = from > 0 ? prefix_[row + from - 1] : base_[row / std::size_t(nx_)];
     for (int i = from; i < nx_; ++i) {
         if (cover_[row + i] == 0) acc += S_.data[row + i] ? 1 : -1;
         prefix_[row + i] = acc;
@@ -142,16 +143,24 @@ void Coverage::change(const Ball& b, int delta) {
         if (flips == 0) return; // no voxel changes between covered and uncovered: prefix unchanged
         int first = i0;
         while (c[first] != flipAt + delta) ++first;
-        // from the first flip: prefix recomputed to the end of the ball's interval, then shifted
+        // from the first flip the prefix is recomputed to the end of the ball's interval; what follows moves
+        // by the change of the interval's sum (each flipped voxel's g comes or goes), or, where the part
+        // before is shorter, that part and the base move the other way
         std::int32_t* p = prefix_.data() + row;
-        std::int32_t acc = first > 0 ? p[first - 1] : 0;
-        const std::int32_t old = p[i1];
+        std::int32_t& base = base_[row / std::size_t(nx_)];
+        const std::int32_t shift = -delta * (2 * inside - flips);
+        const bool left = first < nx_ - 1 - i1;
+        std::int32_t acc = (first > 0 ? p[first - 1] : base) - (left ? shift : 0);
         for (int i = first; i <= i1; ++i) {
             acc += c[i] == 0 ? (s[i] ? 1 : -1) : 0;
             p[i] = acc;
         }
-        const std::int32_t shift = acc - old;
-        for (int i = i1 + 1; i < nx_; ++i) p[i] += shift;
+        if (left) {
+            for (int i = 0; i < first; ++i) p[i] -= shift;
+            base -= shift;
+        } else {
+            for (int i = i1 + 1; i < nx_; ++i) p[i] += shift;
+        }
         // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
         mismatch_ -= delta * (2LL * inside - flips);
         covered_ += static_cast<std::size_t>(static_cast<long long>(delta) * flips);
