@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -69,12 +70,17 @@ class CachedBound {
 public:
     CachedBound(std::function<double(const Vec3&)> world, const GridSpec& g)
         : world_(std::move(world)), g_(g) {}
-    double operator()(const Vec3& v) {
+    /// Thread-safe: the optimiser warms the cache for the next points in parallel.
+    double operator()(const Vec3& v) const {
         const std::array<long long, 3> key{std::llround(v.x() * 65536.0), std::llround(v.y() * 65536.0),
                                            std::llround(v.z() * 65536.0)};
-        auto it = cache_->find(key);
-        if (it != cache_->end()) return it->second;
-        const double b = world_(g_.toWorld(v)) / g_.h;
+        {
+            const std::lock_guard<std::mutex> lock(*mutex_);
+            auto it = cache_->find(key);
+            if (it != cache_->end()) return it->second;
+        }
+        const double b = world_(g_.toWorld(v)) / g_.h; // exact and deterministic: a race computes it twice
+        const std::lock_guard<std::mutex> lock(*mutex_);
         cache_->emplace(key, b);
         return b;
     }
@@ -90,6 +96,7 @@ private:
     // shared by the copies std::function makes, so that every run of the optimiser uses one cache
     std::shared_ptr<std::unordered_map<std::array<long long, 3>, double, KeyHash>> cache_ =
         std::make_shared<std::unordered_map<std::array<long long, 3>, double, KeyHash>>();
+    std::shared_ptr<std::mutex> mutex_ = std::make_shared<std::mutex>();
 };
 
 /// The spheres of the method asked for, in voxel units. Under constraints (clipping with refill, planes) the

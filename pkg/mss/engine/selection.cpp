@@ -89,7 +89,24 @@ void Selection::warmStart(const std::vector<Orbit>& start) {
 
 void Selection::greedy() {
     using Entry = std::pair<double, long long>; // (key, -index): ties go to the lower index
-    std::priority_queue<Entry> heap;
+    struct Heap : std::priority_queue<Entry> {  // with a look at the entries near the top
+        const std::vector<Entry>& entries() const { return c; }
+    } heap;
+    // The constraint of the candidates near the top of the heap (its first levels), looked up in parallel
+    // ahead of the serial loop that needs them (the bound caches; which are looked up changes no result).
+    std::vector<std::size_t> ahead;
+    auto warmBounds = [&]() {
+        if (!bound) return;
+        ahead.clear();
+        const std::vector<Entry>& top = heap.entries();
+        for (std::size_t e = 0; e < std::min<std::size_t>(top.size(), 2 * 8); ++e) {
+            const std::size_t p = static_cast<std::size_t>(-top[e].second);
+            if (!cands[p].bounded) ahead.push_back(p);
+        }
+        if (ahead.size() < 2) return;
+#pragma omp parallel for schedule(static, 1)
+        for (int e = 0; e < int(ahead.size()); ++e) orbitBound(cands[ahead[std::size_t(e)]]);
+    };
     std::vector<std::size_t> stamp(cands.size(), SIZE_MAX);
     for (std::size_t q = 0; q < cands.size(); ++q)
         if (!used[q]) heap.push({key[q], -static_cast<long long>(q)});
@@ -117,6 +134,7 @@ void Selection::greedy() {
             continue;
         }
         batch.clear();
+        warmBounds();
         while (!heap.empty() && int(batch.size()) < kBatch) {
             const std::size_t p = static_cast<std::size_t>(-heap.top().second);
             if (stamp[p] == placed) break;
