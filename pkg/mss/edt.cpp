@@ -16,13 +16,23 @@ constexpr int kBlock = 16; // lines processed together so that strided passes re
 /// 1-D squared distance transform of sampled function f (length n) into d, FH 2012 algorithm 1:
 /// d(q) = min_p (q - p)^2 + f(p). Entries f = inf are not parabolas. v, z are scratch of n and n + 1.
 void envelope1d(const float* f, float* d, int n, int* v, float* z) {
-    // Fast path: a line of background only (common around a grain) is its own transform.
+    // Background (f = 0) before the first and after the last other entry is its own transform, and of its
+    // parabolas only the one next to that entry can be lowest beyond it: the envelope runs on the rest
+    // (a line of background only, common around a grain, costs a scan).
     int q0 = 0;
     while (q0 < n && f[q0] == 0.0f) ++q0;
     if (q0 == n) {
         std::fill(d, d + n, 0.0f);
         return;
     }
+    int q1 = n - 1;
+    while (f[q1] == 0.0f) --q1;
+    const int lo = std::max(0, q0 - 1), hi = std::min(n - 1, q1 + 1);
+    std::fill(d, d + lo, 0.0f);
+    std::fill(d + hi + 1, d + n, 0.0f);
+    f += lo;
+    d += lo;
+    n = hi - lo + 1;
     int k = -1;
     for (int q = 0; q < n; ++q) {
         if (f[q] == kInf) continue;
