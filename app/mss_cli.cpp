@@ -13,6 +13,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <sched.h>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -494,7 +495,9 @@ long processesRunning() {
 /// looks at the processes running, 0.2 ms apart (a shell starting the rest of a pipeline runs for a moment),
 /// against the cores. The threads are --threads T if given, else one per core.
 bool coresFree(int argc, char** argv) {
-    const long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long cores = sysconf(_SC_NPROCESSORS_ONLN); // the cores this process may run on, as OpenMP counts them
+    cpu_set_t mask;
+    if (sched_getaffinity(0, sizeof(mask), &mask) == 0) cores = CPU_COUNT(&mask);
     long threads = cores;
     for (int k = 1; k < argc; ++k) {
         const std::string w = argv[k];
