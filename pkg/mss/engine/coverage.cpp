@@ -129,7 +129,19 @@ void Coverage::rebuildRow(std::size_t row, int from) {
 }
 
 void Coverage::change(const Ball& b, int delta) {
-    forColumns(b, [&](std::size_t row, int i0, int i1) {
+    // rows are independent: a large ball's slices are changed in parallel (the counts summed exactly)
+    const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
+              k1 = std::min(S_.spec.dims[2] - 1, floorInt(b.c.z() + b.r));
+    long long dMismatch = 0, dCovered = 0;
+#pragma omp parallel for schedule(static) reduction(+ : dMismatch, dCovered) if (b.r > 12.0)
+    for (int k = k0; k <= k1; ++k) changeSlice(b, delta, k, dMismatch, dCovered);
+    mismatch_ += dMismatch;
+    covered_ = static_cast<std::size_t>(static_cast<long long>(covered_) + dCovered);
+}
+
+void Coverage::changeSlice(const Ball& b, int delta, int k, long long& dMismatch, long long& dCovered) {
+    mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k, [&](int j, int kk, int i0, int i1) {
+        const std::size_t row = S_.spec.index(0, j, kk);
         std::uint16_t* c = cover_.data() + row;
         const std::uint8_t* s = S_.data.data() + row;
         const std::uint16_t flipAt = delta > 0 ? 0 : 1; // coverage before a flip
@@ -162,8 +174,8 @@ void Coverage::change(const Ball& b, int delta) {
             for (int i = i1 + 1; i < nx_; ++i) p[i] += shift;
         }
         // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
-        mismatch_ -= delta * (2LL * inside - flips);
-        covered_ += static_cast<std::size_t>(static_cast<long long>(delta) * flips);
+        dMismatch -= delta * (2LL * inside - flips);
+        dCovered += static_cast<long long>(delta) * flips;
     });
 }
 

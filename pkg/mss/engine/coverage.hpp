@@ -64,6 +64,7 @@ private:
                                  [&](int j, int k, int i0, int i1) { f(S_.spec.index(0, j, k), i0, i1); });
     }
     void change(const Ball& b, int delta);
+    void changeSlice(const Ball& b, int delta, int k, long long& dMismatch, long long& dCovered);
     // gain() of two images that differ only in x (they share rows), and of any overlapping images
     long long gainRowPair(const std::vector<Ball>& balls, bool mirrored) const;
     long long gainMerged(const std::vector<Ball>& balls, bool mirrored) const;
