@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -143,6 +145,10 @@ TEST(MeshIo, BadFilesGetClearErrors) {
     std::remove(p.c_str());
     expectError([&] { readMesh(tempPath("missing.stl")); }, "cannot open");
     expectError([&] { readMesh(tempPath("x.xyz")); }, "unknown mesh extension");
+    const std::string dir = tempPath("folder.stl"); // a directory with a mesh's name
+    std::filesystem::create_directories(dir);
+    expectError([&] { readMesh(dir); }, "is a directory");
+    std::filesystem::remove(dir);
 }
 
 TEST(SpheresIo, RoundTripAtFullPrecision) {
