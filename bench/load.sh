@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Generation when the cores are shared: femur 70 spheres with 3 busy processes on the machine: 1 thread, 2
-# threads with spinning OpenMP waits (--threads 2, OMP_WAIT_POLICY=active), the command's default (passive
-# waiting when the cores are busy as it starts, as here; a short spin when each thread finds a free core),
+# threads with spinning OpenMP waits (--threads 2, OMP_WAIT_POLICY=active), the command's default (when the
+# cores are busy as it starts, as here, passive waiting on as many threads as cores are free, at least one; a
+# short spin when each thread finds a free core),
 # and the library's default where the waiting policy is active (dynamic team sizes: what a C++ program or
 # YADE that started OpenMP first gets).
 # Prints each run's five times, sorted. usage: bash bench/load.sh   (after bash scripts/setup.sh)

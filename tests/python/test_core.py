@@ -276,7 +276,8 @@ class SharingTheCores(unittest.TestCase):
         busy = [subprocess.Popen([sys.executable, '-c', 'while True: pass']) for _ in range((os.cpu_count() or 1) + 1)]
         try:
             time.sleep(0.3)
-            env = {k: v for k, v in os.environ.items() if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT')}
+            env = {k: v for k, v in os.environ.items()
+                   if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'OMP_NUM_THREADS')}
             with tempfile.TemporaryDirectory() as d:
                 p = subprocess.Popen([mss, 'generate', FEMUR, '--spheres', '70', '--resolution', '150', '-o',
                                       os.path.join(d, 's.csv')], env=env, stdout=subprocess.DEVNULL)
@@ -299,3 +300,4 @@ class SharingTheCores(unittest.TestCase):
         self.assertIsNotNone(seen, 'the command did not set its waiting policy before it ended')
         self.assertEqual(seen[b'OMP_WAIT_POLICY'], b'PASSIVE')
         self.assertNotIn(b'GOMP_SPINCOUNT', seen)
+        self.assertEqual(seen.get(b'OMP_NUM_THREADS'), b'1')  # no core is free: one thread
