@@ -496,7 +496,8 @@ long processesRunning() {
 /// the least of five looks at the processes running, 0.2 ms apart (a shell starting the rest of a pipeline
 /// runs for a moment).
 struct CoreUse {
-    long cores = 1, threadsAsked = 0, free = -1; ///< free: -1 when /proc/stat cannot tell
+    long cores = 1, threadsAsked = 0, free = 0;
+    bool known = false; ///< whether /proc/stat told the processes running
 };
 CoreUse coreUse(int argc, char** argv) {
     CoreUse u;
@@ -514,7 +515,8 @@ CoreUse coreUse(int argc, char** argv) {
         const long now = processesRunning();
         if (now >= 0) running = std::min(running, now);
     }
-    u.free = running >= 1 ? u.cores - (running - 1) : -1; // -1: not known
+    u.known = running >= 1;
+    u.free = u.known ? u.cores - (running - 1) : 0; // fewer than none when more run than there are cores
     return u;
 }
 
@@ -540,7 +542,7 @@ int main(int argc, char** argv) {
             setenv("GOMP_SPINCOUNT", "10000", 0);
         } else {
             setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
-            if (u.free >= 0 && u.threadsAsked <= 0 && !std::getenv("OMP_NUM_THREADS"))
+            if (u.known && u.threadsAsked <= 0 && !std::getenv("OMP_NUM_THREADS"))
                 setenv("OMP_NUM_THREADS", std::to_string(std::max(1L, u.free)).c_str(), 1);
         }
         execv("/proc/self/exe", argv); // returns only on failure: then go on as we are
