@@ -112,11 +112,6 @@ void typedFlags(const char* raw, std::size_t n, long long label, std::vector<std
         }
     }
 }
-template <class T>
-void typedFlags(const char* raw, std::size_t n, long long label, std::vector<std::uint8_t>& on,
-                std::set<long long>& labels) {
-    typedFlags<T>(raw, n, label, on, &labels);
-}
 
 } // namespace
 
@@ -158,24 +153,24 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     switch (width) {
     case 1:
         if (kind == 'i')
-            typedFlags<std::int8_t>(raw.data(), count, label, on, labels);
+            typedFlags<std::int8_t>(raw.data(), count, label, on, &labels);
         else
             typedFlags<std::uint8_t>(raw.data(), count, label, on, kind == 'b' ? nullptr : &labels);
         break;
     case 2:
         if (kind == 'u')
-            typedFlags<std::uint16_t>(raw.data(), count, label, on, labels);
+            typedFlags<std::uint16_t>(raw.data(), count, label, on, &labels);
         else
-            typedFlags<std::int16_t>(raw.data(), count, label, on, labels);
+            typedFlags<std::int16_t>(raw.data(), count, label, on, &labels);
         break;
     case 4:
         if (kind == 'u')
-            typedFlags<std::uint32_t>(raw.data(), count, label, on, labels);
+            typedFlags<std::uint32_t>(raw.data(), count, label, on, &labels);
         else
-            typedFlags<std::int32_t>(raw.data(), count, label, on, labels);
+            typedFlags<std::int32_t>(raw.data(), count, label, on, &labels);
         break;
     default:
-        typedFlags<std::int64_t>(raw.data(), count, label, on, labels);
+        typedFlags<std::int64_t>(raw.data(), count, label, on, &labels);
     }
     std::size_t solid = 0;
     for (std::uint8_t v : on) solid += v;

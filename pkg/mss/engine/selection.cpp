@@ -89,7 +89,10 @@ void Selection::warmStart(const std::vector<Orbit>& start) {
 
 void Selection::greedy() {
     using Entry = std::pair<double, long long>; // (key, -index): ties go to the lower index
-    struct Heap : std::priority_queue<Entry> {  // with a look at the entries near the top
+    // Stale entries are re-evaluated in batches of kBatch, in parallel; the batch size does not depend on
+    // the thread count, so neither does the result.
+    constexpr std::size_t kBatch = 8;
+    struct Heap : std::priority_queue<Entry> { // with a look at the entries near the top
         const std::vector<Entry>& entries() const { return c; }
     } heap;
     // The constraint of the candidates near the top of the heap (its first levels), looked up in parallel
@@ -99,7 +102,7 @@ void Selection::greedy() {
         if (!bound) return;
         ahead.clear();
         const std::vector<Entry>& top = heap.entries();
-        for (std::size_t e = 0; e < std::min<std::size_t>(top.size(), 2 * 8); ++e) {
+        for (std::size_t e = 0; e < std::min<std::size_t>(top.size(), 2 * kBatch); ++e) {
             const std::size_t p = static_cast<std::size_t>(-top[e].second);
             if (!cands[p].bounded) ahead.push_back(p);
         }
@@ -110,9 +113,6 @@ void Selection::greedy() {
     std::vector<std::size_t> stamp(cands.size(), SIZE_MAX);
     for (std::size_t q = 0; q < cands.size(); ++q)
         if (!used[q]) heap.push({key[q], -static_cast<long long>(q)});
-    // Stale entries are re-evaluated in batches of kBatch, in parallel; the batch size does not depend on
-    // the thread count, so neither does the result.
-    constexpr int kBatch = 8;
     std::vector<long long> batch;
     std::vector<double> gains;
     while (!heap.empty() && placed < std::size_t(t.budget) && !met()) {
@@ -135,7 +135,7 @@ void Selection::greedy() {
         }
         batch.clear();
         warmBounds();
-        while (!heap.empty() && int(batch.size()) < kBatch) {
+        while (!heap.empty() && batch.size() < kBatch) {
             const std::size_t p = static_cast<std::size_t>(-heap.top().second);
             if (stamp[p] == placed) break;
             if (!cands[p].bounded) { // the constraints, looked up only for candidates the greedy reaches
