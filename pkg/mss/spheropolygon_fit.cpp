@@ -162,25 +162,31 @@ void algorithmOne(const Image2& target, const SpOptions& o, SpResult& res, bool 
         area += v[b].x() * v[a].y() - v[a].x() * v[b].y();
     const double outward =
         area >= 0 ? 1.0 : -1.0; // the right normal points out of a counter-clockwise polygon
+    // The inward move of vertex i per unit of radius: along the outward bisector, by 1 / sin(alpha / 2)
+    // (|n_e + n_f| = 2 sin(alpha / 2), alpha the interior angle), which keeps the two bands' outer lines
+    // where they were; none at a spike (alpha under ~24 degrees), where the move would run far.
+    auto inward = [&](std::size_t i) -> Vec2 {
+        const std::size_t n = v.size();
+        const Vec2 e = (v[i] - v[(i + n - 1) % n]).normalized(), f = (v[(i + 1) % n] - v[i]).normalized();
+        const Vec2 sum = outward * Vec2(e.y() + f.y(), -e.x() - f.x());
+        const double len = sum.norm();
+        return len > 0.4 ? Vec2(sum * (2 / (len * len))) : Vec2(Vec2::Zero());
+    };
     for (int it = 0; it < o.maxIterations; ++it, ++res.iterations) {
         if (V <= o.tolerance * double(res.particlePixels)) break;
         bool moved = false;
         for (std::size_t i = 0; i < v.size(); ++i) {
-            const LocalRegion region(target, res.sp, i, rs + target.pixel,
+            // the region holds every pixel the moves can change: x and y by up to r_s each, then the inward
+            // move by up to r_s times its factor (at most that of the vertex as it stands now)
+            const double factor = radiusAxis ? inward(i).norm() : 0.0;
+            const LocalRegion region(target, res.sp, i, rs * (1 + factor) + target.pixel,
                                      radiusAxis ? rs + target.pixel : 0);
             for (int axis = 0; axis < axes; ++axis) {
                 const long long here = region.errors(v[i], radius[i]);
-                Vec2 normal = Vec2::Zero(); // the vertex's outward bisector
+                Vec2 normal = Vec2::Zero();
                 if (axis == 3) {
-                    const std::size_t n = v.size();
-                    const Vec2 e = (v[i] - v[(i + n - 1) % n]).normalized(),
-                               f = (v[(i + 1) % n] - v[i]).normalized();
-                    // |n_e + n_f| = 2 sin(alpha / 2), alpha the interior angle: moving the vertex in by
-                    // dr / sin(alpha / 2) keeps the two bands' outer lines where they were
-                    normal = outward * Vec2(e.y() + f.y(), -e.x() - f.x());
-                    const double len = normal.norm();
-                    if (!(len > 0.4)) continue; // a spike: the move would run far
-                    normal *= 2 / (len * len);
+                    normal = inward(i);
+                    if (normal.isZero() || normal.norm() > factor) continue;
                 }
                 auto trial = [&](double step, Vec2& q, double& r) {
                     q = v[i];
