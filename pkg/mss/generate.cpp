@@ -156,11 +156,11 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
 
 /// The OpenMP settings of one generation, restored afterwards (the host, YADE say, keeps its own): @p threads
 /// if given. Otherwise, unless waiting threads sleep soon (a passive policy, or GOMP_SPINCOUNT of at most a
-/// million rounds: the mss command and yade_mss set one), dynamic team sizes: the runtime then takes fewer
-/// threads on a busy machine. A waiting thread spins by default, and the optimiser's many short parallel
-/// regions made two processes of 2 threads on 2 cores each take 17x longer than alone (the fidelity tests
-/// under ctest -j2: 54.7 s; dynamic or passive: 3.2 s). (Dynamic sizes follow the one-minute load average,
-/// so they stay small for a minute after the load is gone: not what a bounded spin needs.)
+/// million rounds: the mss command sets one, yade_mss the passive policy), dynamic team sizes: the runtime
+/// then takes fewer threads on a busy machine. A waiting thread spins by default, and the optimiser's many
+/// short parallel regions made two processes of 2 threads on 2 cores each take 17x longer than alone (the
+/// fidelity tests under ctest -j2: 54.7 s; dynamic or passive: 3.2 s). (Dynamic sizes follow the one-minute
+/// load average, so they stay small for a minute after the load is gone: not what a bounded spin needs.)
 class OmpScope {
 public:
     explicit OmpScope(int threads) {
@@ -272,7 +272,7 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     // Clipping (and any bound under a voxel) on larger grains: the warm start alone. Clipped at resolution
     // 103, its mismatch on the generation grid was the lower of the two on 8 of 10 grains and at most 1.0%
     // above the cold start's on the others (cube 30 0.3%, octahedron 40 1.0%; torus 40: 7% below), and it
-    // saves a third of the time (femur 70: 0.41 -> 0.30 s, torus 40: 2.9 -> 2.0 s).
+    // saves a third of the time (femur 70: 0.41 -> 0.29 s, torus 40: 2.9 -> 2.0-2.2 s).
     const bool small = countSolid(S) < kSmallGrain;
     const Starts starts = !opt.planes.empty() || small ? Starts::Both : (H < h ? Starts::Warm : Starts::Cold);
     const std::vector<Ball> balls = chooseBalls(S, E, opt, boundVox, starts, m);

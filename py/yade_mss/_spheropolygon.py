@@ -63,7 +63,7 @@ def _fit(mask, vertices, radius, pixelSize, origin, init='auto', **options):
 
 def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0.0), label=None, init='auto',
                   inset=True, radii=None, vertexRadii=False, minRadius=None, regionVertices=False,
-                  regionTurning=90.0, **options):
+                  regionTurning=None, **options):
     """The spheropolygon of N vertices that best matches a particle image (Algorithm 1).
 
     :param image: 2-D array (non-zero: the particle) or a .npy/.png file
@@ -79,7 +79,7 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
         stiffness and time step, set by the smallest radius, are never worse than with one radius)
     :param bool regionVertices: at least one vertex in every convex or concave region of the boundary that
         turns by at least *regionTurning* degrees (the paper's section 4), put at the region's centre where
-        the fit left none and kept there
+        the fit left none and kept there (default 90 degrees)
     :param options: samplingRadius (r_s, world units), samples (n_s), weight (g), cutoff, tolerance,
         maxIterations, relocations (default 10; 0: the paper's Algorithm 1 alone)
     :return: dict with spheroradius (with vertexRadii the smallest), vertices [[x, y], ...], radii (with
@@ -98,6 +98,8 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
                          'spheropolygons() for all')
     if not (float(pixelSize) > 0):
         raise ValueError('spheropolygon: pixelSize must be > 0, got %r' % (pixelSize,))
+    if regionTurning is not None and not regionVertices:
+        raise ValueError('spheropolygon: regionTurning sets what counts as a region: it needs regionVertices=True')
     if minRadius is not None and not vertexRadii:
         raise ValueError('spheropolygon: minRadius bounds the radii per vertex: it needs vertexRadii=True')
     if minRadius is not None and not (float(minRadius) >= 0 and math.isfinite(float(minRadius))):
@@ -105,7 +107,7 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
     t0 = time.perf_counter()
     relocations = options.pop('relocations', 10)
     final = dict(options, vertexRadii=bool(vertexRadii), regionVertices=bool(regionVertices),
-                 regionTurning=float(regionTurning))
+                 regionTurning=90.0 if regionTurning is None else float(regionTurning))
     if minRadius is not None:
         final['minRadius'] = float(minRadius)
     if radius is None:  # the spheroradius of least error, found without relocations, then refined with them
@@ -300,7 +302,7 @@ def main(argv=None):
                    help='with --vertex-radii: the least radius (world units; default the spheroradius)')
     p.add_argument('--region-vertices', action='store_true',
                    help='at least one vertex in every convex or concave region of the boundary')
-    p.add_argument('--region-turning', type=float, default=90.0,
+    p.add_argument('--region-turning', type=float, default=None,
                    help='degrees a stretch of the boundary must turn to be a region (default 90)')
     a = p.parse_args(argv)
     try:

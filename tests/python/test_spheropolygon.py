@@ -162,6 +162,9 @@ class BeyondThePaper(unittest.TestCase):
         self.assertLess(r['error'], 0.03)
         with self.assertRaises(ValueError):
             spheropolygon(c, vertices=30, radius=2.0, regionVertices=True, regionTurning=0.0)
+        with self.assertRaises(ValueError) as ctx:  # a threshold for an option that is off: said, not ignored
+            spheropolygon(c, vertices=30, radius=2.0, regionTurning=45.0)
+        self.assertIn('regionVertices', str(ctx.exception))
 
     def test_command_line_options_beyond_the_paper(self):
         mss = os.environ.get('MSS_BINARY', 'mss')
