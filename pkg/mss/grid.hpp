@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "mss/big_vector.hpp"
+
 namespace mss {
 
 using Vec3 = Eigen::Vector3d;
@@ -61,7 +63,7 @@ struct GridSpec {
 /// A grid that owns its values (x fastest, see GridSpec).
 template <class T> struct Grid {
     GridSpec spec;
-    std::vector<T> data;
+    BigVector<T> data; ///< large blocks on huge pages (BigAllocator)
 
     Grid() = default;
     explicit Grid(const GridSpec& s, T fill = T()) : spec(s), data(s.size(), fill) {}

@@ -70,8 +70,8 @@ private:
     long long gainMerged(const std::vector<Ball>& balls, bool mirrored) const;
 
     const VoxelGrid& S_;
-    std::vector<std::uint16_t> cover_;
-    std::vector<std::int32_t> prefix_;
+    BigVector<std::uint16_t> cover_;
+    BigVector<std::int32_t> prefix_;
     std::vector<std::int32_t> base_; ///< per row: the prefix before its first voxel
     std::array<bool, 3> mirror_{false, false, false};
     int nx_;

@@ -1,0 +1,85 @@
+// Large working arrays (grids, the coverage counts) on transparent huge pages.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <new>
+#include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
+
+namespace mss {
+
+/// Allocator for the large arrays of a generation: a block of 2 MiB or more is mapped on its own, aligned to
+/// 2 MiB and marked for transparent huge pages (Linux madvise; the kernel's default mode here is "madvise",
+/// so std::allocator's blocks get 4 KiB pages). Why: each 4 KiB page of a fresh array costs a page fault on
+/// first touch, and under a virtual machine's kernel that was a fifth of a whole run (ellipsoid 10 spheres,
+/// 210 x 107 x 107 voxels, ~29 MB of arrays filled once: 0.255 s, of it the EDT 0.043 s; with huge pages
+/// 0.20 s and 0.021 s). Smaller blocks, and other systems, use std::allocator. The memory used is the same
+/// (the mapping ends at the block's last 4 KiB page; the kernel gives a huge page only to a whole 2 MiB
+/// range).
+template <class T> struct BigAllocator {
+    using value_type = T;
+
+    BigAllocator() noexcept = default;
+    template <class U> BigAllocator(const BigAllocator<U>&) noexcept {}
+
+    T* allocate(std::size_t n) {
+        if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
+#if defined(__linux__)
+        const std::size_t bytes = n * sizeof(T);
+        if (bytes >= kHuge) {
+            const std::size_t len = mappedLength(bytes);
+            void* raw =
+                mmap(nullptr, len + kHuge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+            if (raw == MAP_FAILED) throw std::bad_alloc();
+            const auto start = reinterpret_cast<std::uintptr_t>(raw);
+            const std::uintptr_t aligned = (start + kHuge - 1) & ~std::uintptr_t(kHuge - 1);
+            if (aligned > start) munmap(raw, aligned - start);
+            const std::uintptr_t tail = start + len + kHuge - (aligned + len);
+            if (tail > 0) munmap(reinterpret_cast<void*>(aligned + len), tail);
+#ifdef MADV_HUGEPAGE
+            madvise(reinterpret_cast<void*>(aligned), len, MADV_HUGEPAGE); // a hint: failure changes nothing
+#endif
+            return reinterpret_cast<T*>(aligned);
+        }
+#endif
+        return std::allocator<T>().allocate(n);
+    }
+
+    void deallocate(T* p, std::size_t n) noexcept {
+#if defined(__linux__)
+        if (n * sizeof(T) >= kHuge) {
+            munmap(p, mappedLength(n * sizeof(T)));
+            return;
+        }
+#endif
+        std::allocator<T>().deallocate(p, n);
+    }
+
+    template <class U> bool operator==(const BigAllocator<U>&) const noexcept {
+        return true;
+    }
+    template <class U> bool operator!=(const BigAllocator<U>&) const noexcept {
+        return false;
+    }
+
+private:
+    static constexpr std::size_t kHuge = std::size_t(2) << 20;
+#if defined(__linux__)
+    static std::size_t mappedLength(std::size_t bytes) {
+        static const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
+        return (bytes + page - 1) / page * page;
+    }
+#endif
+};
+
+/// A std::vector whose large blocks lie on huge pages (see BigAllocator).
+template <class T> using BigVector = std::vector<T, BigAllocator<T>>;
+
+} // namespace mss

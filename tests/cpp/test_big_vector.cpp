@@ -1,0 +1,59 @@
+#include "mss/big_vector.hpp"
+#include "mss/grid.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+using namespace mss;
+
+namespace {
+/// The VmFlags line of the mapping of /proc/self/smaps that holds @p p ("" when none is found).
+std::string vmFlagsOf(const void* p) {
+    std::ifstream smaps("/proc/self/smaps");
+    const auto a = reinterpret_cast<std::uintptr_t>(p);
+    std::string line;
+    bool inside = false;
+    while (std::getline(smaps, line)) {
+        std::uintptr_t lo = 0, hi = 0;
+        char dash = 0;
+        std::istringstream head(line);
+        if (head >> std::hex >> lo >> dash >> hi && dash == '-') {
+            inside = a >= lo && a < hi;
+            continue;
+        }
+        if (inside && line.rfind("VmFlags:", 0) == 0) return line;
+    }
+    return "";
+}
+} // namespace
+
+TEST(BigVector, SmallAndLargeBlocksHoldTheirValues) {
+    for (std::size_t n : {std::size_t(10), std::size_t(3) << 20}) { // 40 B and 12 MiB of floats
+        BigVector<float> v(n);
+        for (std::size_t q = 0; q < n; ++q) ASSERT_EQ(v[q], 0.0f) << q; // value-initialised
+        for (std::size_t q = 0; q < n; ++q) v[q] = float(q % 1000);
+        BigVector<float> copy = v;
+        v.resize(2 * n, 7.0f); // grows into a new block, the old one given back
+        for (std::size_t q = 0; q < n; q += 997) EXPECT_EQ(v[q], float(q % 1000));
+        EXPECT_EQ(v[2 * n - 1], 7.0f);
+        EXPECT_EQ(copy[n - 1], float((n - 1) % 1000));
+    }
+}
+
+#if defined(__linux__)
+TEST(BigVector, LargeBlocksAreAlignedAndMarkedForHugePages) {
+    BigVector<std::uint8_t> big(std::size_t(5) << 20); // 5 MiB: two whole huge pages and a tail
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(big.data()) % (std::size_t(2) << 20), 0u);
+    const std::string flags = vmFlagsOf(big.data());
+    ASSERT_FALSE(flags.empty()) << "no mapping in /proc/self/smaps holds the block";
+    EXPECT_NE(flags.find(" hg"), std::string::npos) << flags; // madvise(MADV_HUGEPAGE) took
+    // a grid's values use it
+    const VoxelGrid g(GridSpec{{256, 128, 128}, 1.0, Vec3::Zero()}, 1);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(g.data.data()) % (std::size_t(2) << 20), 0u);
+    EXPECT_EQ(countSolid(g), g.size());
+}
+#endif
