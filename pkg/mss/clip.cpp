@@ -222,50 +222,71 @@ struct MeshQuery::Impl {
         return gap > 0.0 ? gap * gap : 0.0;
     }
     std::vector<Box> boxes;
-    int buildBoxes(int first, int count) {
-        Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300), clo = lo, chi = hi;
-        for (int q = first; q < first + count; ++q)
-            for (const Vec3& v : tris[std::size_t(q)]) {
-                lo = lo.cwiseMin(v);
-                hi = hi.cwiseMax(v);
-            }
-        for (int q = first; q < first + count; ++q) {
-            const Vec3 c = centroid(tris[std::size_t(q)]);
-            clo = clo.cwiseMin(c);
-            chi = chi.cwiseMax(c);
-        }
+    /// Builds the hierarchy over the triangles (median split of the centroids along their widest extent,
+    /// leaves of at most 4) and puts the triangles in its order: O(T log T), on an index permutation.
+    void buildBoxes() {
+        const int n = int(tris.size());
+        std::vector<Vec3> centroids(tris.size());
+        for (std::size_t q = 0; q < tris.size(); ++q) centroids[q] = centroid(tris[q]);
+        std::vector<int> order(tris.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::vector<Vec3> area; // per node: the sum of its triangles' vector areas (twice)
+        boxes.reserve(tris.size());
+        area.reserve(tris.size());
+        buildNode(order, centroids, area, 0, n);
+        std::vector<std::array<Vec3, 3>> sorted(tris.size());
+        for (std::size_t q = 0; q < tris.size(); ++q) sorted[q] = tris[std::size_t(order[q])];
+        tris.swap(sorted);
+    }
+    int buildNode(std::vector<int>& order, const std::vector<Vec3>& centroids, std::vector<Vec3>& area,
+                  int first, int count) {
+        // slabs only on nodes of up to 64 triangles: above, a curved patch's slab is no thinner than its box
+        constexpr int kSlabMax = 64;
         const int id = int(boxes.size());
-        boxes.push_back({lo, hi, first, count, -1});
-        {
-            Vec3 n = Vec3::Zero();
+        boxes.push_back({Vec3::Constant(1e300), Vec3::Constant(-1e300), first, count, -1});
+        area.push_back(Vec3::Zero());
+        if (count <= 4) {
             for (int q = first; q < first + count; ++q) {
-                const auto& t = tris[std::size_t(q)];
-                n += (t[1] - t[0]).cross(t[2] - t[0]); // area-weighted
+                const auto& t = tris[std::size_t(order[std::size_t(q)])];
+                for (const Vec3& v : t) {
+                    boxes[std::size_t(id)].lo = boxes[std::size_t(id)].lo.cwiseMin(v);
+                    boxes[std::size_t(id)].hi = boxes[std::size_t(id)].hi.cwiseMax(v);
+                }
+                area[std::size_t(id)] += (t[1] - t[0]).cross(t[2] - t[0]);
             }
+        } else {
+            Vec3 clo = Vec3::Constant(1e300), chi = Vec3::Constant(-1e300);
+            for (int q = first; q < first + count; ++q) {
+                clo = clo.cwiseMin(centroids[std::size_t(order[std::size_t(q)])]);
+                chi = chi.cwiseMax(centroids[std::size_t(order[std::size_t(q)])]);
+            }
+            int axis = 0;
+            (chi - clo).maxCoeff(&axis);
+            const int mid = first + count / 2;
+            std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + first + count,
+                             [&](int x, int y) {
+                                 return centroids[std::size_t(x)][axis] < centroids[std::size_t(y)][axis];
+                             });
+            const int left = buildNode(order, centroids, area, first, mid - first);
+            const int right = buildNode(order, centroids, area, mid, first + count - mid);
             Box& b = boxes[std::size_t(id)];
-            if (n.norm() > 0.0) {
-                b.normal = n.normalized();
-                b.slabLo = 1e300;
-                b.slabHi = -1e300;
-                for (int q = first; q < first + count; ++q)
-                    for (const Vec3& v : tris[std::size_t(q)]) {
-                        b.slabLo = std::min(b.slabLo, b.normal.dot(v));
-                        b.slabHi = std::max(b.slabHi, b.normal.dot(v));
-                    }
-            }
+            b.count = 0;
+            b.right = right;
+            b.lo = boxes[std::size_t(left)].lo.cwiseMin(boxes[std::size_t(right)].lo);
+            b.hi = boxes[std::size_t(left)].hi.cwiseMax(boxes[std::size_t(right)].hi);
+            area[std::size_t(id)] = area[std::size_t(left)] + area[std::size_t(right)];
         }
-        if (count <= 4) return id;
-        int axis = 0;
-        (chi - clo).maxCoeff(&axis);
-        const int mid = first + count / 2;
-        std::nth_element(tris.begin() + first, tris.begin() + mid, tris.begin() + first + count,
-                         [axis](const std::array<Vec3, 3>& x, const std::array<Vec3, 3>& y) {
-                             return centroid(x)[axis] < centroid(y)[axis];
-                         });
-        boxes[std::size_t(id)].count = 0;
-        buildBoxes(first, mid - first);
-        const int right = buildBoxes(mid, first + count - mid);
-        boxes[std::size_t(id)].right = right;
+        Box& b = boxes[std::size_t(id)];
+        if (count <= kSlabMax && area[std::size_t(id)].norm() > 0.0) {
+            b.normal = area[std::size_t(id)].normalized();
+            b.slabLo = 1e300;
+            b.slabHi = -1e300;
+            for (int q = first; q < first + count; ++q)
+                for (const Vec3& v : tris[std::size_t(order[std::size_t(q)])]) {
+                    b.slabLo = std::min(b.slabLo, b.normal.dot(v));
+                    b.slabHi = std::max(b.slabHi, b.normal.dot(v));
+                }
+        }
         return id;
     }
     static Vec3 centroid(const std::array<Vec3, 3>& t) { return (t[0] + t[1] + t[2]) / 3.0; }
@@ -381,6 +402,7 @@ struct MeshQuery::Impl {
 
 MeshQuery::MeshQuery(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>()) {
     validateMesh(mesh, "MeshQuery");
+    impl_->tris.reserve(mesh.triangles.size());
     for (const auto& t : mesh.triangles) {
         const std::array<Vec3, 3> c{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]};
         if ((c[1] - c[0]).cross(c[2] - c[0]).squaredNorm() == 0.0) continue; // no area: no distance, no angle
@@ -388,8 +410,7 @@ MeshQuery::MeshQuery(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>())
     }
     if (impl_->tris.empty())
         throw std::invalid_argument("MeshQuery: every triangle of the mesh is degenerate");
-    impl_->boxes.reserve(impl_->tris.size() / 2 + 1);
-    impl_->buildBoxes(0, int(impl_->tris.size()));
+    impl_->buildBoxes();
 }
 
 MeshQuery::~MeshQuery() = default;

@@ -7,6 +7,14 @@
 #include <immintrin.h>
 #define MSS_GAIN_AVX2 1
 #endif
+// changeSlice's two loops over a ball's run vectorise; an AVX2 clone chosen at load time takes 6% off
+// the ellipsoid's run on one thread (its balls of radius ~50 are taken out and put back at every tune: a
+// fifth of the run). GCC only (the fuzzing build is clang's).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define MSS_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MSS_AVX2_CLONES
+#endif
 
 namespace mss::engine {
 
@@ -207,7 +215,8 @@ void Coverage::change(const Ball& b, int delta) {
     covered_ = static_cast<std::size_t>(static_cast<long long>(covered_) + dCovered);
 }
 
-void Coverage::changeSlice(const Ball& b, int delta, int k, long long& dMismatch, long long& dCovered) {
+MSS_AVX2_CLONES void Coverage::changeSlice(const Ball& b, int delta, int k, long long& dMismatch,
+                                           long long& dCovered) {
     mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k, [&](int j, int kk, int i0, int i1) {
         const std::size_t row = S_.spec.index(0, j, kk);
         std::uint16_t* c = cover_.data() + row;
