@@ -84,3 +84,54 @@ TEST(Coverage, VectorGainEqualsTheRowLoop) {
     for (const Ball& probe : {Ball{Vec3(15.25, 8.5, 6.75), 5.5}, Ball{Vec3(0.5, 3, 12), 7.0}})
         EXPECT_EQ(empty.gain(probe), bruteMismatch(S, {}) - bruteMismatch(S, {probe}));
 }
+
+TEST(Coverage, LongRowsKeepExactSumsModulo16Bits) {
+    // The prefix is kept modulo 2^16: sums over rows up to 32767 voxels long must stay exact however far
+    // the prefix and its base drift as balls come and go (a ball of radius 20000 spans whole rows)
+    GridSpec g;
+    g.dims = {32767, 5, 5};
+    VoxelGrid S(g, 0);
+    for (int i = 0; i < 32767; ++i) {
+        S(i, 2, 2) = 1;                                     // a solid row end to end
+        S(i, 1, 2) = static_cast<std::uint8_t>(i % 3 == 0); // and one a third solid
+    }
+    Coverage cov(S);
+    const Ball whole{Vec3(16383, 2, 2), 20000.0};
+    EXPECT_EQ(cov.gain(whole), 32767 + 10923 - (32767 * 25 - 32767 - 10923)); // solid in, background in
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> x(0, 32766);
+    std::vector<Ball> placed;
+    for (int t = 0; t < 400; ++t) { // drift: 400 balls of radius 1.5 in, every other one out again
+        const Ball b{Vec3(x(rng), 2, 2), 1.5};
+        const long long before = cov.mismatch(), gain = cov.gain(b);
+        cov.add(b);
+        EXPECT_EQ(before - cov.mismatch(), gain);
+        if (t % 2)
+            cov.remove(b);
+        else
+            placed.push_back(b);
+    }
+    // the whole-row ball now gains what the rows hold uncovered
+    long long uncovered = 0;
+    for (int k = 0; k < 5; ++k)
+        for (int j = 0; j < 5; ++j)
+            for (int i = 0; i < 32767; ++i) {
+                bool in = false;
+                for (const Ball& b : placed) in = in || (Vec3(i, j, k) - b.c).squaredNorm() <= b.r * b.r;
+                if (!in) uncovered += S(i, j, k) ? 1 : -1;
+            }
+    EXPECT_EQ(cov.gain(whole), uncovered);
+    EXPECT_EQ(cov.gainRows(whole), uncovered);
+}
+
+TEST(Coverage, RowsLongerThan32767VoxelsAreRefused) {
+    GridSpec g;
+    g.dims = {32768, 3, 3};
+    const VoxelGrid S(g, 0);
+    try {
+        Coverage cov(S);
+        FAIL() << "no error";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("32768 voxels along x"), std::string::npos) << e.what();
+    }
+}

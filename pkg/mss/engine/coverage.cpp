@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
@@ -31,7 +33,7 @@ namespace {
 /// balls of ~1100 rows each, each row a square root and two dependent loads); this halves it (0.44 -> 0.36
 /// s).
 __attribute__((target("avx2"))) long long gainAvx2(const Vec3& c, double r, const std::array<int, 3>& d,
-                                                   const std::int32_t* prefix, const std::int32_t* base) {
+                                                   const std::uint16_t* prefix, const std::uint16_t* base) {
     const double r2 = r * r;
     const int k0 = std::max(0, ceilInt(c.z() - r)), k1 = std::min(d[2] - 1, floorInt(c.z() + r));
     const __m256d cx = _mm256_set1_pd(c.x()), cy = _mm256_set1_pd(c.y());
@@ -66,8 +68,9 @@ __attribute__((target("avx2"))) long long gainAvx2(const Vec3& c, double r, cons
             const long long jk = j + static_cast<long long>(d[1]) * k;
             for (int l = 0; l < 4; ++l) {
                 if (!(m >> l & 1)) continue;
-                const std::int32_t* p = prefix + (jk + l) * nx;
-                total += p[his[l]] - (los[l] > 0 ? p[los[l] - 1] : base[jk + l]);
+                const std::uint16_t* p = prefix + (jk + l) * nx;
+                const std::uint16_t before = los[l] > 0 ? p[los[l] - 1] : base[jk + l];
+                total += static_cast<std::int16_t>(static_cast<std::uint16_t>(p[his[l]] - before));
             }
         }
     }
@@ -87,6 +90,10 @@ long long Coverage::gain(const Ball& b) const {
 Coverage::Coverage(const VoxelGrid& target)
     : S_(target), cover_(target.size(), 0), prefix_(target.size()),
       base_(target.size() / std::size_t(target.nx()), 0), nx_(target.nx()) {
+    if (nx_ > 32767)
+        throw std::invalid_argument("Coverage: the grid is " + std::to_string(nx_) +
+                                    " voxels along x; rows of more than 32767 voxels are not supported "
+                                    "(a coarser resolution)");
     solid_ = countSolid(target);
     mismatch_ = static_cast<long long>(solid_);
     const long long rows = static_cast<long long>(target.size() / std::size_t(nx_));
@@ -197,9 +204,9 @@ long long Coverage::gainMerged(const std::vector<Ball>& balls, bool mirrored) co
 }
 
 void Coverage::rebuildRow(std::size_t row, int from) {
-    std::int32_t acc = from > 0 ? prefix_[row + from - 1] : base_[row / std::size_t(nx_)];
+    std::uint16_t acc = from > 0 ? prefix_[row + from - 1] : base_[row / std::size_t(nx_)];
     for (int i = from; i < nx_; ++i) {
-        if (cover_[row + i] == 0) acc += S_.data[row + i] ? 1 : -1;
+        if (cover_[row + i] == 0) acc = static_cast<std::uint16_t>(acc + (S_.data[row + i] ? 1 : 0xFFFF));
         prefix_[row + i] = acc;
     }
 }
@@ -235,20 +242,21 @@ MSS_AVX2_CLONES void Coverage::changeSlice(const Ball& b, int delta, int k, long
         // from the first flip the prefix is recomputed to the end of the ball's interval; what follows moves
         // by the change of the interval's sum (each flipped voxel's g comes or goes), or, where the part
         // before is shorter, that part and the base move the other way
-        std::int32_t* p = prefix_.data() + row;
-        std::int32_t& base = base_[row / std::size_t(nx_)];
-        const std::int32_t shift = -delta * (2 * inside - flips);
+        // (modulo 2^16, as the prefix is kept)
+        std::uint16_t* p = prefix_.data() + row;
+        std::uint16_t& base = base_[row / std::size_t(nx_)];
+        const auto shift = static_cast<std::uint16_t>(-delta * (2 * inside - flips));
         const bool left = first < nx_ - 1 - i1;
-        std::int32_t acc = (first > 0 ? p[first - 1] : base) - (left ? shift : 0);
+        auto acc = static_cast<std::uint16_t>((first > 0 ? p[first - 1] : base) - (left ? shift : 0));
         for (int i = first; i <= i1; ++i) {
-            acc += c[i] == 0 ? (s[i] ? 1 : -1) : 0;
+            acc = static_cast<std::uint16_t>(acc + (c[i] == 0 ? (s[i] ? 1 : 0xFFFF) : 0));
             p[i] = acc;
         }
         if (left) {
-            for (int i = 0; i < first; ++i) p[i] -= shift;
-            base -= shift;
+            for (int i = 0; i < first; ++i) p[i] = static_cast<std::uint16_t>(p[i] - shift);
+            base = static_cast<std::uint16_t>(base - shift);
         } else {
-            for (int i = i1 + 1; i < nx_; ++i) p[i] += shift;
+            for (int i = i1 + 1; i < nx_; ++i) p[i] = static_cast<std::uint16_t>(p[i] + shift);
         }
         // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
         dMismatch -= delta * (2LL * inside - flips);

@@ -59,7 +59,8 @@ private:
         return w;
     }
     long long sum(std::size_t row, int i0, int i1) const {
-        return prefix_[row + i1] - (i0 > 0 ? prefix_[row + i0 - 1] : base_[row / std::size_t(nx_)]);
+        const std::uint16_t before = i0 > 0 ? prefix_[row + i0 - 1] : base_[row / std::size_t(nx_)];
+        return static_cast<std::int16_t>(static_cast<std::uint16_t>(prefix_[row + i1] - before));
     }
     void rebuildRow(std::size_t row, int from);
     template <class F> void forColumns(const Ball& b, F&& f) const {
@@ -74,8 +75,11 @@ private:
 
     const VoxelGrid& S_;
     BigVector<std::uint16_t> cover_;
-    BigVector<std::int32_t> prefix_;
-    std::vector<std::int32_t> base_; ///< per row: the prefix before its first voxel
+    // prefix sums modulo 2^16: only differences within a row are ever used, and they are at most the row's
+    // length, which is checked to be under 2^15 (half the bytes of int32: the prefix is read at both ends of
+    // every row of every ball evaluated, and written where coverage flips)
+    BigVector<std::uint16_t> prefix_;
+    std::vector<std::uint16_t> base_; ///< per row: the prefix before its first voxel
     std::array<bool, 3> mirror_{false, false, false};
     int nx_;
     std::size_t solid_ = 0, covered_ = 0;
