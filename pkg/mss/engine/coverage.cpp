@@ -9,14 +9,6 @@
 #include <immintrin.h>
 #define MSS_GAIN_AVX2 1
 #endif
-// changeSlice's two loops over a ball's run vectorise; an AVX2 clone chosen at load time takes 6% off
-// the ellipsoid's run on one thread (its balls of radius ~50 are taken out and put back at every tune: a
-// fifth of the run). GCC only (the fuzzing build is clang's).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define MSS_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define MSS_AVX2_CLONES
-#endif
 
 namespace mss::engine {
 
@@ -77,6 +69,43 @@ __attribute__((target("avx2"))) long long gainAvx2(const Vec3& c, double r, cons
     return total;
 }
 #endif
+
+/// One row of Coverage::changeSlice: the counts @p c of voxels i0..i1 change by @p delta; the prefix @p p
+/// (and the row's @p base) follow where a voxel flips between covered and uncovered. (An AVX2 clone of it
+/// made no measurable difference: the rows' loops are short and the prefix scan serial.)
+void changeRow(std::uint16_t* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t& base, int nx, int i0,
+               int i1, int delta, long long& dMismatch, long long& dCovered) {
+    const std::uint16_t flipAt = delta > 0 ? 0 : 1; // coverage before a flip
+    int flips = 0, inside = 0;
+    for (int i = i0; i <= i1; ++i) { // vectorised
+        const bool flip = c[i] == flipAt;
+        flips += flip;
+        inside += flip & (s[i] != 0);
+    }
+    for (int i = i0; i <= i1; ++i) c[i] = static_cast<std::uint16_t>(c[i] + delta);
+    if (flips == 0) return; // no voxel changes between covered and uncovered: prefix unchanged
+    int first = i0;
+    while (c[first] != flipAt + delta) ++first;
+    // from the first flip the prefix is recomputed to the end of the ball's interval; what follows moves by
+    // the change of the interval's sum (each flipped voxel's g comes or goes), or, where the part before is
+    // shorter, that part and the base move the other way (modulo 2^16, as the prefix is kept)
+    const auto shift = static_cast<std::uint16_t>(-delta * (2 * inside - flips));
+    const bool left = first < nx - 1 - i1;
+    auto acc = static_cast<std::uint16_t>((first > 0 ? p[first - 1] : base) - (left ? shift : 0));
+    for (int i = first; i <= i1; ++i) {
+        acc = static_cast<std::uint16_t>(acc + (c[i] == 0 ? (s[i] ? 1 : 0xFFFF) : 0));
+        p[i] = acc;
+    }
+    if (left) {
+        for (int i = 0; i < first; ++i) p[i] = static_cast<std::uint16_t>(p[i] - shift);
+        base = static_cast<std::uint16_t>(base - shift);
+    } else {
+        for (int i = i1 + 1; i < nx; ++i) p[i] = static_cast<std::uint16_t>(p[i] + shift);
+    }
+    // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
+    dMismatch -= delta * (2LL * inside - flips);
+    dCovered += static_cast<long long>(delta) * flips;
+}
 } // namespace
 
 long long Coverage::gain(const Ball& b) const {
@@ -222,45 +251,11 @@ void Coverage::change(const Ball& b, int delta) {
     covered_ = static_cast<std::size_t>(static_cast<long long>(covered_) + dCovered);
 }
 
-MSS_AVX2_CLONES void Coverage::changeSlice(const Ball& b, int delta, int k, long long& dMismatch,
-                                           long long& dCovered) {
+void Coverage::changeSlice(const Ball& b, int delta, int k, long long& dMismatch, long long& dCovered) {
     mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k, [&](int j, int kk, int i0, int i1) {
         const std::size_t row = S_.spec.index(0, j, kk);
-        std::uint16_t* c = cover_.data() + row;
-        const std::uint8_t* s = S_.data.data() + row;
-        const std::uint16_t flipAt = delta > 0 ? 0 : 1; // coverage before a flip
-        int flips = 0, inside = 0;
-        for (int i = i0; i <= i1; ++i) { // vectorised
-            const bool flip = c[i] == flipAt;
-            flips += flip;
-            inside += flip & (s[i] != 0);
-        }
-        for (int i = i0; i <= i1; ++i) c[i] = static_cast<std::uint16_t>(c[i] + delta);
-        if (flips == 0) return; // no voxel changes between covered and uncovered: prefix unchanged
-        int first = i0;
-        while (c[first] != flipAt + delta) ++first;
-        // from the first flip the prefix is recomputed to the end of the ball's interval; what follows moves
-        // by the change of the interval's sum (each flipped voxel's g comes or goes), or, where the part
-        // before is shorter, that part and the base move the other way
-        // (modulo 2^16, as the prefix is kept)
-        std::uint16_t* p = prefix_.data() + row;
-        std::uint16_t& base = base_[row / std::size_t(nx_)];
-        const auto shift = static_cast<std::uint16_t>(-delta * (2 * inside - flips));
-        const bool left = first < nx_ - 1 - i1;
-        auto acc = static_cast<std::uint16_t>((first > 0 ? p[first - 1] : base) - (left ? shift : 0));
-        for (int i = first; i <= i1; ++i) {
-            acc = static_cast<std::uint16_t>(acc + (c[i] == 0 ? (s[i] ? 1 : 0xFFFF) : 0));
-            p[i] = acc;
-        }
-        if (left) {
-            for (int i = 0; i < first; ++i) p[i] = static_cast<std::uint16_t>(p[i] - shift);
-            base = static_cast<std::uint16_t>(base - shift);
-        } else {
-            for (int i = i1 + 1; i < nx_; ++i) p[i] = static_cast<std::uint16_t>(p[i] + shift);
-        }
-        // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
-        dMismatch -= delta * (2LL * inside - flips);
-        dCovered += static_cast<long long>(delta) * flips;
+        changeRow(cover_.data() + row, S_.data.data() + row, prefix_.data() + row,
+                  base_[row / std::size_t(nx_)], nx_, i0, i1, delta, dMismatch, dCovered);
     });
 }
 
