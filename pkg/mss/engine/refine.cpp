@@ -117,6 +117,7 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps) {
         std::vector<char> movedNow(chosen.size(), 0);
         for (std::size_t oi = 0; oi < chosen.size(); ++oi) {
             Orbit& o = chosen[oi];
+            if (sweep == 0 && touched && !moved[oi]) continue; // far from what changed
             if (sweep > 0 && kSkip) {
                 bool stale = true;
                 for (std::size_t oj = 0; oj < chosen.size() && stale; ++oj)
