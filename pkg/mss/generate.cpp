@@ -1,9 +1,11 @@
 #include "mss/generate.hpp"
+#include "mss/ball_rows.hpp"
 #include "mss/edt.hpp"
 #include "mss/engine/optimized.hpp"
 #include "mss/engine/paper.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -295,7 +297,7 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     }
     if (r.spheres.size() == 0) noSphereLeft(E, opt);
     m.protrusion = largestProtrusion(r.spheres, clearance);
-    const Mismatch mm = mismatch(S, voxelizeSpheres(r.spheres, S.spec));
+    const Mismatch mm = mismatch(S, r.spheres);
     m.spheres = r.spheres.size();
     m.eta = mm.eta;
     m.dice = mm.dice;
@@ -344,6 +346,62 @@ Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx) {
         m.approx += b;
         m.both += a && b;
     }
+    const std::size_t diff = m.target + m.approx - 2 * m.both;
+    m.eta = m.target ? double(diff) / double(m.target) : 0.0;                          // eq. 7
+    m.dice = (m.target + m.approx) ? double(diff) / double(m.target + m.approx) : 0.0; // eq. 27
+    return m;
+}
+
+Mismatch mismatch(const VoxelGrid& target, const SphereSet& spheres) {
+    validateSpheres(spheres, "mismatch");
+    const GridSpec& g = target.spec;
+    std::vector<Vec3> c(spheres.size());
+    std::vector<double> r(spheres.size());
+    std::vector<std::size_t> meets;
+    for (std::size_t s = 0; s < c.size(); ++s) {
+        c[s] = g.toVoxel(spheres.centers[s]);
+        r[s] = spheres.radii[s] / g.h;
+        bool in = true; // as voxelizeSpheres: spheres wholly outside the grid are dropped before index maths
+        for (int a = 0; a < 3; ++a) in = in && c[s][a] + r[s] >= 0.0 && c[s][a] - r[s] <= g.dims[a] - 1.0;
+        if (in) meets.push_back(s);
+    }
+    Mismatch m;
+    m.target = countSolid(target);
+    long long approx = 0, both = 0;
+#pragma omp parallel reduction(+ : approx, both)
+    {
+        std::vector<std::array<int, 3>> runs; // (j, i0, i1) of one slice
+#pragma omp for schedule(dynamic, 1)
+        for (int k = 0; k < g.dims[2]; ++k) {
+            runs.clear();
+            for (std::size_t s : meets)
+                detail::forBallRows(c[s], r[s], g.dims, k, k, [&](int j, int, int i0, int i1) {
+                    runs.push_back({j, i0, i1});
+                });
+            std::sort(runs.begin(), runs.end());
+            for (std::size_t q = 0; q < runs.size();) { // merge each row's runs, count what they cover
+                const int j = runs[q][0];
+                int a = runs[q][1], e = runs[q][2];
+                const std::uint8_t* row = &target(0, j, k);
+                auto count = [&](int lo, int hi) {
+                    approx += hi - lo + 1;
+                    for (int i = lo; i <= hi; ++i) both += row[i] != 0;
+                };
+                for (++q; q < runs.size() && runs[q][0] == j; ++q) {
+                    if (runs[q][1] <= e + 1) {
+                        e = std::max(e, runs[q][2]);
+                    } else {
+                        count(a, e);
+                        a = runs[q][1];
+                        e = runs[q][2];
+                    }
+                }
+                count(a, e);
+            }
+        }
+    }
+    m.approx = std::size_t(approx);
+    m.both = std::size_t(both);
     const std::size_t diff = m.target + m.approx - 2 * m.both;
     m.eta = m.target ? double(diff) / double(m.target) : 0.0;                          // eq. 7
     m.dice = (m.target + m.approx) ? double(diff) / double(m.target + m.approx) : 0.0; // eq. 27

@@ -99,6 +99,10 @@ struct Mismatch {
     std::size_t target = 0, approx = 0, both = 0;
 };
 Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx);
+/// The same as mismatch(target, voxelizeSpheres(spheres, target.spec)), without the grid of the spheres: per
+/// row, the union of their runs (forBallRows, as voxelizeSpheres) against the target. O(rows of the balls +
+/// covered voxels), no memory per voxel.
+Mismatch mismatch(const VoxelGrid& target, const SphereSet& spheres);
 
 /// The protrusion bound that applies on a grid of voxel edge @p h: 0 with clip, else maxProtrusion, else @p
 /// h.

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 using namespace mss;
 
@@ -210,4 +211,41 @@ TEST(Generate, BadOptionsAreRefused) {
     VoxelGrid empty(g, 0);
     o.dice = 0;
     EXPECT_THROW(generate(empty, o), std::invalid_argument);
+}
+
+TEST(Generate, MismatchOfSpheresEqualsTheirVoxelisation) {
+    // the final metrics count the spheres' union row by row, without a grid of it: exactly the voxels of
+    // voxelizeSpheres (overlapping, cut by the grid's faces, wholly outside, on voxel centres, huge)
+    GridSpec g;
+    g.dims = {37, 23, 19};
+    g.h = 0.5;
+    g.origin = Vec3(-3, 1, 2);
+    VoxelGrid S(g, 0);
+    std::mt19937 rng(9);
+    std::uniform_int_distribution<int> bit(0, 2);
+    for (auto& v : S.data) v = bit(rng) == 0;
+    std::uniform_real_distribution<double> x(-6, 20), rad(0.1, 4);
+    for (int trial = 0; trial < 40; ++trial) {
+        SphereSet s;
+        const int n = 1 + trial % 9;
+        for (int q = 0; q < n; ++q) s.add(Vec3(x(rng), x(rng), x(rng)), rad(rng));
+        if (trial % 5 == 0) s.add(g.voxelCenter(3, 4, 5), 2 * g.h);   // ends exactly on voxel centres
+        if (trial % 7 == 0) s.add(Vec3(100, 100, 100), 1.0);          // wholly outside
+        if (trial % 11 == 0) s.add(g.voxelCenter(18, 11, 9), 1000.0); // covers everything
+        const Mismatch a = mismatch(S, s), b = mismatch(S, voxelizeSpheres(s, g));
+        ASSERT_EQ(a.target, b.target);
+        ASSERT_EQ(a.approx, b.approx) << trial;
+        ASSERT_EQ(a.both, b.both) << trial;
+        EXPECT_EQ(a.eta, b.eta);
+        EXPECT_EQ(a.dice, b.dice);
+    }
+    // and a generation's own figures
+    const TriangleMesh femur = readMesh(kData + "/human_femur.stl");
+    Resolution res;
+    res.resolution = 40;
+    GenerateOptions o;
+    o.nSpheres = 20;
+    const Result r = generate(femur, res, o);
+    const VoxelGrid target = voxelizeMesh(femur, r.grid, 1);
+    EXPECT_EQ(mismatch(target, voxelizeSpheres(r.spheres, r.grid)).dice, r.metrics.dice);
 }
