@@ -353,6 +353,8 @@ Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx) {
 }
 
 Mismatch mismatch(const VoxelGrid& target, const SphereSet& spheres) {
+    if (target.data.size() != target.spec.size() || target.data.empty())
+        throw std::invalid_argument("mismatch: the target's values do not fill its grid");
     validateSpheres(spheres, "mismatch");
     const GridSpec& g = target.spec;
     std::vector<Vec3> c(spheres.size());

@@ -239,6 +239,9 @@ TEST(Generate, MismatchOfSpheresEqualsTheirVoxelisation) {
         EXPECT_EQ(a.eta, b.eta);
         EXPECT_EQ(a.dice, b.dice);
     }
+    VoxelGrid hollow = S; // bad input: a clear error
+    hollow.data.resize(10);
+    EXPECT_THROW(mismatch(hollow, SphereSet{}), std::invalid_argument);
     // and a generation's own figures
     const TriangleMesh femur = readMesh(kData + "/human_femur.stl");
     Resolution res;

@@ -262,8 +262,29 @@ class Scoring(unittest.TestCase):
         self.assertAlmostEqual(abs(v[0, 0]), 1.0, places=9)
 
 
-if __name__ == '__main__':
-    unittest.main()
+def secondRunEnvironment(env):
+    """Runs `mss generate` on the femur with @env and returns the environment of its second run (the command runs
+    itself again with its choices set, see mss_cli.cpp), read from /proc while it works; None if not seen."""
+    import subprocess
+    import time
+    mss = os.environ.get('MSS_BINARY', 'mss')
+    seen = None
+    with tempfile.TemporaryDirectory() as d:
+        p = subprocess.Popen([mss, 'generate', FEMUR, '--spheres', '70', '--resolution', '150', '-o',
+                              os.path.join(d, 's.csv')], env=env, stdout=subprocess.DEVNULL)
+        deadline = time.time() + 10
+        while seen is None and time.time() < deadline and p.poll() is None:
+            try:
+                with open('/proc/%d/environ' % p.pid, 'rb') as f:
+                    vars = dict(x.split(b'=', 1) for x in f.read().split(b'\0') if b'=' in x)
+            except OSError:
+                break
+            if b'OMP_WAIT_POLICY' in vars:
+                seen = vars
+            time.sleep(0.005)
+        if p.wait() != 0:
+            raise RuntimeError('mss generate failed')
+    return seen
 
 
 class SharingTheCores(unittest.TestCase):
@@ -272,27 +293,11 @@ class SharingTheCores(unittest.TestCase):
         # spin); it chooses as it starts and runs itself again with the policy in its environment
         import subprocess
         import time
-        mss = os.environ.get('MSS_BINARY', 'mss')
         busy = [subprocess.Popen([sys.executable, '-c', 'while True: pass']) for _ in range((os.cpu_count() or 1) + 1)]
         try:
             time.sleep(0.3)
-            env = {k: v for k, v in os.environ.items()
-                   if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'OMP_NUM_THREADS')}
-            with tempfile.TemporaryDirectory() as d:
-                p = subprocess.Popen([mss, 'generate', FEMUR, '--spheres', '70', '--resolution', '150', '-o',
-                                      os.path.join(d, 's.csv')], env=env, stdout=subprocess.DEVNULL)
-                seen = None
-                deadline = time.time() + 10
-                while seen is None and time.time() < deadline and p.poll() is None:
-                    try:
-                        with open('/proc/%d/environ' % p.pid, 'rb') as f:
-                            vars = dict(x.split(b'=', 1) for x in f.read().split(b'\0') if b'=' in x)
-                    except OSError:
-                        break
-                    if b'OMP_WAIT_POLICY' in vars:
-                        seen = vars
-                    time.sleep(0.005)
-                self.assertEqual(p.wait(), 0)
+            seen = secondRunEnvironment({k: v for k, v in os.environ.items()
+                                         if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'OMP_NUM_THREADS')})
         finally:
             for b in busy:
                 b.kill()
@@ -305,32 +310,18 @@ class SharingTheCores(unittest.TestCase):
     def test_the_command_asks_malloc_for_huge_pages(self):
         # `mss` runs itself with malloc's blocks on transparent huge pages and from its heap (a fresh 4 KiB page
         # costs a fault of 10-15 us under this machine's kernel); a tunable the user set is kept as set
-        import subprocess
-        import time
-        mss = os.environ.get('MSS_BINARY', 'mss')
         for given, expected in ((None, b'glibc.malloc.hugetlb=1'), ('glibc.malloc.hugetlb=0', b'glibc.malloc.hugetlb=0')):
             env = {k: v for k, v in os.environ.items()
                    if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'GLIBC_TUNABLES')}
             if given:
                 env['GLIBC_TUNABLES'] = given
-            seen = None
-            with tempfile.TemporaryDirectory() as d:
-                p = subprocess.Popen([mss, 'generate', FEMUR, '--spheres', '70', '--resolution', '150', '-o',
-                                      os.path.join(d, 's.csv')], env=env, stdout=subprocess.DEVNULL)
-                deadline = time.time() + 10
-                while seen is None and time.time() < deadline and p.poll() is None:
-                    try:
-                        with open('/proc/%d/environ' % p.pid, 'rb') as f:
-                            vars = dict(x.split(b'=', 1) for x in f.read().split(b'\0') if b'=' in x)
-                    except OSError:
-                        break
-                    if b'OMP_WAIT_POLICY' in vars:
-                        seen = vars
-                    time.sleep(0.005)
-                self.assertEqual(p.wait(), 0)
+            seen = secondRunEnvironment(env)
             self.assertIsNotNone(seen, 'the command did not run itself again before it ended')
             # (glibc rewrites the variable in place as it reads it, so /proc shows part of what was set)
             tunables = seen.get(b'GLIBC_TUNABLES', b'').split(b':')
             self.assertIn(expected, tunables)
             self.assertEqual(sum(t.startswith(b'glibc.malloc.hugetlb=') for t in tunables), 1)
 
+
+if __name__ == '__main__':
+    unittest.main()
