@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -52,9 +53,45 @@ MeshInfo analyzeMesh(const TriangleMesh& mesh) {
             info.upper = info.upper.cwiseMax(v);
         }
     }
-    // Directed edges sorted by undirected key: count uses and directions per undirected edge.
-    std::vector<std::pair<std::uint64_t, int>> edges; // (key, +1 if a<b else -1)
-    edges.reserve(mesh.triangles.size() * 3);
+    // Directed edges grouped by undirected edge: count uses and directions per edge. Bucketed by the lower
+    // vertex (a counting sort), each bucket (a few edges) sorted by the higher one and its direction bit.
+    // Why not one std::sort of all edges: a mesh's edges come in runs, and introsort fell back to heapsort on
+    // them (femur, 13,752 triangles: 2.4 ms, against ~0.3 ms).
+    const std::size_t nv = mesh.vertices.size();
+    std::vector<std::size_t> first(nv + 1, 0);
+    std::vector<std::uint64_t> higher(mesh.triangles.size() * 3); // (higher index, direction bit)
+    auto forEachEdge = [&mesh](auto&& f) {
+        for (const auto& t : mesh.triangles)
+            for (int e = 0; e < 3; ++e) {
+                const auto u = static_cast<std::uint64_t>(t[e]),
+                           w = static_cast<std::uint64_t>(t[(e + 1) % 3]);
+                if (u != w) f(std::min(u, w), (std::max(u, w) << 1) | (u < w ? 1u : 0u));
+            }
+    };
+    forEachEdge([&](std::uint64_t lo, std::uint64_t) { ++first[lo + 1]; });
+    for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+    {
+        std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+        forEachEdge([&](std::uint64_t lo, std::uint64_t hiDir) { higher[fill[lo]++] = hiDir; });
+    }
+    for (std::size_t v = 0; v < nv; ++v) {
+        std::uint64_t* b = higher.data() + first[v];
+        std::uint64_t* e = higher.data() + first[v + 1];
+        std::sort(b, e);
+        for (std::uint64_t* i = b; i != e;) {
+            std::uint64_t* j = i;
+            int sum = 0;
+            while (j != e && (*j >> 1) == (*i >> 1)) sum += (*j++ & 1u) ? 1 : -1;
+            const std::ptrdiff_t uses = j - i;
+            if (uses == 1)
+                ++info.boundaryEdges;
+            else if (uses > 2)
+                ++info.nonManifoldEdges;
+            else if (sum != 0)
+                ++info.inconsistentEdges;
+            i = j;
+        }
+    }
     // Signed volume by the divergence theorem, about the bounding-box centre to limit cancellation.
     const Vec3 c = 0.5 * (info.lower + info.upper);
     long double vol6 = 0;
@@ -64,30 +101,8 @@ MeshInfo analyzeMesh(const TriangleMesh& mesh) {
         if (n.squaredNorm() == 0.0 || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
             ++info.degenerateTriangles;
         vol6 += a.dot(b.cross(d));
-        for (int e = 0; e < 3; ++e) {
-            std::uint32_t u = static_cast<std::uint32_t>(t[e]),
-                          w = static_cast<std::uint32_t>(t[(e + 1) % 3]);
-            if (u == w) continue;
-            const int dir = u < w ? 1 : -1;
-            if (u > w) std::swap(u, w);
-            edges.emplace_back((static_cast<std::uint64_t>(u) << 32) | w, dir);
-        }
     }
     info.signedVolume = static_cast<double>(vol6 / 6.0L);
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; i < edges.size();) {
-        std::size_t j = i;
-        int sum = 0;
-        while (j < edges.size() && edges[j].first == edges[i].first) sum += edges[j++].second;
-        const std::size_t uses = j - i;
-        if (uses == 1)
-            ++info.boundaryEdges;
-        else if (uses > 2)
-            ++info.nonManifoldEdges;
-        else if (sum != 0)
-            ++info.inconsistentEdges;
-        i = j;
-    }
     info.closed = info.boundaryEdges == 0 && info.nonManifoldEdges == 0 && info.triangles > 0;
     info.consistentlyOriented = info.inconsistentEdges == 0;
     return info;
