@@ -1,6 +1,6 @@
-// Mesh files: STL (ASCII, binary), OBJ, OFF, PLY (ASCII, binary); our own readers (CGAL's gave OOM and UB
-// under fuzzing), with a clear error naming the file and the problem for every bad input.
-#include "mss/mesh.hpp"
+// Mesh files: STL (ASCII, binary: stl_reader.cpp), OBJ, OFF, PLY (ASCII, binary); our own readers (CGAL's
+// gave OOM and UB under fuzzing), with a clear error naming the file and the problem for every bad input.
+#include "mss/mesh_readers.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -20,183 +20,8 @@ namespace mss {
 
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-    throw std::invalid_argument("readMesh: " + path + ": " + what);
-}
-
-/// Merges identical vertex positions (STL stores each triangle's corners separately).
-class VertexMerger {
-public:
-    explicit VertexMerger(TriangleMesh& m) : mesh_(m) {}
-    int operator()(const Vec3& p) {
-        auto [it, inserted] =
-            index_.emplace(Key{p.x(), p.y(), p.z()}, static_cast<int>(mesh_.vertices.size()));
-        if (inserted) mesh_.vertices.push_back(p);
-        return it->second;
-    }
-
-private:
-    struct Key {
-        double x, y, z;
-        bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-    };
-    struct Hash {
-        std::size_t operator()(const Key& k) const {
-            std::uint64_t h = 1469598103934665603ull, w;
-            for (double v : {k.x, k.y, k.z}) {
-                v = v == 0.0 ? 0.0 : v; // -0 == +0
-                std::memcpy(&w, &v, 8);
-                h = (h ^ w) * 1099511628211ull;
-                h ^= h >> 29;
-            }
-            return static_cast<std::size_t>(h);
-        }
-    };
-    TriangleMesh& mesh_;
-    std::unordered_map<Key, int, Hash> index_;
-};
-
-void addTriangle(TriangleMesh& mesh, VertexMerger& merge, const Vec3 (&p)[3]) {
-    mesh.triangles.push_back({merge(p[0]), merge(p[1]), merge(p[2])});
-}
-
-/// A whole file in memory (one read; a byte-by-byte stream iterator took a third of reading an ASCII STL).
-std::vector<char> fileBytes(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) return {}; // (a directory's size is no size)
-    const std::uintmax_t size = std::filesystem::file_size(path, ec);
-    std::ifstream in(path, std::ios::binary);
-    if (ec || !in || size == 0) return {};
-    std::vector<char> buf(static_cast<std::size_t>(size));
-    in.read(buf.data(), static_cast<std::streamsize>(size));
-    buf.resize(static_cast<std::size_t>(in.gcount()));
-    return buf;
-}
-
-/// std::isspace for the "C" locale, inline (the library call was a tenth of reading an ASCII STL).
-inline bool space(char c) {
-    return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-}
-
-/// Binary STL: 80-byte header, uint32 count, then 50 bytes per triangle (normal, 3 corners, attribute).
-TriangleMesh readBinaryStl(const std::string& path, const std::vector<char>& buf) {
-    std::uint32_t n = 0;
-    std::memcpy(&n, buf.data() + 80, 4);
-    TriangleMesh mesh;
-    mesh.triangles.reserve(n);
-    VertexMerger merge(mesh);
-    for (std::uint32_t t = 0; t < n; ++t) {
-        const char* rec = buf.data() + 84 + 50ull * t + 12;
-        Vec3 p[3];
-        for (int c = 0; c < 3; ++c) {
-            float xyz[3];
-            std::memcpy(xyz, rec + 12 * c, 12);
-            p[c] = Vec3(xyz[0], xyz[1], xyz[2]);
-            if (!p[c].allFinite())
-                fail(path, "triangle " + std::to_string(t) + " has a non-finite coordinate");
-        }
-        addTriangle(mesh, merge, p);
-    }
-    return mesh;
-}
-
-/// ASCII STL: "solid ... facet normal ... outer loop / vertex x y z (x3) / endloop endfacet ... endsolid".
-TriangleMesh readAsciiStl(const std::string& path, const std::vector<char>& buf) {
-    TriangleMesh mesh;
-    VertexMerger merge(mesh);
-    const char* p = buf.data();
-    const char* end = p + buf.size();
-    std::size_t line = 1;
-    auto skipSpace = [&]() {
-        while (p < end && space(*p)) line += (*p++ == '\n');
-    };
-    auto word = [&]() {
-        skipSpace();
-        const char* b = p;
-        while (p < end && !space(*p)) ++p;
-        return std::string_view(b, static_cast<std::size_t>(p - b));
-    };
-    auto bad = [&](const std::string& what) {
-        fail(path, "ASCII STL line " + std::to_string(line) + ": " + what);
-    };
-    auto number = [&]() {
-        const std::string_view w = word();
-        double v = 0.0;
-        const char* b = w.data() + (!w.empty() && w[0] == '+');
-        const auto r = std::from_chars(b, w.data() + w.size(), v);
-        if (w.empty() || r.ec != std::errc() || r.ptr != w.data() + w.size())
-            bad("expected a number, got '" + std::string(w) + "'");
-        if (!std::isfinite(v)) bad("non-finite coordinate '" + std::string(w) + "'");
-        return v;
-    };
-    if (word() != "solid") bad("does not start with 'solid'");
-    while (p < end && *p != '\n') ++p; // the solid's name
-    Vec3 corner[3];
-    int count = 0;
-    for (;;) {
-        const std::string_view w = word();
-        if (w.empty()) break;
-        if (w == "endsolid") {
-            while (p < end && *p != '\n') ++p;
-            continue;
-        }
-        if (w == "solid") { // several solids in one file
-            while (p < end && *p != '\n') ++p;
-            continue;
-        }
-        if (w == "facet") {
-            if (word() != "normal") bad("expected 'normal'");
-            number(), number(), number();
-            count = 0;
-        } else if (w == "outer") {
-            if (word() != "loop") bad("expected 'loop'");
-        } else if (w == "vertex") {
-            if (count == 3) bad("more than three vertices in a facet");
-            const double x = number(), y = number(), z = number();
-            corner[count++] = Vec3(x, y, z);
-        } else if (w == "endloop") {
-            if (count != 3) bad("facet with " + std::to_string(count) + " vertices");
-        } else if (w == "endfacet") {
-            if (count != 3) bad("facet with " + std::to_string(count) + " vertices");
-            addTriangle(mesh, merge, corner);
-            count = 0;
-        } else {
-            bad("unexpected '" + std::string(w) + "'");
-        }
-    }
-    if (mesh.triangles.empty()) fail(path, "ASCII STL has no facets");
-    return mesh;
-}
-
-/// Reads an STL file, ASCII or binary. A file is binary when its size matches the triangle count in its
-/// header (a binary header may itself start with "solid"); else it must be ASCII text.
-TriangleMesh readStl(const std::string& path) {
-    std::vector<char> buf = fileBytes(path);
-    const std::size_t size = buf.size();
-    const bool startsSolid = size >= 5 && std::string(buf.data(), 5) == "solid";
-    if (size >= 84) {
-        std::uint32_t n = 0;
-        std::memcpy(&n, buf.data() + 80, 4);
-        const std::uint64_t expected = 84 + 50ull * n;
-        if (expected == size) {
-            if (n == 0) fail(path, "binary STL has no triangles");
-            return readBinaryStl(path, buf);
-        }
-        if (!startsSolid)
-            fail(path, "binary STL header says " + std::to_string(n) + " triangles (" +
-                           std::to_string(expected) + " bytes) but the file has " + std::to_string(size) +
-                           " bytes");
-    } else if (!startsSolid) {
-        fail(path, "file too short for binary STL (" + std::to_string(size) + " bytes, need at least 84)");
-    }
-    for (std::size_t i = 0; i < std::min<std::size_t>(size, 1 << 16); ++i) {
-        const unsigned char c = static_cast<unsigned char>(buf[i]);
-        if (!(std::isprint(c) || std::isspace(c)))
-            fail(path,
-                 "neither binary STL (size does not match its triangle count) nor ASCII STL (binary bytes)");
-    }
-    return readAsciiStl(path, buf);
-}
+using detail::fail;
+using detail::FileBytes;
 
 /// Faces with more than three corners become triangle fans; indices are checked against the vertex count.
 void addPolygon(TriangleMesh& mesh, const std::vector<long long>& poly, const std::string& path,
@@ -249,7 +74,7 @@ Vec3 vertexOf(const std::vector<std::string_view>& w, std::size_t first, const s
 }
 
 /// Line by line, with its number, '#' comments removed.
-template <class F> void forLines(const std::vector<char>& buf, F&& f) {
+template <class F> void forLines(const FileBytes& buf, F&& f) {
     std::size_t i = 0, lineNo = 0;
     while (i < buf.size()) {
         std::size_t e = i;
@@ -268,7 +93,7 @@ template <class F> void forLines(const std::vector<char>& buf, F&& f) {
 
 /// Wavefront OBJ: "v x y z [w]" and "f a b c ..." (each index "i", "i/t", "i//n" or "i/t/n"; negative: from
 /// the end); everything else (vt, vn, g, o, s, usemtl, l, ...) is ignored.
-TriangleMesh readObj(const std::string& path, const std::vector<char>& buf) {
+TriangleMesh readObj(const std::string& path, const FileBytes& buf) {
     TriangleMesh mesh;
     std::vector<long long> poly;
     forLines(buf, [&](std::string_view line, std::size_t no) {
@@ -295,7 +120,7 @@ TriangleMesh readObj(const std::string& path, const std::vector<char>& buf) {
 
 /// Object File Format: "OFF" (or COFF, NOFF, ...: extra per-vertex data is skipped), counts, vertex lines,
 /// face lines "n i1 ... in [colour]". Binary OFF is refused.
-TriangleMesh readOff(const std::string& path, const std::vector<char>& buf) {
+TriangleMesh readOff(const std::string& path, const FileBytes& buf) {
     TriangleMesh mesh;
     long long nv = -1, nf = -1, seenV = 0, seenF = 0;
     bool magic = false;
@@ -394,7 +219,7 @@ void addPlyProperty(const std::string& path, const std::string& at, const std::v
 
 /// Reads the header from @p buf; @p pos: where the data begin, afterwards. Checks that the counts announced
 /// fit in the file before anything is allocated.
-PlyHeader readPlyHeader(const std::string& path, const std::vector<char>& buf, std::size_t& pos) {
+PlyHeader readPlyHeader(const std::string& path, const FileBytes& buf, std::size_t& pos) {
     PlyHeader h;
     std::size_t lineNo = 0;
     bool end = false;
@@ -451,8 +276,7 @@ PlyHeader readPlyHeader(const std::string& path, const std::vector<char>& buf, s
 /// Reads one value after another from the PLY data, ASCII or binary (either byte order).
 class PlyValues {
 public:
-    PlyValues(const std::string& path, const std::vector<char>& buf, std::size_t pos,
-              const std::string& format)
+    PlyValues(const std::string& path, const FileBytes& buf, std::size_t pos, const std::string& format)
         : path_(path), buf_(buf), pos_(pos), ascii_(format == "ascii"), swap_(format == "binary_big_endian") {
         if (ascii_) tokens_ = words(std::string_view(buf.data() + pos, buf.size() - pos));
     }
@@ -490,7 +314,7 @@ private:
         return as<double>(b);
     }
     const std::string& path_;
-    const std::vector<char>& buf_;
+    const FileBytes& buf_;
     std::size_t pos_;
     bool ascii_, swap_;
     std::vector<std::string_view> tokens_;
@@ -545,7 +369,7 @@ void readPlyElement(const std::string& path, const PlyElement& e, PlyValues& val
     }
 }
 
-TriangleMesh readPly(const std::string& path, const std::vector<char>& buf) {
+TriangleMesh readPly(const std::string& path, const FileBytes& buf) {
     std::size_t pos = 0;
     const PlyHeader h = readPlyHeader(path, buf, pos);
     PlyValues value(path, buf, pos, h.format);
@@ -569,12 +393,12 @@ TriangleMesh readMesh(const std::string& path) {
     if (end <= 0) fail(path, "file is empty");
     probe.close();
     if (ext == ".stl") {
-        TriangleMesh mesh = readStl(path);
+        TriangleMesh mesh = detail::readStl(path);
         validateMesh(mesh, "readMesh: " + path);
         return mesh;
     }
 
-    const std::vector<char> buf = fileBytes(path);
+    const FileBytes buf(path);
     TriangleMesh mesh = ext == ".obj"   ? readObj(path, buf)
                         : ext == ".off" ? readOff(path, buf)
                                         : readPly(path, buf);

@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 #include <unistd.h>
 
 using namespace mss;
@@ -127,6 +129,61 @@ TEST(MeshIo, ObjIndexFormsAndBinaryPly) {
     expectError([&] { readMesh(ply); }, "ends early");
     std::remove(obj.c_str());
     std::remove(ply.c_str());
+}
+
+namespace {
+/// @p m as ASCII STL facets (no header), at full precision.
+std::string asciiFacets(const TriangleMesh& m, std::size_t from, std::size_t to) {
+    std::ostringstream os;
+    os << std::setprecision(17);
+    for (std::size_t t = from; t < to; ++t) {
+        os << "  facet normal 0 0 1\n    outer loop\n";
+        for (int c : m.triangles[t]) {
+            const Vec3& v = m.vertices[std::size_t(c)];
+            os << "      vertex " << v.x() << ' ' << v.y() << ' ' << v.z() << "\n";
+        }
+        os << "    endloop\n  endfacet\n";
+    }
+    return os.str();
+}
+} // namespace
+
+// Files of 1 MB or more are parsed in two parts in parallel: the mesh must be exactly the one-part parse's,
+// a fault in the second part must be reported at its line, and a split that lands inside a solid's name must
+// not change the result.
+TEST(MeshIo, LargeAsciiStlReadsAsInOnePart) {
+    const TriangleMesh femur = readMesh(kData + "/human_femur.stl"); // 2.7 MB: read in two parts
+    const std::size_t n = femur.triangles.size();
+    const std::string p = tempPath("large.stl");
+    const std::string all = "solid a\n" + asciiFacets(femur, 0, n) + "endsolid a\n";
+    ASSERT_GT(all.size(), std::size_t(1) << 20);
+    writeText(p, all);
+    const TriangleMesh back = readMesh(p);
+    ASSERT_EQ(back.vertices.size(), femur.vertices.size());
+    ASSERT_EQ(back.triangles, femur.triangles); // the same vertex numbering: merged in file order
+    for (std::size_t v = 0; v < femur.vertices.size(); ++v) ASSERT_EQ(back.vertices[v], femur.vertices[v]);
+
+    // a bad number three quarters of the way in: reported at its line
+    std::string bad = all;
+    const std::size_t at = bad.find("vertex ", bad.size() * 3 / 4);
+    bad.replace(at + 7, 1, "zz");
+    const long line = 1 + std::count(bad.begin(), bad.begin() + long(at), '\n');
+    writeText(p, bad);
+    expectError([&] { readMesh(p); }, "line " + std::to_string(line) + ":");
+
+    // two solids, the second named "b endfacet c", with the middle of the file just before that name's
+    // "endfacet": the second part then starts inside the name and fails, and one part reads it all
+    const std::string head = "solid a\n" + asciiFacets(femur, 0, n / 2) + "endsolid a\n";
+    const std::string odd = "solid b endfacet c\n";
+    std::string tail = asciiFacets(femur, n / 2, n - 200) + "endsolid b\n";
+    const std::size_t total = 2 * (head.size() + 8); // the middle: inside "solid b " of the odd line
+    ASSERT_LT(head.size() + odd.size() + tail.size(), total);
+    tail.append(total - head.size() - odd.size() - tail.size(), ' ');
+    writeText(p, head + odd + tail);
+    const TriangleMesh two = readMesh(p);
+    EXPECT_EQ(two.triangles.size(), n - 200);
+    EXPECT_TRUE(std::equal(two.triangles.begin(), two.triangles.end(), femur.triangles.begin()));
+    std::remove(p.c_str());
 }
 
 TEST(MeshIo, BadFilesGetClearErrors) {
