@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <unordered_map>
 
 #ifdef _OPENMP
@@ -61,6 +63,30 @@ std::function<double(const Vec3&)> radiusBound(const Clearance& clearance, doubl
     };
 }
 
+/// A lock held for a hash lookup: std::mutex puts a waiting thread to sleep in the kernel at once, and the
+/// optimiser's threads look the bound up in bursts together (femur 70: 0.1385 -> 0.134 s with the trial
+/// bounds looked up in parallel). After a while it yields, in case the holder lost its core (shared CPUs).
+class SpinLock {
+public:
+    void lock() {
+        for (int spins = 0; flag_.exchange(true, std::memory_order_acquire);)
+            while (flag_.load(std::memory_order_relaxed))
+                if (++spins < 4096)
+                    pause();
+                else
+                    std::this_thread::yield();
+    }
+    void unlock() { flag_.store(false, std::memory_order_release); }
+
+private:
+    static void pause() {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#endif
+    }
+    std::atomic<bool> flag_{false};
+};
+
 /// The constraint in voxel units of @p S, remembering its answers: the optimiser asks again and again at the
 /// same points (moves back and forth). Exact at every point asked: an interpolation of the clearance between
 /// voxel centres (from E, or from exact values there) with the final clipping putting right what it gets
@@ -77,12 +103,12 @@ public:
         const std::array<long long, 3> key{std::llround(v.x() * 65536.0), std::llround(v.y() * 65536.0),
                                            std::llround(v.z() * 65536.0)};
         {
-            const std::lock_guard<std::mutex> lock(*mutex_);
+            const std::lock_guard<SpinLock> lock(*lock_);
             auto it = cache_->find(key);
             if (it != cache_->end()) return it->second;
         }
         const double b = world_(g_.toWorld(v)) / g_.h; // exact and deterministic: a race computes it twice
-        const std::lock_guard<std::mutex> lock(*mutex_);
+        const std::lock_guard<SpinLock> lock(*lock_);
         cache_->emplace(key, b);
         return b;
     }
@@ -98,7 +124,7 @@ private:
     // shared by the copies std::function makes, so that every run of the optimiser uses one cache
     std::shared_ptr<std::unordered_map<std::array<long long, 3>, double, KeyHash>> cache_ =
         std::make_shared<std::unordered_map<std::array<long long, 3>, double, KeyHash>>();
-    std::shared_ptr<std::mutex> mutex_ = std::make_shared<std::mutex>();
+    std::shared_ptr<SpinLock> lock_ = std::make_shared<SpinLock>();
 };
 
 /// Where the optimised method starts under a constraint: from nothing under it (cold), from the

@@ -1,6 +1,7 @@
 #include "mss/engine/refine.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 
@@ -78,12 +79,36 @@ std::vector<Move> trialMoves(const Selection& s, const Orbit& o, double step, in
     return trials;
 }
 
+/// Looks up, in parallel, the constraint at the centres trialMoves() will ask for (the bound caches its
+/// answers; which are looked up first changes no result). Exact clearance queries cost ~4 us each (femur 70:
+/// 5700 of them, 3400 asked serially before).
+void warmTrialBounds(const Selection& s, const Orbit& o, double step, int lastAxis, double lastSign) {
+    if (!s.bound) return;
+    const auto& d = s.S.spec.dims;
+    std::array<Orbit, 6> centres;
+    int n = 0;
+    for (int a = 0; a < 3; ++a) {
+        if (o.onPlane[a]) continue;
+        for (double sgn : {-1.0, 1.0}) {
+            if (a == lastAxis && sgn == -lastSign) continue;
+            Orbit trial = o;
+            trial.c[a] += sgn * step;
+            if (trial.c[a] < 1.0 || trial.c[a] > d[a] - 2.0) continue;
+            centres[std::size_t(n++)] = trial;
+        }
+    }
+    if (n < 2) return;
+#pragma omp parallel for schedule(static, 1)
+    for (int e = 0; e < n; ++e) s.orbitBound(centres[std::size_t(e)]);
+}
+
 /// Tunes one orbit (taken out of the coverage) by steps of 1/2 then 1/4 voxel; @p best: its gain, raised.
 void tune(const Selection& s, Orbit& o, long long& best) {
     for (double step : {0.5, 0.25}) {
         int lastAxis = -1;
         double lastSign = 0.0;
         for (int rep = 0; rep < 6; ++rep) {
+            warmTrialBounds(s, o, step, lastAxis, lastSign);
             const std::vector<Move> trials = trialMoves(s, o, step, lastAxis, lastSign);
             std::vector<long long> g(trials.size());
 #pragma omp parallel for schedule(dynamic, 1)
