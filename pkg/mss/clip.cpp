@@ -13,6 +13,7 @@
 #include <mutex>
 #include <numeric>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace mss {
 
@@ -223,62 +224,91 @@ struct MeshQuery::Impl {
     }
     std::vector<Box> boxes;
     /// Builds the hierarchy over the triangles (median split of the centroids along their widest extent,
-    /// leaves of at most 4) and puts the triangles in its order: O(T log T), on an index permutation.
+    /// leaves of at most 4) and puts the triangles in its order: O(T log T), on an index permutation. The
+    /// tree's shape depends on the triangle count alone (median splits), so a subtree's node numbers are known
+    /// before its left sibling is built: the top subtrees are built as parallel tasks (the query's
+    /// construction on 2 threads: femur 5.0 -> 3.1 ms, ellipsoid 6.6 -> 4.1 ms), the same tree whatever the
+    /// threads.
     void buildBoxes() {
         const int n = int(tris.size());
-        std::vector<Vec3> centroids(tris.size());
-        for (std::size_t q = 0; q < tris.size(); ++q) centroids[q] = centroid(tris[q]);
-        std::vector<int> order(tris.size());
-        std::iota(order.begin(), order.end(), 0);
-        std::vector<Vec3> area; // per node: the sum of its triangles' vector areas (twice)
-        boxes.reserve(tris.size());
-        area.reserve(tris.size());
-        buildNode(order, centroids, area, 0, n);
+        Build b{std::vector<Vec3>(tris.size()), std::vector<int>(tris.size()), {}, {}};
+        for (std::size_t q = 0; q < tris.size(); ++q) b.centroids[q] = centroid(tris[q]);
+        std::iota(b.order.begin(), b.order.end(), 0);
+        boxes.resize(std::size_t(nodeCount(n, b.memo)));
+        b.area.resize(boxes.size());
+#pragma omp parallel if (n >= 4096)
+#pragma omp single
+        buildNode(b, 0, n, 0, 0);
         std::vector<std::array<Vec3, 3>> sorted(tris.size());
-        for (std::size_t q = 0; q < tris.size(); ++q) sorted[q] = tris[std::size_t(order[q])];
+        for (std::size_t q = 0; q < tris.size(); ++q) sorted[q] = tris[std::size_t(b.order[q])];
         tris.swap(sorted);
     }
-    int buildNode(std::vector<int>& order, const std::vector<Vec3>& centroids, std::vector<Vec3>& area,
-                  int first, int count) {
+    struct Build {
+        std::vector<Vec3> centroids;
+        std::vector<int> order;
+        std::vector<Vec3> area;           // per node: the sum of its triangles' vector areas (twice)
+        std::unordered_map<int, int> memo; // nodeCount's, filled before the tasks start
+    };
+    /// Nodes of the hierarchy over @p count triangles.
+    static int nodeCount(int count, std::unordered_map<int, int>& memo) {
+        if (count <= 4) return 1;
+        if (auto it = memo.find(count); it != memo.end()) return it->second;
+        const int c = 1 + nodeCount(count / 2, memo) + nodeCount(count - count / 2, memo);
+        memo.emplace(count, c);
+        return c;
+    }
+    /// Builds node @p id over triangles order[first, first + count); returns the number after its subtree.
+    int buildNode(Build& bld, int first, int count, int id, int depth) {
         // slabs only on nodes of up to 64 triangles: above, a curved patch's slab is no thinner than its box
         constexpr int kSlabMax = 64;
-        const int id = int(boxes.size());
-        boxes.push_back({Vec3::Constant(1e300), Vec3::Constant(-1e300), first, count, -1});
-        area.push_back(Vec3::Zero());
+        const auto& order = bld.order;
+        Box& b = boxes[std::size_t(id)];
+        b = {Vec3::Constant(1e300), Vec3::Constant(-1e300), first, count, -1};
+        Vec3& area = bld.area[std::size_t(id)];
+        area = Vec3::Zero();
+        int end = id + 1;
         if (count <= 4) {
             for (int q = first; q < first + count; ++q) {
                 const auto& t = tris[std::size_t(order[std::size_t(q)])];
                 for (const Vec3& v : t) {
-                    boxes[std::size_t(id)].lo = boxes[std::size_t(id)].lo.cwiseMin(v);
-                    boxes[std::size_t(id)].hi = boxes[std::size_t(id)].hi.cwiseMax(v);
+                    b.lo = b.lo.cwiseMin(v);
+                    b.hi = b.hi.cwiseMax(v);
                 }
-                area[std::size_t(id)] += (t[1] - t[0]).cross(t[2] - t[0]);
+                area += (t[1] - t[0]).cross(t[2] - t[0]);
             }
         } else {
             Vec3 clo = Vec3::Constant(1e300), chi = Vec3::Constant(-1e300);
             for (int q = first; q < first + count; ++q) {
-                clo = clo.cwiseMin(centroids[std::size_t(order[std::size_t(q)])]);
-                chi = chi.cwiseMax(centroids[std::size_t(order[std::size_t(q)])]);
+                clo = clo.cwiseMin(bld.centroids[std::size_t(order[std::size_t(q)])]);
+                chi = chi.cwiseMax(bld.centroids[std::size_t(order[std::size_t(q)])]);
             }
             int axis = 0;
             (chi - clo).maxCoeff(&axis);
             const int mid = first + count / 2;
-            std::nth_element(order.begin() + first, order.begin() + mid, order.begin() + first + count,
+            std::nth_element(bld.order.begin() + first, bld.order.begin() + mid, bld.order.begin() + first + count,
                              [&](int x, int y) {
-                                 return centroids[std::size_t(x)][axis] < centroids[std::size_t(y)][axis];
+                                 return bld.centroids[std::size_t(x)][axis] < bld.centroids[std::size_t(y)][axis];
                              });
-            const int left = buildNode(order, centroids, area, first, mid - first);
-            const int right = buildNode(order, centroids, area, mid, first + count - mid);
-            Box& b = boxes[std::size_t(id)];
+            const int left = id + 1;
+            int right;
+            if (depth < 3 && count >= 2048) { // the top levels: the two subtrees as tasks
+                right = left + nodeCount(mid - first, bld.memo);
+#pragma omp task default(shared)
+                buildNode(bld, first, mid - first, left, depth + 1);
+                end = buildNode(bld, mid, first + count - mid, right, depth + 1);
+#pragma omp taskwait
+            } else {
+                right = buildNode(bld, first, mid - first, left, depth + 1);
+                end = buildNode(bld, mid, first + count - mid, right, depth + 1);
+            }
             b.count = 0;
             b.right = right;
             b.lo = boxes[std::size_t(left)].lo.cwiseMin(boxes[std::size_t(right)].lo);
             b.hi = boxes[std::size_t(left)].hi.cwiseMax(boxes[std::size_t(right)].hi);
-            area[std::size_t(id)] = area[std::size_t(left)] + area[std::size_t(right)];
+            area = bld.area[std::size_t(left)] + bld.area[std::size_t(right)];
         }
-        Box& b = boxes[std::size_t(id)];
-        if (count <= kSlabMax && area[std::size_t(id)].norm() > 0.0) {
-            b.normal = area[std::size_t(id)].normalized();
+        if (count <= kSlabMax && area.norm() > 0.0) {
+            b.normal = area.normalized();
             b.slabLo = 1e300;
             b.slabHi = -1e300;
             for (int q = first; q < first + count; ++q)
@@ -287,7 +317,7 @@ struct MeshQuery::Impl {
                     b.slabHi = std::max(b.slabHi, b.normal.dot(v));
                 }
         }
-        return id;
+        return end;
     }
     static Vec3 centroid(const std::array<Vec3, 3>& t) { return (t[0] + t[1] + t[2]) / 3.0; }
     /// Squared distance to the nearest triangle, starting from the bound that triangle @p hint gives (the

@@ -6,8 +6,18 @@
 namespace mss {
 
 std::size_t countSolid(const VoxelGrid& g) {
+    // byte counters over runs of 255 (they cannot overflow), so that the loop vectorises into byte compares
+    // and adds (a size_t counter widened every byte: 0.9 ms on the femur's 2.8 MB grid, called five times)
+    const std::uint8_t* p = g.data.data();
+    const std::size_t size = g.data.size();
     std::size_t n = 0;
-    for (std::uint8_t v : g.data) n += (v != 0);
+    std::size_t at = 0;
+    for (; at + 255 <= size; at += 255) {
+        std::uint8_t run = 0;
+        for (std::size_t i = 0; i < 255; ++i) run = static_cast<std::uint8_t>(run + (p[at + i] != 0));
+        n += run;
+    }
+    for (; at < size; ++at) n += (p[at] != 0);
     return n;
 }
 

@@ -85,6 +85,39 @@ TEST(Coverage, VectorGainEqualsTheRowLoop) {
         EXPECT_EQ(empty.gain(probe), bruteMismatch(S, {}) - bruteMismatch(S, {probe}));
 }
 
+TEST(Coverage, GainsOfSeveralRadiiEqualEachGain) {
+    // gains() evaluates up to four radii about one centre in one pass (refinement's trial groups): each sum
+    // must be gain() of that ball alone, also for radii whose rows start or end apart, a radius of nothing
+    // in the grid, and the two halves of the slices adding up to the whole
+    const VoxelGrid S = ellipsoid(31, 17, 13, 6);
+    Coverage cov(S);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-4, 35), rr(0.3, 14), dr(-1.5, 1.5);
+    for (int t = 0; t < 6; ++t) cov.add(Ball{Vec3(u(rng), u(rng), u(rng)), rr(rng)});
+    int nonzero = 0;
+    for (int t = 0; t < 2000; ++t) {
+        const Vec3 c(u(rng), u(rng), u(rng));
+        const int n = 1 + t % Coverage::kMaxRadii;
+        double radii[Coverage::kMaxRadii];
+        radii[0] = rr(rng);
+        for (int m = 1; m < n; ++m) radii[m] = std::max(0.3, radii[0] + (t % 5 == 0 ? 6.0 : 1.0) * dr(rng));
+        long long all[Coverage::kMaxRadii], lower[Coverage::kMaxRadii], upper[Coverage::kMaxRadii];
+        cov.gains(c, radii, n, all);
+        cov.gains(c, radii, n, lower, 0);
+        cov.gains(c, radii, n, upper, 1);
+        for (int m = 0; m < n; ++m) {
+            const long long g = cov.gain(Ball{c, radii[m]});
+            ASSERT_EQ(all[m], g) << "centre " << c.transpose() << " r " << radii[m];
+            ASSERT_EQ(lower[m] + upper[m], g) << "halves at centre " << c.transpose() << " r " << radii[m];
+            nonzero += g != 0;
+        }
+    }
+    EXPECT_GT(nonzero, 1000);
+    long long out[5];
+    const double five[5] = {1, 2, 3, 4, 5};
+    EXPECT_THROW(cov.gains(Vec3(5, 5, 5), five, 5, out), std::invalid_argument);
+}
+
 TEST(Coverage, LongRowsKeepExactSumsModulo16Bits) {
     // The prefix is kept modulo 2^16: sums over rows up to 32767 voxels long must stay exact however far
     // the prefix and its base drift as balls come and go (a ball of radius 20000 spans whole rows)

@@ -68,6 +68,91 @@ __attribute__((target("avx2"))) long long gainAvx2(const Vec3& c, double r, cons
     }
     return total;
 }
+
+/// gainAvx2 for up to four radii about one centre at once: the rows of every radius in one pass over the
+/// union of their rows, each radius with exactly gainAvx2's operations (the same rows, ends and sums). Why:
+/// refinement's trials come in groups about one centre (a move, the move touching the bound, the move
+/// sliding along the surface; the radius up and down: femur 70, 10515 trials about 5599 centres), and the
+/// ends of nearby radii lie on the same cache lines of the prefix, which is what a row costs.
+__attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radii, int n, int half,
+                                               const std::array<int, 3>& d, const std::uint16_t* prefix,
+                                               const std::uint16_t* base, long long* out) {
+    constexpr int kMax = Coverage::kMaxRadii;
+    double r2[kMax];
+    int k0[kMax], k1[kMax];
+    int kLo = INT32_MAX, kHi = INT32_MIN;
+    for (int m = 0; m < n; ++m) {
+        r2[m] = radii[m] * radii[m];
+        k0[m] = std::max(0, ceilInt(c.z() - radii[m]));
+        k1[m] = std::min(d[2] - 1, floorInt(c.z() + radii[m]));
+        kLo = std::min(kLo, k0[m]);
+        kHi = std::max(kHi, k1[m]);
+        out[m] = 0;
+    }
+    if (half >= 0) { // slices below (0) or from (1) the centre's
+        const int mid = floorInt(c.z()) + 1;
+        if (half == 0) kHi = std::min(kHi, mid - 1);
+        else kLo = std::max(kLo, mid);
+    }
+    const __m256d cx = _mm256_set1_pd(c.x()), cy = _mm256_set1_pd(c.y());
+    const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
+    const __m256d lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
+    const long long nx = d[0];
+    for (int k = kLo; k <= kHi; ++k) {
+        const double dz = k - c.z();
+        double rz2[kMax];
+        int j0[kMax], j1[kMax];
+        int jLo = INT32_MAX, jHi = INT32_MIN, live = 0;
+        for (int m = 0; m < n; ++m) {
+            rz2[m] = r2[m] - dz * dz;
+            if (k < k0[m] || k > k1[m] || rz2[m] < 0) {
+                j0[m] = 1;
+                j1[m] = 0;
+                continue;
+            }
+            const double ry = std::sqrt(rz2[m]);
+            j0[m] = std::max(0, ceilInt(c.y() - ry));
+            j1[m] = std::min(d[1] - 1, floorInt(c.y() + ry));
+            if (j0[m] > j1[m]) continue;
+            jLo = std::min(jLo, j0[m]);
+            jHi = std::max(jHi, j1[m]);
+            ++live;
+        }
+        if (live == 0) continue;
+        for (int j = jLo; j <= jHi; j += 4) {
+            const __m256d jv = _mm256_add_pd(_mm256_set1_pd(double(j)), lanes);
+            const __m256d dy = _mm256_sub_pd(jv, cy);
+            const __m256d dy2 = _mm256_mul_pd(dy, dy);
+            const long long jk = j + static_cast<long long>(d[1]) * k;
+            for (int m = 0; m < n; ++m) {
+                if (j0[m] > j1[m] || j > j1[m] || j + 3 < j0[m]) continue;
+                const __m256d rx2 = _mm256_sub_pd(_mm256_set1_pd(rz2[m]), dy2);
+                const __m256d rx = _mm256_sqrt_pd(_mm256_max_pd(rx2, zero));
+                const __m256d lo = _mm256_max_pd(
+                    zero, _mm256_round_pd(_mm256_sub_pd(cx, rx), _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC));
+                const __m256d hi = _mm256_min_pd(
+                    last, _mm256_round_pd(_mm256_add_pd(cx, rx), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+                const __m256d inRows = _mm256_and_pd(_mm256_cmp_pd(jv, _mm256_set1_pd(double(j1[m])), _CMP_LE_OQ),
+                                                     _mm256_cmp_pd(jv, _mm256_set1_pd(double(j0[m])), _CMP_GE_OQ));
+                const __m256d ok = _mm256_and_pd(_mm256_and_pd(inRows, _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ)),
+                                                 _mm256_cmp_pd(lo, hi, _CMP_LE_OQ));
+                const int mask = _mm256_movemask_pd(ok);
+                if (mask == 0) continue;
+                alignas(16) int los[4], his[4];
+                _mm_store_si128(reinterpret_cast<__m128i*>(los), _mm256_cvttpd_epi32(lo));
+                _mm_store_si128(reinterpret_cast<__m128i*>(his), _mm256_cvttpd_epi32(hi));
+                long long total = 0;
+                for (int l = 0; l < 4; ++l) {
+                    if (!(mask >> l & 1)) continue;
+                    const std::uint16_t* p = prefix + (jk + l) * nx;
+                    const std::uint16_t before = los[l] > 0 ? p[los[l] - 1] : base[jk + l];
+                    total += static_cast<std::int16_t>(static_cast<std::uint16_t>(p[his[l]] - before));
+                }
+                out[m] += total;
+            }
+        }
+    }
+}
 #endif
 
 /// One row of Coverage::changeSlice: the counts @p c of voxels i0..i1 change by @p delta; the prefix @p p
@@ -114,6 +199,18 @@ long long Coverage::gain(const Ball& b) const {
     if (kAvx2) return gainAvx2(b.c, b.r, S_.spec.dims, prefix_.data(), base_.data());
 #endif
     return gainRows(b);
+}
+
+void Coverage::gains(const Vec3& c, const double* radii, int n, long long* out, int half) const {
+    if (n < 1 || n > kMaxRadii) throw std::invalid_argument("Coverage::gains: 1 to 4 radii");
+#if MSS_GAIN_AVX2
+    static const bool kAvx2 = __builtin_cpu_supports("avx2");
+    if (kAvx2) {
+        gainsAvx2(c, radii, n, half, S_.spec.dims, prefix_.data(), base_.data(), out);
+        return;
+    }
+#endif
+    for (int m = 0; m < n; ++m) out[m] = half == 1 ? 0 : gainRows(Ball{c, radii[m]});
 }
 
 Coverage::Coverage(const VoxelGrid& target)

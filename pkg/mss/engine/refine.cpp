@@ -110,9 +110,26 @@ void tune(const Selection& s, Orbit& o, long long& best) {
         for (int rep = 0; rep < 6; ++rep) {
             warmTrialBounds(s, o, step, lastAxis, lastSign);
             const std::vector<Move> trials = trialMoves(s, o, step, lastAxis, lastSign);
-            std::vector<long long> g(trials.size());
+            // trials about one centre (the move, touching, sliding; the radius up and down) are evaluated
+            // together, in one pass over their rows
+            std::vector<int> groups; // first trial of each group, then the end
+            for (int e = 0; e < int(trials.size()); ++e)
+                if (e == 0 || trials[e].o.c != trials[e - 1].o.c ||
+                    e - groups.back() == Coverage::kMaxRadii)
+                    groups.push_back(e);
+            groups.push_back(int(trials.size()));
+            std::vector<long long> g(trials.size()), g1(trials.size());
+            std::vector<Orbit> os(trials.size());
+            for (std::size_t e = 0; e < trials.size(); ++e) os[e] = trials[e].o;
+            const int nGroups = int(groups.size()) - 1;
 #pragma omp parallel for schedule(dynamic, 1)
-            for (int e = 0; e < int(trials.size()); ++e) g[e] = s.orbitGain(trials[e].o);
+            for (int q = 0; q < 2 * nGroups; ++q) {
+                const int gq = q / 2;
+                auto& dst = q % 2 ? g1 : g;
+                s.orbitGains(&os[std::size_t(groups[gq])], groups[gq + 1] - groups[gq],
+                             &dst[std::size_t(groups[gq])], q % 2);
+            }
+            for (std::size_t e = 0; e < g.size(); ++e) g[e] += g1[e];
             int pick = -1;
             for (int e = 0; e < int(trials.size()); ++e)
                 if (g[e] > best) {

@@ -50,6 +50,10 @@ struct Selection {
     double orbitBound(const Orbit& o) const;
     /// Mismatch removed by adding all images of @p o to the coverage (exact, eq. 2 on voxels).
     long long orbitGain(const Orbit& o) const;
+    /// orbitGain() of each of the @p n orbits @p os, which differ in radius only, into @p out: one pass over
+    /// the rows of all (Coverage::gains) where each is a single ball.
+    /// @p half: as Coverage::gains (orbits of several balls: all for 0, none for 1).
+    void orbitGains(const Orbit* os, int n, long long* out, int half = -1) const;
     bool met() const { return t.met(cov.eta(), cov.dice()); }
     bool full() const { return placed >= std::size_t(t.budget); }
     void place(const Orbit& o);
