@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -64,24 +65,39 @@ void envelope1d(const float* f, float* d, int n, int* v, float* z) {
 }
 
 /// Runs envelope1d on the lines of a strided pass: lines start at base + b (b < count, consecutive x), step
-/// `stride` between samples, n samples each.
-void strided(float* data, std::size_t base, int count, std::size_t stride, int n, std::vector<float>& buf,
-             std::vector<float>& out, std::vector<int>& v, std::vector<float>& z, bool takeRoot) {
+/// `stride` between samples, samples q0..q1 of each (every sample outside that window is background: 0, and
+/// stays 0).
+void strided(float* data, std::size_t base, int count, std::size_t stride, int q0, int q1,
+             std::vector<float>& buf, std::vector<float>& out, std::vector<int>& v, std::vector<float>& z,
+             bool takeRoot) {
+    const int n = q1 - q0 + 1;
+    data += base + static_cast<std::size_t>(q0) * stride;
     for (int q = 0; q < n; ++q) {
-        const float* src = data + base + static_cast<std::size_t>(q) * stride;
+        const float* src = data + static_cast<std::size_t>(q) * stride;
         for (int b = 0; b < count; ++b) buf[static_cast<std::size_t>(b) * n + q] = src[b];
     }
     for (int b = 0; b < count; ++b)
         envelope1d(buf.data() + static_cast<std::size_t>(b) * n, out.data() + static_cast<std::size_t>(b) * n,
                    n, v.data(), z.data());
     for (int q = 0; q < n; ++q) {
-        float* dst = data + base + static_cast<std::size_t>(q) * stride;
+        float* dst = data + static_cast<std::size_t>(q) * stride;
         if (takeRoot)
             for (int b = 0; b < count; ++b) dst[b] = std::sqrt(out[static_cast<std::size_t>(b) * n + q]);
         else
             for (int b = 0; b < count; ++b) dst[b] = out[static_cast<std::size_t>(b) * n + q];
     }
 }
+
+/// The box of the solid in a plane of the grid: x from i0 to i1, the other axis from q0 to q1 (empty: i0 > i1).
+struct PlaneBox {
+    int i0 = INT32_MAX, i1 = INT32_MIN, q0 = INT32_MAX, q1 = INT32_MIN;
+    void add(int ia, int ib, int q) {
+        i0 = std::min(i0, ia);
+        i1 = std::max(i1, ib);
+        q0 = std::min(q0, q);
+        q1 = std::max(q1, q);
+    }
+};
 
 } // namespace
 
@@ -102,14 +118,22 @@ void distanceTransform(const VoxelGrid& solid, ScalarGrid& out) {
     bool anyBackground = false;
 
     // Pass 1, along x: squared distance to the nearest background voxel in the row (two scans).
+    std::vector<int> rowFirst(static_cast<std::size_t>(ny) * nz), rowLast(rowFirst.size());
 #pragma omp parallel for schedule(static) reduction(|| : anyBackground)
     for (int row = 0; row < ny * nz; ++row) {
         const std::size_t o = static_cast<std::size_t>(row) * nx;
-        int last = -1;
+        int last = -1, first = INT32_MAX, lastSolid = INT32_MIN;
         for (int i = 0; i < nx; ++i) {
-            if (!s[o + i]) last = i;
+            if (!s[o + i]) {
+                last = i;
+            } else {
+                first = std::min(first, i);
+                lastSolid = i;
+            }
             d[o + i] = last < 0 ? kInf : static_cast<float>(i - last);
         }
+        rowFirst[std::size_t(row)] = first;
+        rowLast[std::size_t(row)] = lastSolid;
         if (last >= 0) anyBackground = true;
         last = -1;
         for (int i = nx - 1; i >= 0; --i) {
@@ -121,6 +145,18 @@ void distanceTransform(const VoxelGrid& solid, ScalarGrid& out) {
     if (!anyBackground)
         throw std::invalid_argument("distanceTransform: the volume has no background voxel; pad it first");
 
+    // The solid's box in each slice k (x, y) and each plane j (x, z), from the rows' first and last solid
+    // voxels: the strided passes run only on the lines through it and only between its ends widened by one
+    // (the nearest background); everything outside is background, whose transform is 0 (femur at resolution
+    // 103: a slice's box is a fifth of the slice).
+    std::vector<PlaneBox> slice(static_cast<std::size_t>(nz)), plane(static_cast<std::size_t>(ny));
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j) {
+            const std::size_t row = static_cast<std::size_t>(k) * ny + j;
+            if (rowFirst[row] > rowLast[row]) continue;
+            slice[std::size_t(k)].add(rowFirst[row], rowLast[row], j);
+            plane[std::size_t(j)].add(rowFirst[row], rowLast[row], k);
+        }
     const std::size_t sy = static_cast<std::size_t>(nx), sz = static_cast<std::size_t>(nx) * ny;
     // Pass 2, along y, and pass 3, along z: lower envelope of parabolas, blocks of kBlock x-adjacent lines.
 #pragma omp parallel
@@ -128,14 +164,20 @@ void distanceTransform(const VoxelGrid& solid, ScalarGrid& out) {
         const int n = std::max(ny, nz);
         std::vector<float> buf(static_cast<std::size_t>(kBlock) * n), res(buf.size()), z(n + 1);
         std::vector<int> v(n);
-#pragma omp for schedule(static)
-        for (int k = 0; k < nz; ++k)
-            for (int i0 = 0; i0 < nx; i0 += kBlock)
-                strided(d, k * sz + i0, std::min(kBlock, nx - i0), sy, ny, buf, res, v, z, false);
-#pragma omp for schedule(static)
-        for (int j = 0; j < ny; ++j)
-            for (int i0 = 0; i0 < nx; i0 += kBlock)
-                strided(d, j * sy + i0, std::min(kBlock, nx - i0), sz, nz, buf, res, v, z, true);
+#pragma omp for schedule(dynamic, 4)
+        for (int k = 0; k < nz; ++k) {
+            const PlaneBox& b = slice[std::size_t(k)];
+            for (int i0 = b.i0; i0 <= b.i1; i0 += kBlock)
+                strided(d, k * sz + i0, std::min(kBlock, b.i1 + 1 - i0), sy, std::max(0, b.q0 - 1),
+                        std::min(ny - 1, b.q1 + 1), buf, res, v, z, false);
+        }
+#pragma omp for schedule(dynamic, 4)
+        for (int j = 0; j < ny; ++j) {
+            const PlaneBox& b = plane[std::size_t(j)];
+            for (int i0 = b.i0; i0 <= b.i1; i0 += kBlock)
+                strided(d, j * sy + i0, std::min(kBlock, b.i1 + 1 - i0), sz, std::max(0, b.q0 - 1),
+                        std::min(nz - 1, b.q1 + 1), buf, res, v, z, true);
+        }
     }
 }
 

@@ -49,6 +49,35 @@ TEST(Edt, MatchesBruteForceOnRandomGrids) {
     }
 }
 
+TEST(Edt, SparseSolidInALargeGridMatchesBruteForce) {
+    // The strided passes run only on the solid's box per slice and plane (test_solid_box_window): blobs of
+    // dense solid in a mostly empty grid, slices and planes with no solid, a blob against the grid's faces
+    // and rows solid from end to end (no background in the row: infinite after the first pass)
+    for (unsigned seed = 0; seed < 6; ++seed) {
+        GridSpec g;
+        g.dims = {19 + int(seed), 23 - int(seed), 17 + int(seed) % 3};
+        VoxelGrid v(g, 0);
+        std::mt19937 rng(seed);
+        std::uniform_int_distribution<int> cx(0, g.dims[0] - 1), cy(0, g.dims[1] - 1), cz(0, g.dims[2] - 1);
+        std::bernoulli_distribution dense(0.93);
+        for (int blob = 0; blob < 3; ++blob) {
+            const int x = cx(rng), y = cy(rng), z = cz(rng), rad = 2 + blob;
+            for (int k = std::max(0, z - rad); k <= std::min(g.dims[2] - 1, z + rad); ++k)
+                for (int j = std::max(0, y - rad); j <= std::min(g.dims[1] - 1, y + rad); ++j)
+                    for (int i = std::max(0, x - rad); i <= std::min(g.dims[0] - 1, x + rad); ++i)
+                        v(i, j, k) = dense(rng);
+        }
+        for (int i = 0; i < g.dims[0]; ++i) v(i, 3, 5) = 1; // a row without background
+        for (int i = 0; i < 4; ++i) v(i, 0, 0) = 1;          // at the grid's corner
+        const ScalarGrid e = distanceTransform(v);
+        for (int k = 0; k < g.dims[2]; ++k)
+            for (int j = 0; j < g.dims[1]; ++j)
+                for (int i = 0; i < g.dims[0]; ++i)
+                    ASSERT_NEAR(e(i, j, k), bruteForce(v, i, j, k), 1e-5)
+                        << seed << " " << i << " " << j << " " << k;
+    }
+}
+
 TEST(Edt, SingleBackgroundVoxelGivesEuclideanDistance) {
     GridSpec g;
     g.dims = {9, 7, 5};
