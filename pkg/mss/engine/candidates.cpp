@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <set>
+#include <unordered_set>
 
 namespace mss::engine {
 
@@ -43,28 +43,29 @@ bool onRidge(const ScalarGrid& E, int i, int j, int k) {
 /// The ridge voxels of E kept by the thinning, in voxel order, whatever the threads; @p total receives the
 /// ridge's size. Thinning keeps a voxel when a hash of its position falls under @p maxKeep / total, so that
 /// the sample is uniform in space (every k-th voxel in voxel order aliased with the grid: an axis-aligned
-/// tetrahedron got candidates on some of its edges' sheets and not on others). Two passes (count, then
-/// collect), so that only the kept voxels are ever stored: the femur's ridge is 78,000 voxels.
+/// tetrahedron got candidates on some of its edges' sheets and not on others). One pass collects the
+/// ridge as 4-byte voxel indices (the femur's 78,000: 0.3 MB), then the thinning filters them (a second
+/// pass of the ridge test over the grid cost more than the list: 3.0 ms of the femur's 4.7).
 std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E, std::size_t maxKeep, std::size_t& total) {
     const auto& d = E.spec.dims;
-    std::vector<std::size_t> counts(std::size_t(std::max(d[2], 1)), 0);
+    std::vector<std::vector<std::uint32_t>> slices(std::size_t(std::max(d[2], 1)));
 #pragma omp parallel for schedule(dynamic, 4)
-    for (int k = 1; k < d[2] - 1; ++k)
-        for (int j = 1; j < d[1] - 1; ++j)
-            for (int i = 1; i < d[0] - 1; ++i) counts[std::size_t(k)] += onRidge(E, i, j, k);
-    total = 0;
-    for (std::size_t c : counts) total += c;
-    const std::uint64_t keep =
-        total <= maxKeep ? UINT64_MAX : std::uint64_t(double(UINT64_MAX) / double(total) * double(maxKeep));
-    std::vector<std::vector<std::array<int, 3>>> slices(counts.size());
-#pragma omp parallel for schedule(dynamic, 4)
-    for (int k = 1; k < d[2] - 1; ++k)
+    for (int k = 1; k < d[2] - 1; ++k) {
+        auto& slice = slices[std::size_t(k)];
         for (int j = 1; j < d[1] - 1; ++j)
             for (int i = 1; i < d[0] - 1; ++i)
-                if (onRidge(E, i, j, k) && (keep == UINT64_MAX || mix({i, j, k}) <= keep))
-                    slices[std::size_t(k)].push_back({i, j, k});
+                if (onRidge(E, i, j, k)) slice.push_back(std::uint32_t(i + d[0] * j));
+    }
+    total = 0;
+    for (const auto& slice : slices) total += slice.size();
+    const std::uint64_t keep =
+        total <= maxKeep ? UINT64_MAX : std::uint64_t(double(UINT64_MAX) / double(total) * double(maxKeep));
     std::vector<std::array<int, 3>> ridge;
-    for (const auto& slice : slices) ridge.insert(ridge.end(), slice.begin(), slice.end());
+    for (std::size_t k = 0; k < slices.size(); ++k)
+        for (std::uint32_t v : slices[k]) {
+            const std::array<int, 3> p{int(v % std::uint32_t(d[0])), int(v / std::uint32_t(d[0])), int(k)};
+            if (keep == UINT64_MAX || mix(p) <= keep) ridge.push_back(p);
+        }
     return ridge;
 }
 } // namespace
@@ -72,7 +73,14 @@ std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E, std::size_t max
 std::vector<Orbit> candidateOrbits(const ScalarGrid& E, const Symmetry& sym, double rMinVox,
                                    std::size_t* ridgeCount) {
     std::vector<Orbit> cands;
-    std::set<std::array<long long, 3>> seen;
+    // positions seen, on an eighth of a voxel (a hash set: a tree took 1 ms more on the femur's 10,000)
+    struct KeyHash {
+        std::size_t operator()(const std::array<long long, 3>& k) const {
+            return std::size_t(mix({int(k[0]), int(k[1]), int(k[2])}));
+        }
+    };
+    std::unordered_set<std::array<long long, 3>, KeyHash> seen;
+    seen.reserve(16384);
     auto addCandidate = [&](const Vec3& c, double r) {
         if (r < rMinVox) return;
         Orbit o = sym.make(c, r); // constraints applied when the greedy first looks at it (bounded)
@@ -90,7 +98,8 @@ std::vector<Orbit> candidateOrbits(const ScalarGrid& E, const Symmetry& sym, dou
     }
     constexpr std::size_t kMaxRidge = 10000;
     std::size_t total = 0;
-    for (const auto& v : medialRidge(E, kMaxRidge, total))
+    const auto rr = medialRidge(E, kMaxRidge, total);
+    for (const auto& v : rr)
         addCandidate(Vec3(v[0], v[1], v[2]), E(v[0], v[1], v[2]) - 0.5 + kRadiusSlack);
     if (ridgeCount) *ridgeCount = total;
     return cands;
