@@ -343,6 +343,7 @@ void validateOptions(const GenerateOptions& o) {
         throw std::invalid_argument(os.str());
     };
     if (o.nSpheres < 0) bad("sphere count must be >= 1 (or 0 for no limit)", o.nSpheres);
+    if (o.nSpheres > 65535) bad("sphere count must be at most 65535", o.nSpheres);
     if (!(o.eta >= 0.0) || !(o.eta < 1.0)) bad("eta must be in [0, 1)", o.eta);
     if (!(o.dice >= 0.0) || !(o.dice < 1.0)) bad("dice must be in [0, 1)", o.dice);
     if (!(o.rMin >= 0.0) || !std::isfinite(o.rMin)) bad("rMin must be >= 0", o.rMin);

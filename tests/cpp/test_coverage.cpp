@@ -11,9 +11,12 @@ using namespace mss;
 using namespace mss::engine;
 using namespace mss::testing;
 
-TEST(Coverage, GainsAreTheExactMismatchChange) {
+class CoverageCounts : public ::testing::TestWithParam<std::size_t> {};
+
+// counts of 8 bits (at most 255 balls) and of 16 bits
+TEST_P(CoverageCounts, GainsAreTheExactMismatchChange) {
     const VoxelGrid S = ellipsoid(24, 10, 7, 5);
-    Coverage cov(S);
+    Coverage cov(S, GetParam());
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(2, 21), rr(1, 6);
     std::vector<Ball> placed;
@@ -32,6 +35,36 @@ TEST(Coverage, GainsAreTheExactMismatchChange) {
         placed.erase(placed.begin() + t);
         EXPECT_EQ(cov.mismatch(), bruteMismatch(S, placed));
     }
+}
+
+TEST_P(CoverageCounts, ManyBallsOnOneVoxelCountExactly) {
+    // up to the limit's balls on the same voxels (an 8-bit count at 255), then all removed again
+    const VoxelGrid S = ellipsoid(24, 10, 7, 5);
+    const std::size_t limit = std::min<std::size_t>(GetParam(), 300);
+    Coverage cov(S, GetParam());
+    std::vector<Ball> placed;
+    for (std::size_t t = 0; t < limit; ++t) {
+        placed.push_back(Ball{Vec3(12 + 0.01 * double(t % 7), 11.5, 11.5), 3.0 + 0.01 * double(t % 5)});
+        cov.add(placed.back());
+    }
+    EXPECT_EQ(cov.mismatch(), bruteMismatch(S, placed));
+    for (std::size_t t = 0; t + 1 < limit; ++t) cov.remove(placed[t]);
+    EXPECT_EQ(cov.mismatch(), bruteMismatch(S, {placed.back()}));
+    cov.remove(placed.back());
+    EXPECT_EQ(cov.mismatch(), bruteMismatch(S, {}));
+}
+
+INSTANTIATE_TEST_SUITE_P(Widths, CoverageCounts, ::testing::Values(std::size_t(255), std::size_t(65535)));
+
+TEST(Coverage, MoreBallsThanItsLimitAreALogicError) {
+    const VoxelGrid S = ellipsoid(24, 10, 7, 5);
+    Coverage cov(S, 2);
+    const Ball b{Vec3(12, 11.5, 11.5), 3.0};
+    cov.add(b);
+    cov.add(b);
+    EXPECT_THROW(cov.add(b), std::logic_error);
+    cov.remove(b);
+    EXPECT_NO_THROW(cov.add(b)); // two again
 }
 
 TEST(Coverage, OverlappingImagesCountedOnce) {

@@ -202,6 +202,8 @@ TEST(Generate, BadOptionsAreRefused) {
     EXPECT_THROW(generate(v, o), std::invalid_argument); // no termination criterion
     o.nSpheres = -1;
     EXPECT_THROW(generate(v, o), std::invalid_argument);
+    o.nSpheres = 65536; // the coverage counts 16 bits
+    EXPECT_THROW(generate(v, o), std::invalid_argument);
     o.nSpheres = 3;
     o.eta = -0.1;
     EXPECT_THROW(generate(v, o), std::invalid_argument);

@@ -158,16 +158,18 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
 /// One row of Coverage::changeSlice: the counts @p c of voxels i0..i1 change by @p delta; the prefix @p p
 /// (and the row's @p base) follow where a voxel flips between covered and uncovered. (An AVX2 clone of it
 /// made no measurable difference: the rows' loops are short and the prefix scan serial.)
-void changeRow(std::uint16_t* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t& base, int nx, int i0,
-               int i1, int delta, long long& dMismatch, long long& dCovered) {
-    const std::uint16_t flipAt = delta > 0 ? 0 : 1; // coverage before a flip
+/// @p Count: the counts' type (8 bits where at most 255 balls are ever placed).
+template <class Count>
+void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t& base, int nx, int i0, int i1,
+               int delta, long long& dMismatch, long long& dCovered) {
+    const Count flipAt = delta > 0 ? 0 : 1; // coverage before a flip
     int flips = 0, inside = 0;
     for (int i = i0; i <= i1; ++i) { // vectorised
         const bool flip = c[i] == flipAt;
         flips += flip;
         inside += flip & (s[i] != 0);
     }
-    for (int i = i0; i <= i1; ++i) c[i] = static_cast<std::uint16_t>(c[i] + delta);
+    for (int i = i0; i <= i1; ++i) c[i] = static_cast<Count>(c[i] + delta);
     if (flips == 0) return; // no voxel changes between covered and uncovered: prefix unchanged
     int first = i0;
     while (c[first] != flipAt + delta) ++first;
@@ -213,9 +215,13 @@ void Coverage::gains(const Vec3& c, const double* radii, int n, long long* out, 
     for (int m = 0; m < n; ++m) out[m] = half == 1 ? 0 : gainRows(Ball{c, radii[m]});
 }
 
-Coverage::Coverage(const VoxelGrid& target)
-    : S_(target), cover_(target.size(), 0), prefix_(target.size()),
-      base_(target.size() / std::size_t(target.nx()), 0), nx_(target.nx()) {
+Coverage::Coverage(const VoxelGrid& target, std::size_t maxBalls)
+    : S_(target), prefix_(target.size()), base_(target.size() / std::size_t(target.nx()), 0),
+      nx_(target.nx()), maxBalls_(std::min<std::size_t>(maxBalls, 65535)) {
+    if (maxBalls_ <= 255)
+        cover8_.assign(target.size(), 0);
+    else
+        cover16_.assign(target.size(), 0);
     if (nx_ > 32767)
         throw std::invalid_argument("Coverage: the grid is " + std::to_string(nx_) +
                                     " voxels along x; rows of more than 32767 voxels are not supported "
@@ -332,7 +338,8 @@ long long Coverage::gainMerged(const std::vector<Ball>& balls, bool mirrored) co
 void Coverage::rebuildRow(std::size_t row, int from) {
     std::uint16_t acc = from > 0 ? prefix_[row + from - 1] : base_[row / std::size_t(nx_)];
     for (int i = from; i < nx_; ++i) {
-        if (cover_[row + i] == 0) acc = static_cast<std::uint16_t>(acc + (S_.data[row + i] ? 1 : 0xFFFF));
+        const bool covered = cover8_.empty() ? cover16_[row + i] != 0 : cover8_[row + i] != 0;
+        if (!covered) acc = static_cast<std::uint16_t>(acc + (S_.data[row + i] ? 1 : 0xFFFF));
         prefix_[row + i] = acc;
     }
 }
@@ -341,6 +348,9 @@ void Coverage::change(const Ball& b, int delta) {
     // rows are independent: a large ball's slices are changed in parallel (the counts summed exactly)
     const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
               k1 = std::min(S_.spec.dims[2] - 1, floorInt(b.c.z() + b.r));
+    if (delta > 0 && balls_ >= maxBalls_)
+        throw std::logic_error("Coverage: more than " + std::to_string(maxBalls_) + " balls placed");
+    balls_ = std::size_t(static_cast<long long>(balls_) + delta);
     long long dMismatch = 0, dCovered = 0;
 #pragma omp parallel for schedule(static) reduction(+ : dMismatch, dCovered) if (b.r > 12.0)
     for (int k = k0; k <= k1; ++k) changeSlice(b, delta, k, dMismatch, dCovered);
@@ -351,8 +361,12 @@ void Coverage::change(const Ball& b, int delta) {
 void Coverage::changeSlice(const Ball& b, int delta, int k, long long& dMismatch, long long& dCovered) {
     mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k, [&](int j, int kk, int i0, int i1) {
         const std::size_t row = S_.spec.index(0, j, kk);
-        changeRow(cover_.data() + row, S_.data.data() + row, prefix_.data() + row,
-                  base_[row / std::size_t(nx_)], nx_, i0, i1, delta, dMismatch, dCovered);
+        if (cover8_.empty())
+            changeRow(cover16_.data() + row, S_.data.data() + row, prefix_.data() + row,
+                      base_[row / std::size_t(nx_)], nx_, i0, i1, delta, dMismatch, dCovered);
+        else
+            changeRow(cover8_.data() + row, S_.data.data() + row, prefix_.data() + row,
+                      base_[row / std::size_t(nx_)], nx_, i0, i1, delta, dMismatch, dCovered);
     });
 }
 

@@ -19,7 +19,9 @@ namespace mss::engine {
 /// left side): on long rows (torus, 416 voxels) the shift was most of the cost.
 class Coverage {
 public:
-    explicit Coverage(const VoxelGrid& target);
+    /// @p maxBalls: the most balls ever placed at once (at most 65535); up to 255 the counts take a byte a
+    /// voxel (femur: 2.8 MB less, and the counts' loads of a change halved). More is a logic error.
+    explicit Coverage(const VoxelGrid& target, std::size_t maxBalls = 65535);
 
     /// Decrease of the mismatch if @p b were added (negative if it would add more outside than inside). On a
     /// CPU with AVX2, four rows at a time (gainRows: the same voxels and sum).
@@ -79,7 +81,8 @@ private:
     long long gainMerged(const std::vector<Ball>& balls, bool mirrored) const;
 
     const VoxelGrid& S_;
-    BigVector<std::uint16_t> cover_;
+    BigVector<std::uint8_t> cover8_;   ///< the counts, when at most 255 balls (else empty)
+    BigVector<std::uint16_t> cover16_; ///< the counts, else
     // prefix sums modulo 2^16: only differences within a row are ever used, and they are at most the row's
     // length, which is checked to be under 2^15 (half the bytes of int32: the prefix is read at both ends of
     // every row of every ball evaluated, and written where coverage flips)
@@ -87,6 +90,7 @@ private:
     std::vector<std::uint16_t> base_; ///< per row: the prefix before its first voxel
     std::array<bool, 3> mirror_{false, false, false};
     int nx_;
+    std::size_t maxBalls_, balls_ = 0;
     std::size_t solid_ = 0, covered_ = 0;
     long long mismatch_ = 0;
 };

@@ -29,7 +29,8 @@ Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const GenerateOpt
 
 Selection::Selection(const VoxelGrid& S_, const ScalarGrid& E_, const GenerateOptions& opt_,
                      const BoundVox& bound_, SharedCandidates* shared)
-    : S(S_), E(E_), opt(opt_), bound(bound_), rMinVox(std::max(0.5, opt_.rMin / S_.spec.h)), cov(S_),
+    : S(S_), E(E_), opt(opt_), bound(bound_), rMinVox(std::max(0.5, opt_.rMin / S_.spec.h)),
+      cov(S_, opt_.nSpheres > 0 ? std::size_t(opt_.nSpheres) : 65535),
       sym(detectSymmetry(S_, cov.solid(), opt_, exactSymmetry, shared)), t{opt_.nSpheres > 0 ? opt_.nSpheres
                                                                                              : INT32_MAX,
                                                                            opt_.eta, opt_.dice} {
