@@ -74,7 +74,7 @@ __attribute__((target("avx2"))) long long gainAvx2(const Vec3& c, double r, cons
 /// refinement's trials come in groups about one centre (a move, the move touching the bound, the move
 /// sliding along the surface; the radius up and down: femur 70, 10515 trials about 5599 centres), and the
 /// ends of nearby radii lie on the same cache lines of the prefix, which is what a row costs.
-__attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radii, int n, int half,
+__attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radii, int n,
                                                const std::array<int, 3>& d, const std::uint16_t* prefix,
                                                const std::uint16_t* base, long long* out) {
     constexpr int kMax = Coverage::kMaxRadii;
@@ -88,11 +88,6 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
         kLo = std::min(kLo, k0[m]);
         kHi = std::max(kHi, k1[m]);
         out[m] = 0;
-    }
-    if (half >= 0) { // slices below (0) or from (1) the centre's
-        const int mid = floorInt(c.z()) + 1;
-        if (half == 0) kHi = std::min(kHi, mid - 1);
-        else kLo = std::max(kLo, mid);
     }
     const __m256d cx = _mm256_set1_pd(c.x()), cy = _mm256_set1_pd(c.y());
     const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
@@ -203,16 +198,16 @@ long long Coverage::gain(const Ball& b) const {
     return gainRows(b);
 }
 
-void Coverage::gains(const Vec3& c, const double* radii, int n, long long* out, int half) const {
+void Coverage::gains(const Vec3& c, const double* radii, int n, long long* out) const {
     if (n < 1 || n > kMaxRadii) throw std::invalid_argument("Coverage::gains: 1 to 4 radii");
 #if MSS_GAIN_AVX2
     static const bool kAvx2 = __builtin_cpu_supports("avx2");
     if (kAvx2) {
-        gainsAvx2(c, radii, n, half, S_.spec.dims, prefix_.data(), base_.data(), out);
+        gainsAvx2(c, radii, n, S_.spec.dims, prefix_.data(), base_.data(), out);
         return;
     }
 #endif
-    for (int m = 0; m < n; ++m) out[m] = half == 1 ? 0 : gainRows(Ball{c, radii[m]});
+    for (int m = 0; m < n; ++m) out[m] = gainRows(Ball{c, radii[m]});
 }
 
 Coverage::Coverage(const VoxelGrid& target, std::size_t maxBalls)

@@ -35,8 +35,7 @@ public:
     static constexpr int kMaxRadii = 4;
     /// gain() of the @p n (1 to kMaxRadii) balls of centre @p c and radii @p radii, each alone, into @p out:
     /// one pass over their rows (the same sums as gain() of each).
-    /// @p half: 0 or 1, only the slices below or from the centre's (two halves sum to the whole); -1: all.
-    void gains(const Vec3& c, const double* radii, int n, long long* out, int half = -1) const;
+    void gains(const Vec3& c, const double* radii, int n, long long* out) const;
     /// Decrease of the mismatch if all @p balls were added together (they may overlap each other).
     /// @p mirrored: the balls are mirror images of the first under planes that map the target and the
     /// coverage onto themselves, so apart from each other they all gain the same.

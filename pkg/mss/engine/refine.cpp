@@ -39,107 +39,88 @@ struct Move {
     double sign;
 };
 
-/// The moves from @p o by @p step: centre +- step along each free axis, radius +- step; not the reverse of
-/// the move just taken (it leads back).
-std::vector<Move> trialMoves(const Selection& s, const Orbit& o, double step, int lastAxis, double lastSign) {
+/// The trials of moving @p o by @p step along axis @p a < 3 in direction @p sgn (the move itself, under a
+/// constraint also grown to touch it, and sliding along the surface), or for @p a = 3 of its radius by
+/// sgn * step, appended to @p out: all about one centre.
+void movesAlong(const Selection& s, const Orbit& o, double step, int a, double sgn, std::vector<Move>& out) {
     const auto& d = s.S.spec.dims;
-    std::vector<Move> trials;
-    for (int a = 0; a < 4; ++a) {
-        if (a < 3 && o.onPlane[a]) continue;
-        for (double sgn : {-1.0, 1.0}) {
-            if (a == lastAxis && sgn == -lastSign) continue;
-            Orbit trial = o;
-            if (a < 3)
-                trial.c[a] += sgn * step;
-            else
-                trial.r += sgn * step;
-            if (a < 3 && (trial.c[a] < 1.0 || trial.c[a] > d[a] - 2.0)) continue;
-            const double limit = s.orbitBound(trial);
-            if (a < 3 && limit > trial.r && limit < 1e300) {
-                Orbit touching = trial; // under a constraint: grow to touch as well
-                touching.r = limit;
-                trials.push_back({touching, a, sgn});
-            }
-            if (a < 3) {
-                // slide: keep the clearance from the surface (radius changed by the change of E, trilinear).
-                // Moving a ball along a surface needs its radius and centre to change together; one
-                // coordinate at a time stalls there (ellipsoid, 40 spheres: D 0.0027 without this move,
-                // 0.00098 with it).
-                Orbit slide = trial;
-                slide.r = std::min(limit, o.r + trilinear(s.E, slide.c) - trilinear(s.E, o.c));
-                if (std::abs(slide.r - trial.r) > 1e-3 && slide.r >= s.rMinVox &&
-                    std::abs(slide.r - limit) > 1e-9)
-                    trials.push_back({slide, a, sgn});
-            }
-            trial.r = std::min(trial.r, limit);
-            if (trial.r < s.rMinVox) continue;
-            trials.push_back({trial, a, sgn});
-        }
+    Orbit trial = o;
+    if (a < 3)
+        trial.c[a] += sgn * step;
+    else
+        trial.r += sgn * step;
+    if (a < 3 && (trial.c[a] < 1.0 || trial.c[a] > d[a] - 2.0)) return;
+    const double limit = s.orbitBound(trial);
+    if (a < 3 && limit > trial.r && limit < 1e300) {
+        Orbit touching = trial; // under a constraint: grow to touch as well
+        touching.r = limit;
+        out.push_back({touching, a, sgn});
     }
-    return trials;
-}
-
-/// Looks up, in parallel, the constraint at the centres trialMoves() will ask for (the bound caches its
-/// answers; which are looked up first changes no result). Exact clearance queries cost ~4 us each (femur 70:
-/// 5700 of them, 3400 asked serially before).
-void warmTrialBounds(const Selection& s, const Orbit& o, double step, int lastAxis, double lastSign) {
-    if (!s.bound) return;
-    const auto& d = s.S.spec.dims;
-    std::array<Orbit, 6> centres;
-    int n = 0;
-    for (int a = 0; a < 3; ++a) {
-        if (o.onPlane[a]) continue;
-        for (double sgn : {-1.0, 1.0}) {
-            if (a == lastAxis && sgn == -lastSign) continue;
-            Orbit trial = o;
-            trial.c[a] += sgn * step;
-            if (trial.c[a] < 1.0 || trial.c[a] > d[a] - 2.0) continue;
-            centres[std::size_t(n++)] = trial;
-        }
+    if (a < 3) {
+        // slide: keep the clearance from the surface (radius changed by the change of E, trilinear). Moving a
+        // ball along a surface needs its radius and centre to change together; one coordinate at a time
+        // stalls there (ellipsoid, 40 spheres: D 0.0027 without this move, 0.00098 with it).
+        Orbit slide = trial;
+        slide.r = std::min(limit, o.r + trilinear(s.E, slide.c) - trilinear(s.E, o.c));
+        if (std::abs(slide.r - trial.r) > 1e-3 && slide.r >= s.rMinVox && std::abs(slide.r - limit) > 1e-9)
+            out.push_back({slide, a, sgn});
     }
-    if (n < 2) return;
-#pragma omp parallel for schedule(static, 1)
-    for (int e = 0; e < n; ++e) s.orbitBound(centres[std::size_t(e)]);
+    trial.r = std::min(trial.r, limit);
+    if (trial.r < s.rMinVox) return;
+    out.push_back({trial, a, sgn});
 }
 
 /// Tunes one orbit (taken out of the coverage) by steps of 1/2 then 1/4 voxel; @p best: its gain, raised.
+/// Each step tries the moves from the orbit: its centre +- step along each free axis, its radius +- step; not
+/// the reverse of the move just taken (it leads back); the best that gains more is taken, the first in that
+/// order on a tie. The moves about one centre (a direction's three; the radius down and up) are one task:
+/// its constraint looked up (exact queries cost ~4 us each; the bound caches) and its trials evaluated in one
+/// pass over their rows (Coverage::gains), the tasks in parallel.
 void tune(const Selection& s, Orbit& o, long long& best) {
+    struct Task {
+        int axis;
+        std::array<double, 2> signs; // 0: none
+        std::vector<Move> trials;
+        std::array<long long, Coverage::kMaxRadii> gains;
+    };
+    std::vector<Task> tasks;
+    tasks.reserve(7);
     for (double step : {0.5, 0.25}) {
         int lastAxis = -1;
         double lastSign = 0.0;
         for (int rep = 0; rep < 6; ++rep) {
-            warmTrialBounds(s, o, step, lastAxis, lastSign);
-            const std::vector<Move> trials = trialMoves(s, o, step, lastAxis, lastSign);
-            // trials about one centre (the move, touching, sliding; the radius up and down) are evaluated
-            // together, in one pass over their rows
-            std::vector<int> groups; // first trial of each group, then the end
-            for (int e = 0; e < int(trials.size()); ++e)
-                if (e == 0 || trials[e].o.c != trials[e - 1].o.c ||
-                    e - groups.back() == Coverage::kMaxRadii)
-                    groups.push_back(e);
-            groups.push_back(int(trials.size()));
-            std::vector<long long> g(trials.size()), g1(trials.size());
-            std::vector<Orbit> os(trials.size());
-            for (std::size_t e = 0; e < trials.size(); ++e) os[e] = trials[e].o;
-            const int nGroups = int(groups.size()) - 1;
-#pragma omp parallel for schedule(dynamic, 1)
-            for (int q = 0; q < 2 * nGroups; ++q) {
-                const int gq = q / 2;
-                auto& dst = q % 2 ? g1 : g;
-                s.orbitGains(&os[std::size_t(groups[gq])], groups[gq + 1] - groups[gq],
-                             &dst[std::size_t(groups[gq])], q % 2);
-            }
-            for (std::size_t e = 0; e < g.size(); ++e) g[e] += g1[e];
-            int pick = -1;
-            for (int e = 0; e < int(trials.size()); ++e)
-                if (g[e] > best) {
-                    best = g[e];
-                    pick = e;
+            tasks.clear();
+            for (int a = 0; a < 4; ++a) {
+                if (a < 3 && o.onPlane[a]) continue;
+                for (double sgn : {-1.0, 1.0}) {
+                    if (a == lastAxis && sgn == -lastSign) continue;
+                    if (a == 3 && !tasks.empty() && tasks.back().axis == 3)
+                        tasks.back().signs[1] = sgn; // the radius down and up: one centre, one task
+                    else
+                        tasks.push_back({a, {sgn, 0.0}, {}, {}});
                 }
-            if (pick < 0) break;
-            o = trials[pick].o;
-            lastAxis = trials[pick].axis;
-            lastSign = trials[pick].sign;
+            }
+#pragma omp parallel for schedule(dynamic, 1)
+            for (int q = 0; q < int(tasks.size()); ++q) {
+                Task& t = tasks[std::size_t(q)];
+                for (double sgn : t.signs)
+                    if (sgn != 0.0) movesAlong(s, o, step, t.axis, sgn, t.trials);
+                if (t.trials.empty()) continue;
+                std::array<Orbit, Coverage::kMaxRadii> os;
+                for (std::size_t e = 0; e < t.trials.size(); ++e) os[e] = t.trials[e].o;
+                s.orbitGains(os.data(), int(t.trials.size()), t.gains.data());
+            }
+            const Move* pick = nullptr;
+            for (const Task& t : tasks)
+                for (std::size_t e = 0; e < t.trials.size(); ++e)
+                    if (t.gains[e] > best) {
+                        best = t.gains[e];
+                        pick = &t.trials[e];
+                    }
+            if (!pick) break;
+            o = pick->o;
+            lastAxis = pick->axis;
+            lastSign = pick->sign;
         }
     }
 }

@@ -73,14 +73,14 @@ long long Selection::orbitGain(const Orbit& o) const {
     return cov.gain(imgs, mirrored);
 }
 
-void Selection::orbitGains(const Orbit* os, int n, long long* out, int half) const {
+void Selection::orbitGains(const Orbit* os, int n, long long* out) const {
     if (n <= Coverage::kMaxRadii && sym.images(os[0]).size() == 1) {
         double radii[Coverage::kMaxRadii];
         for (int m = 0; m < n; ++m) radii[m] = os[m].r;
-        cov.gains(sym.images(os[0])[0].c, radii, n, out, half);
+        cov.gains(sym.images(os[0])[0].c, radii, n, out);
         return;
     }
-    for (int m = 0; m < n; ++m) out[m] = half == 1 ? 0 : orbitGain(os[m]);
+    for (int m = 0; m < n; ++m) out[m] = orbitGain(os[m]);
 }
 
 void Selection::place(const Orbit& o) {

@@ -52,8 +52,7 @@ struct Selection {
     long long orbitGain(const Orbit& o) const;
     /// orbitGain() of each of the @p n orbits @p os, which differ in radius only, into @p out: one pass over
     /// the rows of all (Coverage::gains) where each is a single ball.
-    /// @p half: as Coverage::gains (orbits of several balls: all for 0, none for 1).
-    void orbitGains(const Orbit* os, int n, long long* out, int half = -1) const;
+    void orbitGains(const Orbit* os, int n, long long* out) const;
     bool met() const { return t.met(cov.eta(), cov.dice()); }
     bool full() const { return placed >= std::size_t(t.budget); }
     void place(const Orbit& o);
