@@ -98,14 +98,97 @@ void Selection::warmStart(const std::vector<Orbit>& start) {
     }
 }
 
+void Selection::takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stamp, std::vector<long long>& batch,
+                          std::vector<double>& gains) {
+    // The batch: the stale entries from the top, as the serial rule takes them (a candidate's constraint
+    // looked up when it is first reached; one that leaves no radius of at least rMin dropped). The
+    // constraints and the gains are computed together in one parallel loop, on the assumption that
+    // nothing is dropped (a constraint of at least rMin wherever a centre is inside: the default bound of
+    // a voxel); where something is, the serial rule takes it from there, with the same batch.
+    batch.clear();
+    std::vector<char> breaks; // whether the entry's orbit does not fit whole and is broken up
+    std::size_t stopper = SIZE_MAX; // the entry the batch stopped at (an orbit that does not fit whole)
+    while (!heap.empty() && batch.size() < kBatch) {
+        const std::size_t p = static_cast<std::size_t>(-heap.top().second);
+        if (stamp[p] == placed) break;
+        const bool tooMany = sym.images(cands[p]).size() > std::size_t(t.budget) - placed;
+        if (tooMany && !allowBreak) {
+            stopper = p;
+            break;
+        }
+        batch.push_back(heap.top().second);
+        breaks.push_back(tooMany);
+        heap.pop();
+    }
+    gains.assign(batch.size(), 0.0);
+    std::vector<char> dropped(batch.size() + 1, 0);
+    auto constrain = [&](std::size_t p) { // false: dropped
+        if (cands[p].bounded) return true;
+        cands[p].bounded = true;
+        cands[p].r = std::min(cands[p].r, orbitBound(cands[p]));
+        return cands[p].r >= rMinVox;
+    };
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int e = 0; e <= int(batch.size()); ++e) {
+        if (e == int(batch.size())) { // the stopper's constraint, looked up before the serial rule stops
+            if (stopper != SIZE_MAX) dropped[std::size_t(e)] = !constrain(stopper);
+            continue;
+        }
+        const std::size_t p = std::size_t(-batch[std::size_t(e)]);
+        if (!constrain(p)) {
+            dropped[std::size_t(e)] = 1;
+            continue;
+        }
+        if (breaks[std::size_t(e)]) cands[p].broken = true;
+        gains[std::size_t(e)] = double(orbitGain(cands[p])) / double(sym.images(cands[p]).size());
+    }
+    if (std::any_of(dropped.begin(), dropped.end(), [](char d) { return d != 0; })) {
+        std::vector<long long> kept;
+        std::vector<double> keptGains;
+        for (std::size_t e = 0; e < batch.size(); ++e) {
+            if (dropped[e]) {
+                used[std::size_t(-batch[e])] = 1;
+                continue;
+            }
+            kept.push_back(batch[e]);
+            keptGains.push_back(gains[e]);
+        }
+        const bool more = stopper != SIZE_MAX ? dropped[batch.size()] != 0 : batch.size() == kBatch;
+        if (stopper != SIZE_MAX && dropped[batch.size()]) {
+            heap.pop();
+            used[stopper] = 1;
+        }
+        batch.swap(kept);
+        gains.swap(keptGains);
+        const std::size_t firstNew = batch.size();
+        while (more && !heap.empty() && batch.size() < kBatch) { // the serial rule
+            const std::size_t p = static_cast<std::size_t>(-heap.top().second);
+            if (stamp[p] == placed) break;
+            if (!constrain(p)) {
+                heap.pop();
+                used[p] = 1;
+                continue;
+            }
+            if (sym.images(cands[p]).size() > std::size_t(t.budget) - placed) {
+                if (!allowBreak) break;
+                cands[p].broken = true;
+            }
+            batch.push_back(heap.top().second);
+            heap.pop();
+        }
+        gains.resize(batch.size(), 0.0);
+#pragma omp parallel for schedule(dynamic, 1)
+        for (int e = int(firstNew); e < int(batch.size()); ++e) {
+            const Orbit& o = cands[std::size_t(-batch[std::size_t(e)])];
+            gains[std::size_t(e)] = double(orbitGain(o)) / double(sym.images(o).size());
+        }
+    }
+}
+
 void Selection::greedy() {
-    using Entry = std::pair<double, long long>; // (key, -index): ties go to the lower index
     // Stale entries are re-evaluated in batches of kBatch, in parallel; the batch size does not depend on
     // the thread count, so neither does the result.
-    constexpr std::size_t kBatch = 8;
-    struct Heap : std::priority_queue<Entry> { // with a look at the entries near the top
-        const std::vector<Entry>& entries() const { return c; }
-    } heap;
+    GreedyHeap heap;
     std::vector<std::size_t> stamp(cands.size(), SIZE_MAX);
     for (std::size_t q = 0; q < cands.size(); ++q)
         if (!used[q]) heap.push({key[q], -static_cast<long long>(q)});
@@ -129,89 +212,7 @@ void Selection::greedy() {
             used[q] = 1;
             continue;
         }
-        // The batch: the stale entries from the top, as the serial rule takes them (a candidate's constraint
-        // looked up when it is first reached; one that leaves no radius of at least rMin dropped). The
-        // constraints and the gains are computed together in one parallel loop, on the assumption that
-        // nothing is dropped (a constraint of at least rMin wherever a centre is inside: the default bound of
-        // a voxel); where something is, the serial rule takes it from there, with the same batch.
-        batch.clear();
-        std::vector<char> breaks; // whether the entry's orbit does not fit whole and is broken up
-        std::size_t stopper = SIZE_MAX; // the entry the batch stopped at (an orbit that does not fit whole)
-        while (!heap.empty() && batch.size() < kBatch) {
-            const std::size_t p = static_cast<std::size_t>(-heap.top().second);
-            if (stamp[p] == placed) break;
-            const bool tooMany = sym.images(cands[p]).size() > std::size_t(t.budget) - placed;
-            if (tooMany && !allowBreak) {
-                stopper = p;
-                break;
-            }
-            batch.push_back(heap.top().second);
-            breaks.push_back(tooMany);
-            heap.pop();
-        }
-        gains.assign(batch.size(), 0.0);
-        std::vector<char> dropped(batch.size() + 1, 0);
-        auto constrain = [&](std::size_t p) { // false: dropped
-            if (cands[p].bounded) return true;
-            cands[p].bounded = true;
-            cands[p].r = std::min(cands[p].r, orbitBound(cands[p]));
-            return cands[p].r >= rMinVox;
-        };
-#pragma omp parallel for schedule(dynamic, 1)
-        for (int e = 0; e <= int(batch.size()); ++e) {
-            if (e == int(batch.size())) { // the stopper's constraint, looked up before the serial rule stops
-                if (stopper != SIZE_MAX) dropped[std::size_t(e)] = !constrain(stopper);
-                continue;
-            }
-            const std::size_t p = std::size_t(-batch[std::size_t(e)]);
-            if (!constrain(p)) {
-                dropped[std::size_t(e)] = 1;
-                continue;
-            }
-            if (breaks[std::size_t(e)]) cands[p].broken = true;
-            gains[std::size_t(e)] = double(orbitGain(cands[p])) / double(sym.images(cands[p]).size());
-        }
-        if (std::any_of(dropped.begin(), dropped.end(), [](char d) { return d != 0; })) {
-            std::vector<long long> kept;
-            std::vector<double> keptGains;
-            for (std::size_t e = 0; e < batch.size(); ++e) {
-                if (dropped[e]) {
-                    used[std::size_t(-batch[e])] = 1;
-                    continue;
-                }
-                kept.push_back(batch[e]);
-                keptGains.push_back(gains[e]);
-            }
-            const bool more = stopper != SIZE_MAX ? dropped[batch.size()] != 0 : batch.size() == kBatch;
-            if (stopper != SIZE_MAX && dropped[batch.size()]) {
-                heap.pop();
-                used[stopper] = 1;
-            }
-            batch.swap(kept);
-            gains.swap(keptGains);
-            const std::size_t firstNew = batch.size();
-            while (more && !heap.empty() && batch.size() < kBatch) { // the serial rule
-                const std::size_t p = static_cast<std::size_t>(-heap.top().second);
-                if (stamp[p] == placed) break;
-                if (!constrain(p)) {
-                    heap.pop();
-                    used[p] = 1;
-                    continue;
-                }
-                if (sym.images(cands[p]).size() > std::size_t(t.budget) - placed) {
-                    if (!allowBreak) break;
-                    cands[p].broken = true;
-                }
-                batch.push_back(heap.top().second);
-                heap.pop();
-            }
-            gains.resize(batch.size(), 0.0);
-#pragma omp parallel for schedule(dynamic, 1)
-            for (int e = int(firstNew); e < int(batch.size()); ++e) {
-                const Orbit& o = cands[std::size_t(-batch[std::size_t(e)])];
-                gains[std::size_t(e)] = double(orbitGain(o)) / double(sym.images(o).size());
-            }
-        }
+        takeBatch(heap, stamp, batch, gains);
         evaluations += batch.size();
         for (std::size_t e = 0; e < batch.size(); ++e) {
             stamp[std::size_t(-batch[e])] = placed;

@@ -5,6 +5,8 @@
 #include "mss/engine/symmetry.hpp"
 #include "mss/generate.hpp"
 
+#include <queue>
+#include <utility>
 #include <vector>
 
 namespace mss::engine {
@@ -64,6 +66,14 @@ struct Selection {
     void greedy();
     /// Problem (ii): drops orbits whose removal still meets the quality target, last placed first.
     bool prune();
+
+private:
+    using GreedyHeap = std::priority_queue<std::pair<double, long long>>; ///< (key, -index): ties to the lower
+    static constexpr std::size_t kBatch = 8;
+    /// greedy(): the stale entries at the top of @p heap (@p stamp: the placements when each was evaluated)
+    /// into @p batch, with their gains per ball.
+    void takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stamp, std::vector<long long>& batch,
+                   std::vector<double>& gains);
 };
 
 } // namespace mss::engine
