@@ -1,5 +1,6 @@
 // mss: command-line front end of the yade-mss core.
 #include "mss.hpp"
+#include "mss/cores.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -14,7 +15,6 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <sched.h>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -477,21 +477,6 @@ CLI::App* infoCommand(CLI::App& app, Args& a) {
     return i;
 }
 
-/// The processes running now (/proc/stat's procs_running, this one included); -1 if unknown.
-long processesRunning() {
-    std::ifstream f("/proc/stat");
-    std::string key;
-    while (f >> key) {
-        if (key == "procs_running") {
-            long running = -1;
-            f >> running;
-            return running;
-        }
-        f.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-    }
-    return -1;
-}
-
 /// The cores this run may use (its affinity mask, as OpenMP counts them), the threads it will start
 /// (--threads T if given, else one per core; 0 when not given) and the cores nobody else is running on now:
 /// the least of five looks at the processes running, 0.2 ms apart (a shell starting the rest of a pipeline
@@ -502,18 +487,16 @@ struct CoreUse {
 };
 CoreUse coreUse(int argc, char** argv) {
     CoreUse u;
-    u.cores = sysconf(_SC_NPROCESSORS_ONLN);
-    cpu_set_t mask;
-    if (sched_getaffinity(0, sizeof(mask), &mask) == 0) u.cores = CPU_COUNT(&mask);
+    u.cores = mss::usableCores();
     for (int k = 1; k < argc; ++k) {
         const std::string w = argv[k];
         if (w == "--threads" && k + 1 < argc) u.threadsAsked = std::atol(argv[k + 1]);
         if (w.rfind("--threads=", 0) == 0) u.threadsAsked = std::atol(w.c_str() + 10);
     }
-    long running = processesRunning();
+    long running = mss::processesRunning();
     for (int k = 0; k < 4 && running > 1; ++k) {
         usleep(200);
-        const long now = processesRunning();
+        const long now = mss::processesRunning();
         if (now >= 0) running = std::min(running, now);
     }
     u.known = running >= 1;

@@ -1,5 +1,6 @@
 #include "mss/generate.hpp"
 #include "mss/ball_rows.hpp"
+#include "mss/cores.hpp"
 #include "mss/edt.hpp"
 #include "mss/engine/optimized.hpp"
 #include "mss/engine/paper.hpp"
@@ -184,11 +185,13 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
 
 /// The OpenMP settings of one generation, restored afterwards (the host, YADE say, keeps its own): @p threads
 /// if given. Otherwise, unless waiting threads sleep soon (a passive policy, or GOMP_SPINCOUNT of at most a
-/// million rounds: the mss command sets one, yade_mss the passive policy), dynamic team sizes: the runtime
-/// then takes fewer threads on a busy machine. A waiting thread spins by default, and the optimiser's many
+/// million rounds: the mss command sets one, yade_mss the passive policy), as many threads as cores are free
+/// of other processes now (at least one; the host's own spinning threads do not count: they are the team), or
+/// where /proc cannot tell, dynamic team sizes. A waiting thread spins by default, and the optimiser's many
 /// short parallel regions made two processes of 2 threads on 2 cores each take 17x longer than alone (the
-/// fidelity tests under ctest -j2: 54.7 s; dynamic or passive: 3.2 s). (Dynamic sizes follow the one-minute
-/// load average, so they stay small for a minute after the load is gone: not what a bounded spin needs.)
+/// fidelity tests under ctest -j2: 54.7 s; dynamic or passive: 3.2 s). Dynamic sizes follow the one-minute
+/// load average, which lags a load that has just begun: femur 70 under an active policy with 3 busy
+/// processes took 0.69-1.41 s with them, against 0.40 s on one thread.
 class OmpScope {
 public:
     explicit OmpScope(int threads) {
@@ -199,7 +202,13 @@ public:
             omp_set_num_threads(threads);
             omp_set_dynamic(0);
         } else if (!waitersSleep()) {
-            omp_set_dynamic(1);
+            const long others = othersRunning();
+            if (others >= 0) {
+                omp_set_num_threads(threadsForFreeCores(usableCores(), others, threads_));
+                omp_set_dynamic(0);
+            } else {
+                omp_set_dynamic(1);
+            }
         }
 #else
         (void)threads;
