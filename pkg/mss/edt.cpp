@@ -180,23 +180,22 @@ void distanceTransform(const VoxelGrid& solid, ScalarGrid& out) {
     // Pass 2, along y, and pass 3, along z: lower envelope of parabolas, blocks of kBlock x-adjacent lines.
 #pragma omp parallel
     {
-        const int n = std::max(ny, nz);
-        std::vector<float> buf(static_cast<std::size_t>(kBlock) * n), res(buf.size()), z(n + 1);
-        std::vector<int> v(n);
+        const int longest = std::max(ny, nz);
+        std::vector<float> buf(static_cast<std::size_t>(kBlock) * longest), res(buf.size()), z(longest + 1);
+        std::vector<int> v(longest);
+        // the lines through each plane's box (plane p starts at p * outer; n samples a line, stride apart)
+        auto pass = [&](const std::vector<PlaneBox>& boxes, std::size_t outer, std::size_t stride, int n,
+                        bool takeRoot) {
 #pragma omp for schedule(dynamic, 4)
-        for (int k = 0; k < nz; ++k) {
-            const PlaneBox& b = slice[std::size_t(k)];
-            for (int i0 = b.i0; i0 <= b.i1; i0 += kBlock)
-                strided(d, k * sz + i0, std::min(kBlock, b.i1 + 1 - i0), sy, std::max(0, b.q0 - 1),
-                        std::min(ny - 1, b.q1 + 1), buf, res, v, z, false);
-        }
-#pragma omp for schedule(dynamic, 4)
-        for (int j = 0; j < ny; ++j) {
-            const PlaneBox& b = plane[std::size_t(j)];
-            for (int i0 = b.i0; i0 <= b.i1; i0 += kBlock)
-                strided(d, j * sy + i0, std::min(kBlock, b.i1 + 1 - i0), sz, std::max(0, b.q0 - 1),
-                        std::min(nz - 1, b.q1 + 1), buf, res, v, z, true);
-        }
+            for (int p = 0; p < int(boxes.size()); ++p) {
+                const PlaneBox& b = boxes[std::size_t(p)];
+                for (int i0 = b.i0; i0 <= b.i1; i0 += kBlock)
+                    strided(d, std::size_t(p) * outer + std::size_t(i0), std::min(kBlock, b.i1 + 1 - i0), stride,
+                            std::max(0, b.q0 - 1), std::min(n - 1, b.q1 + 1), buf, res, v, z, takeRoot);
+            }
+        };
+        pass(slice, sz, sy, ny, false);
+        pass(plane, sy, sz, nz, true);
     }
 }
 
