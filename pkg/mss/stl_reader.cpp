@@ -6,42 +6,59 @@
 #include <charconv>
 #include <cmath>
 #include <string_view>
-#include <unordered_map>
+#include <cstring>
+#include <vector>
 
 namespace mss::detail {
 
 namespace {
 
-/// Merges identical vertex positions (STL stores each triangle's corners separately).
+/// Merges identical vertex positions (STL stores each triangle's corners separately), in order of first
+/// appearance. An open-addressing table of vertex indices, linear probing, at most half full: a node-based map
+/// allocated a node for every corner looked up (the femur's 41,000 corners: 1.7 ms of its 7 ms read).
 class VertexMerger {
 public:
-    explicit VertexMerger(TriangleMesh& m) : mesh_(m) {}
+    explicit VertexMerger(TriangleMesh& m) : mesh_(m) { slots_.assign(1024, -1); }
     int operator()(const Vec3& p) {
-        auto [it, inserted] =
-            index_.emplace(Key{p.x(), p.y(), p.z()}, static_cast<int>(mesh_.vertices.size()));
-        if (inserted) mesh_.vertices.push_back(p);
-        return it->second;
+        const Vec3 q(p.x() == 0.0 ? 0.0 : p.x(), p.y() == 0.0 ? 0.0 : p.y(), p.z() == 0.0 ? 0.0 : p.z()); // -0 is 0
+        const std::size_t mask = slots_.size() - 1;
+        for (std::size_t s = hash(q) & mask;; s = (s + 1) & mask) {
+            const int v = slots_[s];
+            if (v < 0) {
+                slots_[s] = static_cast<int>(mesh_.vertices.size());
+                mesh_.vertices.push_back(p);
+                if (2 * mesh_.vertices.size() > slots_.size()) grow();
+                return static_cast<int>(mesh_.vertices.size()) - 1;
+            }
+            if (mesh_.vertices[std::size_t(v)] == p) return v;
+        }
     }
 
 private:
-    struct Key {
-        double x, y, z;
-        bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
-    };
-    struct Hash {
-        std::size_t operator()(const Key& k) const {
-            std::uint64_t h = 1469598103934665603ull, w;
-            for (double v : {k.x, k.y, k.z}) {
-                v = v == 0.0 ? 0.0 : v; // -0 == +0
-                std::memcpy(&w, &v, 8);
-                h = (h ^ w) * 1099511628211ull;
-                h ^= h >> 29;
-            }
-            return static_cast<std::size_t>(h);
+    static std::size_t hash(const Vec3& q) {
+        std::uint64_t h = 1469598103934665603ull, w;
+        for (int a = 0; a < 3; ++a) {
+            const double v = q[a];
+            std::memcpy(&w, &v, 8);
+            h = (h ^ w) * 1099511628211ull;
+            h ^= h >> 29;
         }
-    };
+        return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+    void grow() {
+        std::vector<int> old(slots_.size() * 2, -1);
+        old.swap(slots_);
+        const std::size_t mask = slots_.size() - 1;
+        for (std::size_t v = 0; v < mesh_.vertices.size(); ++v) {
+            const Vec3& p = mesh_.vertices[v];
+            const Vec3 q(p.x() == 0.0 ? 0.0 : p.x(), p.y() == 0.0 ? 0.0 : p.y(), p.z() == 0.0 ? 0.0 : p.z());
+            std::size_t s = hash(q) & mask;
+            while (slots_[s] >= 0) s = (s + 1) & mask;
+            slots_[s] = static_cast<int>(v);
+        }
+    }
     TriangleMesh& mesh_;
-    std::unordered_map<Key, int, Hash> index_;
+    std::vector<int> slots_;
 };
 
 void addTriangle(TriangleMesh& mesh, VertexMerger& merge, const Vec3 (&p)[3]) {

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 #include <unistd.h>
 
@@ -78,6 +79,43 @@ TEST(MeshIo, AsciiAndBinaryStlAgree) {
     EXPECT_EQ(binInfo.vertices, info.vertices); // corners merged back into shared vertices
     EXPECT_NEAR(binInfo.signedVolume, info.signedVolume, 1e-4 * info.signedVolume);
     std::remove(bin.c_str());
+}
+
+TEST(MeshIo, StlCornersMergeInOrderOfFirstAppearance) {
+    // the STL reader's vertex table (open addressing, grown as it fills): -0 and 0 are one position, vertices
+    // come in order of first appearance, and a strip of 3000 triangles (it grows the table several times)
+    // merges exactly as a plain map does
+    const std::string path = tempPath("merge.stl");
+    std::vector<std::array<Vec3, 3>> facets{{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)},
+                                            {Vec3(-0.0, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}};
+    for (int t = 0; t < 3000; ++t)
+        facets.push_back({Vec3(t, 2, 0.5 * (t % 3)), Vec3(t + 1, 2, 0.5 * ((t + 1) % 3)), Vec3(t, 3, 0)});
+    {
+        std::ofstream out(path);
+        out << std::setprecision(17) << "solid m\n";
+        for (const auto& f : facets) {
+            out << "facet normal 0 0 0\nouter loop\n";
+            for (const Vec3& v : f) out << "vertex " << v.x() << " " << v.y() << " " << v.z() << "\n";
+            out << "endloop\nendfacet\n";
+        }
+        out << "endsolid m\n";
+    }
+    const TriangleMesh m = readMesh(path);
+    std::remove(path.c_str());
+    std::map<std::array<double, 3>, int> seen;
+    std::vector<Vec3> order;
+    ASSERT_EQ(m.triangles.size(), facets.size());
+    for (std::size_t t = 0; t < facets.size(); ++t)
+        for (int c = 0; c < 3; ++c) {
+            const Vec3& v = facets[t][std::size_t(c)];
+            const std::array<double, 3> key{v.x() + 0.0, v.y() + 0.0, v.z() + 0.0}; // -0 + 0 is 0
+            auto [it, added] = seen.emplace(key, int(order.size()));
+            if (added) order.push_back(v);
+            EXPECT_EQ(m.triangles[t][std::size_t(c)], it->second) << "triangle " << t << " corner " << c;
+        }
+    ASSERT_EQ(m.vertices.size(), order.size());
+    EXPECT_EQ(m.triangles[1][0], 0); // -0 merged with 0
+    for (std::size_t v = 0; v < order.size(); ++v) EXPECT_EQ(m.vertices[v], order[v]);
 }
 
 TEST(MeshIo, ObjOffPlyAscii) {
