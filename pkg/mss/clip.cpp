@@ -225,8 +225,8 @@ struct MeshQuery::Impl {
     std::vector<Box> boxes;
     /// Builds the hierarchy over the triangles (median split of the centroids along their widest extent,
     /// leaves of at most 4) and puts the triangles in its order: O(T log T), on an index permutation. The
-    /// tree's shape depends on the triangle count alone (median splits), so a subtree's node numbers are known
-    /// before its left sibling is built: the top subtrees are built as parallel tasks (the query's
+    /// tree's shape depends on the triangle count alone (median splits), so a subtree's node numbers are
+    /// known before its left sibling is built: the top subtrees are built as parallel tasks (the query's
     /// construction on 2 threads: femur 5.0 -> 3.1 ms, ellipsoid 6.6 -> 4.1 ms), the same tree whatever the
     /// threads.
     void buildBoxes() {
@@ -246,7 +246,7 @@ struct MeshQuery::Impl {
     struct Build {
         std::vector<Vec3> centroids;
         std::vector<int> order;
-        std::vector<Vec3> area;           // per node: the sum of its triangles' vector areas (twice)
+        std::vector<Vec3> area;            // per node: the sum of its triangles' vector areas (twice)
         std::unordered_map<int, int> memo; // nodeCount's, filled before the tasks start
     };
     /// Nodes of the hierarchy over @p count triangles.
@@ -285,9 +285,10 @@ struct MeshQuery::Impl {
             int axis = 0;
             (chi - clo).maxCoeff(&axis);
             const int mid = first + count / 2;
-            std::nth_element(bld.order.begin() + first, bld.order.begin() + mid, bld.order.begin() + first + count,
-                             [&](int x, int y) {
-                                 return bld.centroids[std::size_t(x)][axis] < bld.centroids[std::size_t(y)][axis];
+            std::nth_element(bld.order.begin() + first, bld.order.begin() + mid,
+                             bld.order.begin() + first + count, [&](int x, int y) {
+                                 return bld.centroids[std::size_t(x)][axis] <
+                                        bld.centroids[std::size_t(y)][axis];
                              });
             const int left = id + 1;
             int right;
@@ -319,7 +320,9 @@ struct MeshQuery::Impl {
         }
         return end;
     }
-    static Vec3 centroid(const std::array<Vec3, 3>& t) { return (t[0] + t[1] + t[2]) / 3.0; }
+    static Vec3 centroid(const std::array<Vec3, 3>& t) {
+        return (t[0] + t[1] + t[2]) / 3.0;
+    }
     /// Squared distance to the nearest triangle, starting from the bound that triangle @p hint gives (the
     /// previous query's nearest, usually near); @p hint receives this query's nearest. Branch and bound over
     /// the boxes (each bound the larger of its box's and its slab's), nearer child first: O(log T) typical.

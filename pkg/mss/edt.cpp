@@ -89,7 +89,8 @@ void strided(float* data, std::size_t base, int count, std::size_t stride, int q
     }
 }
 
-/// The box of the solid in a plane of the grid: x from i0 to i1, the other axis from q0 to q1 (empty: i0 > i1).
+/// The box of the solid in a plane of the grid: x from i0 to i1, the other axis from q0 to q1 (empty: i0 >
+/// i1).
 struct PlaneBox {
     int i0 = INT32_MAX, i1 = INT32_MIN, q0 = INT32_MAX, q1 = INT32_MIN;
     void add(int ia, int ib, int q) {
@@ -190,8 +191,9 @@ void distanceTransform(const VoxelGrid& solid, ScalarGrid& out) {
             for (int p = 0; p < int(boxes.size()); ++p) {
                 const PlaneBox& b = boxes[std::size_t(p)];
                 for (int i0 = b.i0; i0 <= b.i1; i0 += kBlock)
-                    strided(d, std::size_t(p) * outer + std::size_t(i0), std::min(kBlock, b.i1 + 1 - i0), stride,
-                            std::max(0, b.q0 - 1), std::min(n - 1, b.q1 + 1), buf, res, v, z, takeRoot);
+                    strided(d, std::size_t(p) * outer + std::size_t(i0), std::min(kBlock, b.i1 + 1 - i0),
+                            stride, std::max(0, b.q0 - 1), std::min(n - 1, b.q1 + 1), buf, res, v, z,
+                            takeRoot);
             }
         };
         pass(slice, sz, sy, ny, false);

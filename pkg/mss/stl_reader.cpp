@@ -5,8 +5,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <string_view>
 #include <cstring>
+#include <string_view>
 #include <vector>
 
 namespace mss::detail {
@@ -14,13 +14,14 @@ namespace mss::detail {
 namespace {
 
 /// Merges identical vertex positions (STL stores each triangle's corners separately), in order of first
-/// appearance. An open-addressing table of vertex indices, linear probing, at most half full: a node-based map
-/// allocated a node for every corner looked up (the femur's 41,000 corners: 1.7 ms of its 7 ms read).
+/// appearance. An open-addressing table of vertex indices, linear probing, at most half full: a node-based
+/// map allocated a node for every corner looked up (the femur's 41,000 corners: 1.7 ms of its 7 ms read).
 class VertexMerger {
 public:
     explicit VertexMerger(TriangleMesh& m) : mesh_(m) { slots_.assign(1024, -1); }
     int operator()(const Vec3& p) {
-        const Vec3 q(p.x() == 0.0 ? 0.0 : p.x(), p.y() == 0.0 ? 0.0 : p.y(), p.z() == 0.0 ? 0.0 : p.z()); // -0 is 0
+        const Vec3 q(p.x() == 0.0 ? 0.0 : p.x(), p.y() == 0.0 ? 0.0 : p.y(),
+                     p.z() == 0.0 ? 0.0 : p.z()); // -0 is 0
         const std::size_t mask = slots_.size() - 1;
         for (std::size_t s = hash(q) & mask;; s = (s + 1) & mask) {
             const int v = slots_[s];

@@ -47,6 +47,7 @@ TEST(Cores, BusyProcessesCountAsOthers) {
         waitpid(pid, nullptr, 0);
     }
     EXPECT_GE(others, 3);
-    EXPECT_EQ(threadsForFreeCores(usableCores(), others, int(usableCores())), std::max(1L, usableCores() - others));
+    EXPECT_EQ(threadsForFreeCores(usableCores(), others, int(usableCores())),
+              std::max(1L, usableCores() - others));
 }
 #endif

@@ -68,7 +68,7 @@ TEST(Edt, SparseSolidInALargeGridMatchesBruteForce) {
                         v(i, j, k) = dense(rng);
         }
         for (int i = 0; i < g.dims[0]; ++i) v(i, 3, 5) = 1; // a row without background
-        for (int i = 0; i < 4; ++i) v(i, 0, 0) = 1;          // at the grid's corner
+        for (int i = 0; i < 4; ++i) v(i, 0, 0) = 1;         // at the grid's corner
         const ScalarGrid e = distanceTransform(v);
         for (int k = 0; k < g.dims[2]; ++k)
             for (int j = 0; j < g.dims[1]; ++j)

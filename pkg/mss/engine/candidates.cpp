@@ -99,8 +99,7 @@ std::vector<Orbit> candidateOrbits(const ScalarGrid& E, const Symmetry& sym, dou
     constexpr std::size_t kMaxRidge = 10000;
     std::size_t total = 0;
     const auto rr = medialRidge(E, kMaxRidge, total);
-    for (const auto& v : rr)
-        addCandidate(Vec3(v[0], v[1], v[2]), E(v[0], v[1], v[2]) - 0.5 + kRadiusSlack);
+    for (const auto& v : rr) addCandidate(Vec3(v[0], v[1], v[2]), E(v[0], v[1], v[2]) - 0.5 + kRadiusSlack);
     if (ridgeCount) *ridgeCount = total;
     return cands;
 }

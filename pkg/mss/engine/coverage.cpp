@@ -127,8 +127,9 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
                     zero, _mm256_round_pd(_mm256_sub_pd(cx, rx), _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC));
                 const __m256d hi = _mm256_min_pd(
                     last, _mm256_round_pd(_mm256_add_pd(cx, rx), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
-                const __m256d inRows = _mm256_and_pd(_mm256_cmp_pd(jv, _mm256_set1_pd(double(j1[m])), _CMP_LE_OQ),
-                                                     _mm256_cmp_pd(jv, _mm256_set1_pd(double(j0[m])), _CMP_GE_OQ));
+                const __m256d inRows =
+                    _mm256_and_pd(_mm256_cmp_pd(jv, _mm256_set1_pd(double(j1[m])), _CMP_LE_OQ),
+                                  _mm256_cmp_pd(jv, _mm256_set1_pd(double(j0[m])), _CMP_GE_OQ));
                 const __m256d ok = _mm256_and_pd(_mm256_and_pd(inRows, _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ)),
                                                  _mm256_cmp_pd(lo, hi, _CMP_LE_OQ));
                 const int mask = _mm256_movemask_pd(ok);

@@ -98,15 +98,15 @@ void Selection::warmStart(const std::vector<Orbit>& start) {
     }
 }
 
-void Selection::takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stamp, std::vector<long long>& batch,
-                          std::vector<double>& gains) {
+void Selection::takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stamp,
+                          std::vector<long long>& batch, std::vector<double>& gains) {
     // The batch: the stale entries from the top, as the serial rule takes them (a candidate's constraint
     // looked up when it is first reached; one that leaves no radius of at least rMin dropped). The
     // constraints and the gains are computed together in one parallel loop, on the assumption that
     // nothing is dropped (a constraint of at least rMin wherever a centre is inside: the default bound of
     // a voxel); where something is, the serial rule takes it from there, with the same batch.
     batch.clear();
-    std::vector<char> breaks; // whether the entry's orbit does not fit whole and is broken up
+    std::vector<char> breaks;       // whether the entry's orbit does not fit whole and is broken up
     std::size_t stopper = SIZE_MAX; // the entry the batch stopped at (an orbit that does not fit whole)
     while (!heap.empty() && batch.size() < kBatch) {
         const std::size_t p = static_cast<std::size_t>(-heap.top().second);

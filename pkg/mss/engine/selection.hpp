@@ -68,7 +68,8 @@ struct Selection {
     bool prune();
 
 private:
-    using GreedyHeap = std::priority_queue<std::pair<double, long long>>; ///< (key, -index): ties to the lower
+    using GreedyHeap =
+        std::priority_queue<std::pair<double, long long>>; ///< (key, -index): ties to the lower
     static constexpr std::size_t kBatch = 8;
     /// greedy(): the stale entries at the top of @p heap (@p stamp: the placements when each was evaluated)
     /// into @p batch, with their gains per ball.
