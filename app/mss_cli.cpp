@@ -478,9 +478,9 @@ CLI::App* infoCommand(CLI::App& app, Args& a) {
 }
 
 /// The cores this run may use (its affinity mask, as OpenMP counts them), the threads it will start
-/// (--threads T if given, else one per core; 0 when not given) and the cores nobody else is running on now:
-/// the least of five looks at the processes running, 0.2 ms apart (a shell starting the rest of a pipeline
-/// runs for a moment).
+/// (--threads T if given, else one per core; 0 when not given) and the cores nobody else is running on now
+/// (mss::othersRunning: the least of five looks, as a shell starting the rest of a pipeline runs for a
+/// moment).
 struct CoreUse {
     long cores = 1, threadsAsked = 0, free = 0;
     bool known = false; ///< whether /proc/stat told the processes running
@@ -493,14 +493,9 @@ CoreUse coreUse(int argc, char** argv) {
         if (w == "--threads" && k + 1 < argc) u.threadsAsked = std::atol(argv[k + 1]);
         if (w.rfind("--threads=", 0) == 0) u.threadsAsked = std::atol(w.c_str() + 10);
     }
-    long running = mss::processesRunning();
-    for (int k = 0; k < 4 && running > 1; ++k) {
-        usleep(200);
-        const long now = mss::processesRunning();
-        if (now >= 0) running = std::min(running, now);
-    }
-    u.known = running >= 1;
-    u.free = u.known ? u.cores - (running - 1) : 0; // fewer than none when more run than there are cores
+    const long others = mss::othersRunning();
+    u.known = others >= 0;
+    u.free = u.known ? u.cores - others : 0; // fewer than none when more run than there are cores
     return u;
 }
 

@@ -15,15 +15,13 @@ namespace {
 
 /// Merges identical vertex positions (STL stores each triangle's corners separately), in order of first
 /// appearance. An open-addressing table of vertex indices, linear probing, at most half full: a node-based
-/// map allocated a node for every corner looked up (the femur's 41,000 corners: 1.7 ms of its 7 ms read).
+/// map allocated a node for every corner looked up (femur read 7.9-8.2 -> 6.8-7.1 ms).
 class VertexMerger {
 public:
     explicit VertexMerger(TriangleMesh& m) : mesh_(m) { slots_.assign(1024, -1); }
     int operator()(const Vec3& p) {
-        const Vec3 q(p.x() == 0.0 ? 0.0 : p.x(), p.y() == 0.0 ? 0.0 : p.y(),
-                     p.z() == 0.0 ? 0.0 : p.z()); // -0 is 0
         const std::size_t mask = slots_.size() - 1;
-        for (std::size_t s = hash(q) & mask;; s = (s + 1) & mask) {
+        for (std::size_t s = hash(p) & mask;; s = (s + 1) & mask) {
             const int v = slots_[s];
             if (v < 0) {
                 slots_[s] = static_cast<int>(mesh_.vertices.size());
@@ -31,15 +29,15 @@ public:
                 if (2 * mesh_.vertices.size() > slots_.size()) grow();
                 return static_cast<int>(mesh_.vertices.size()) - 1;
             }
-            if (mesh_.vertices[std::size_t(v)] == p) return v;
+            if (mesh_.vertices[std::size_t(v)] == p) return v; // -0 == 0
         }
     }
 
 private:
-    static std::size_t hash(const Vec3& q) {
+    static std::size_t hash(const Vec3& p) {
         std::uint64_t h = 1469598103934665603ull, w;
         for (int a = 0; a < 3; ++a) {
-            const double v = q[a];
+            const double v = p[a] == 0.0 ? 0.0 : p[a]; // -0 hashes as 0
             std::memcpy(&w, &v, 8);
             h = (h ^ w) * 1099511628211ull;
             h ^= h >> 29;
@@ -47,13 +45,10 @@ private:
         return static_cast<std::size_t>(h ^ (h >> 32));
     }
     void grow() {
-        std::vector<int> old(slots_.size() * 2, -1);
-        old.swap(slots_);
+        slots_.assign(slots_.size() * 2, -1);
         const std::size_t mask = slots_.size() - 1;
         for (std::size_t v = 0; v < mesh_.vertices.size(); ++v) {
-            const Vec3& p = mesh_.vertices[v];
-            const Vec3 q(p.x() == 0.0 ? 0.0 : p.x(), p.y() == 0.0 ? 0.0 : p.y(), p.z() == 0.0 ? 0.0 : p.z());
-            std::size_t s = hash(q) & mask;
+            std::size_t s = hash(mesh_.vertices[v]) & mask;
             while (slots_[s] >= 0) s = (s + 1) & mask;
             slots_[s] = static_cast<int>(v);
         }

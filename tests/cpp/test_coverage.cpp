@@ -65,6 +65,10 @@ TEST(Coverage, MoreBallsThanItsLimitAreALogicError) {
     EXPECT_THROW(cov.add(b), std::logic_error);
     cov.remove(b);
     EXPECT_NO_THROW(cov.add(b)); // two again
+    cov.remove(b);
+    cov.remove(b);
+    EXPECT_THROW(cov.remove(b), std::logic_error); // none left
+    EXPECT_THROW(Coverage(S, 65536), std::invalid_argument);
 }
 
 TEST(Coverage, OverlappingImagesCountedOnce) {

@@ -42,3 +42,19 @@ TEST(Grid, SizeGuardNamesTheMemory) {
     EXPECT_THROW(checkGridSize("test", {0, 5, 5}, 1, 1 << 20), std::invalid_argument);
     EXPECT_NO_THROW(checkGridSize("test", {100, 100, 100}, 14, std::size_t(8) << 30));
 }
+
+TEST(Grid, CountSolidCountsEveryNonzeroByte) {
+    // countSolid sums runs of 255 bytes in byte counters: sizes around the run length, every byte value
+    // (a count of 255 in one run must not wrap), against a plain loop
+    for (int nx : {1, 254, 255, 256, 511, 1000}) {
+        GridSpec g;
+        g.dims = {nx, 3, 1};
+        VoxelGrid v(g, 0);
+        for (std::size_t i = 0; i < v.data.size(); ++i) v.data[i] = std::uint8_t((i * 37 + nx) % 256);
+        std::size_t plain = 0;
+        for (std::uint8_t x : v.data) plain += x != 0;
+        EXPECT_EQ(countSolid(v), plain) << nx;
+        VoxelGrid full(g, 255);
+        EXPECT_EQ(countSolid(full), full.data.size()) << nx;
+    }
+}

@@ -17,63 +17,16 @@ using mss::detail::floorInt;
 
 namespace {
 #if MSS_GAIN_AVX2
-/// Coverage::gain of one ball on AVX2, four rows (j .. j + 3) of a slice at a time: the half-widths by one
-/// vector square root, the ends by rounding; the prefix at both ends is then read lane by lane (gathers were
-/// no faster on this AMD EPYC). The same floating-point operations in the same order as forBallRows (no FMA:
-/// AVX2 alone is enabled), so the same rows, the same ends and the same integer sum as Coverage::gainRows.
-/// Why: the gain is most of selection and refinement (femur 70 on one thread: a third of the run, ~10^4
-/// balls of ~1100 rows each, each row a square root and two dependent loads); this halves it (0.44 -> 0.36
-/// s).
-__attribute__((target("avx2"))) long long gainAvx2(const Vec3& c, double r, const std::array<int, 3>& d,
-                                                   const std::uint16_t* prefix, const std::uint16_t* base) {
-    const double r2 = r * r;
-    const int k0 = std::max(0, ceilInt(c.z() - r)), k1 = std::min(d[2] - 1, floorInt(c.z() + r));
-    const __m256d cx = _mm256_set1_pd(c.x()), cy = _mm256_set1_pd(c.y());
-    const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
-    const __m256d lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
-    const long long nx = d[0];
-    long long total = 0;
-    for (int k = k0; k <= k1; ++k) {
-        const double dz = k - c.z();
-        const double rz2 = r2 - dz * dz;
-        if (rz2 < 0) continue;
-        const double ry = std::sqrt(rz2);
-        const int j0 = std::max(0, ceilInt(c.y() - ry)), j1 = std::min(d[1] - 1, floorInt(c.y() + ry));
-        const __m256d vrz2 = _mm256_set1_pd(rz2), vj1 = _mm256_set1_pd(double(j1));
-        for (int j = j0; j <= j1; j += 4) {
-            const __m256d jv = _mm256_add_pd(_mm256_set1_pd(double(j)), lanes);
-            const __m256d dy = _mm256_sub_pd(jv, cy);
-            const __m256d rx2 = _mm256_sub_pd(vrz2, _mm256_mul_pd(dy, dy));
-            const __m256d rx = _mm256_sqrt_pd(_mm256_max_pd(rx2, zero));
-            const __m256d lo = _mm256_max_pd(
-                zero, _mm256_round_pd(_mm256_sub_pd(cx, rx), _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC));
-            const __m256d hi = _mm256_min_pd(
-                last, _mm256_round_pd(_mm256_add_pd(cx, rx), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
-            const __m256d ok = _mm256_and_pd(
-                _mm256_and_pd(_mm256_cmp_pd(jv, vj1, _CMP_LE_OQ), _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ)),
-                _mm256_cmp_pd(lo, hi, _CMP_LE_OQ));
-            const int m = _mm256_movemask_pd(ok);
-            if (m == 0) continue;
-            alignas(16) int los[4], his[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(los), _mm256_cvttpd_epi32(lo));
-            _mm_store_si128(reinterpret_cast<__m128i*>(his), _mm256_cvttpd_epi32(hi));
-            const long long jk = j + static_cast<long long>(d[1]) * k;
-            for (int l = 0; l < 4; ++l) {
-                if (!(m >> l & 1)) continue;
-                const std::uint16_t* p = prefix + (jk + l) * nx;
-                const std::uint16_t before = los[l] > 0 ? p[los[l] - 1] : base[jk + l];
-                total += static_cast<std::int16_t>(static_cast<std::uint16_t>(p[his[l]] - before));
-            }
-        }
-    }
-    return total;
-}
-
-/// gainAvx2 for up to four radii about one centre at once: the rows of every radius in one pass over the
-/// union of their rows, each radius with exactly gainAvx2's operations (the same rows, ends and sums). Why:
-/// refinement's trials come in groups about one centre (a move, the move touching the bound, the move
-/// sliding along the surface; the radius up and down: femur 70, 10515 trials about 5599 centres), and the
-/// ends of nearby radii lie on the same cache lines of the prefix, which is what a row costs.
+/// Coverage::gain of up to four balls about one centre c (radii @p radii) on AVX2, each alone, into @p out:
+/// four rows (j .. j + 3) of a slice at a time over the union of their rows, the half-widths by one vector
+/// square root, the ends by rounding; the prefix at both ends is then read lane by lane (gathers were no
+/// faster on an AMD EPYC). The same floating-point operations in the same order as forBallRows (no FMA: AVX2
+/// alone is enabled), so the same rows, the same ends and the same integer sums as Coverage::gainRows. Why:
+/// the gain is most of selection and refinement (femur 70 on one thread: a third of the run, ~10^4 balls of
+/// ~1100 rows each, each row a square root and two dependent loads); four rows at a time halved it (0.44 ->
+/// 0.36 s). Several radii at once, since refinement's trials come in groups about one centre (a move, the
+/// move touching the bound, the move sliding along the surface; the radius up and down: femur 70, 10515
+/// trials about 5599 centres), and the ends of nearby radii lie on the same cache lines of the prefix.
 __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radii, int n,
                                                const std::array<int, 3>& d, const std::uint16_t* prefix,
                                                const std::uint16_t* base, long long* out) {
@@ -194,7 +147,11 @@ void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t&
 long long Coverage::gain(const Ball& b) const {
 #if MSS_GAIN_AVX2
     static const bool kAvx2 = __builtin_cpu_supports("avx2");
-    if (kAvx2) return gainAvx2(b.c, b.r, S_.spec.dims, prefix_.data(), base_.data());
+    if (kAvx2) {
+        long long g = 0;
+        gainsAvx2(b.c, &b.r, 1, S_.spec.dims, prefix_.data(), base_.data(), &g);
+        return g;
+    }
 #endif
     return gainRows(b);
 }
@@ -212,16 +169,20 @@ void Coverage::gains(const Vec3& c, const double* radii, int n, long long* out) 
 }
 
 Coverage::Coverage(const VoxelGrid& target, std::size_t maxBalls)
-    : S_(target), prefix_(target.size()), base_(target.size() / std::size_t(target.nx()), 0),
-      nx_(target.nx()), maxBalls_(std::min<std::size_t>(maxBalls, 65535)) {
-    if (maxBalls_ <= 255)
-        cover8_.assign(target.size(), 0);
-    else
-        cover16_.assign(target.size(), 0);
+    : S_(target), nx_(target.nx()), maxBalls_(maxBalls) {
     if (nx_ > 32767)
         throw std::invalid_argument("Coverage: the grid is " + std::to_string(nx_) +
                                     " voxels along x; rows of more than 32767 voxels are not supported "
                                     "(a coarser resolution)");
+    if (maxBalls > 65535)
+        throw std::invalid_argument("Coverage: at most 65535 balls (16-bit counts), asked for " +
+                                    std::to_string(maxBalls));
+    if (maxBalls_ <= 255)
+        cover8_.assign(target.size(), 0);
+    else
+        cover16_.assign(target.size(), 0);
+    prefix_.resize(target.size());
+    base_.assign(target.size() / std::size_t(nx_), 0);
     solid_ = countSolid(target);
     mismatch_ = static_cast<long long>(solid_);
     const long long rows = static_cast<long long>(target.size() / std::size_t(nx_));
@@ -346,6 +307,7 @@ void Coverage::change(const Ball& b, int delta) {
               k1 = std::min(S_.spec.dims[2] - 1, floorInt(b.c.z() + b.r));
     if (delta > 0 && balls_ >= maxBalls_)
         throw std::logic_error("Coverage: more than " + std::to_string(maxBalls_) + " balls placed");
+    if (delta < 0 && balls_ == 0) throw std::logic_error("Coverage: a ball removed where none is placed");
     balls_ = std::size_t(static_cast<long long>(balls_) + delta);
     long long dMismatch = 0, dCovered = 0;
 #pragma omp parallel for schedule(static) reduction(+ : dMismatch, dCovered) if (b.r > 12.0)
