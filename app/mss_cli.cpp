@@ -527,12 +527,15 @@ int main(int argc, char** argv) {
         // malloc's own blocks on transparent huge pages too (glibc >= 2.35; older ones ignore the names), and
         // blocks under 32 MB from its heap, kept for reuse: a fresh 4 KiB page costs a fault of 10-15 us
         // under this VM's kernel (copying the ellipsoid's 20480 triangles, 1.5 MB, took 5.7 ms, and building
-        // the mesh hierarchy 19 ms; 7-9 ms so). The large arrays are on huge pages in the library
-        // (BigAllocator).
+        // the mesh hierarchy 19 ms; 7-9 ms so). The heap grows 8 MB at a time (top_pad): grown by the
+        // default 128 KiB, its new pages seldom made a whole 2 MiB range of the mapping, and took 4 KiB pages
+        // (ellipsoid 10: 1500-1900 faults a run -> 900-1250). The large arrays are on huge pages in the
+        // library (BigAllocator).
         const char* tunables = std::getenv("GLIBC_TUNABLES");
         std::string t = tunables ? tunables : "";
-        for (const char* tunable : {"glibc.malloc.hugetlb=1", "glibc.malloc.mmap_threshold=33554432",
-                                    "glibc.malloc.trim_threshold=268435456"}) {
+        for (const char* tunable :
+             {"glibc.malloc.hugetlb=1", "glibc.malloc.mmap_threshold=33554432",
+              "glibc.malloc.trim_threshold=268435456", "glibc.malloc.top_pad=8388608"}) {
             const std::string name(tunable, std::strchr(tunable, '=') + 1);
             if (t.find(name) == std::string::npos) t += (t.empty() ? "" : ":") + std::string(tunable);
         }

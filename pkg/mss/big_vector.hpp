@@ -81,8 +81,16 @@ template <class T> struct BigAllocator {
 private:
     static constexpr std::size_t kHuge = std::size_t(2) << 20;
 #if defined(__linux__)
+    /// The block's mapping: up to its last 4 KiB page, or up to a whole huge page where the part of the
+    /// block beyond its last whole huge page is at least half of one. The kernel gives a huge page only to a
+    /// whole 2 MiB range, and each 4 KiB page of such a tail faulted on its own (~11 us each on this VM's
+    /// kernel: femur 70 at resolution 103, ~400 of a run's ~1500 faults were the tails of its four grids);
+    /// a tail of less than half stays on small pages, so that no block holds more than a MiB it does not use
+    /// (femur at resolution 100: peak memory 13.2 -> 13.5 B/voxel, at most; rounding every tail: 14.3).
     static std::size_t mappedLength(std::size_t bytes) {
         static const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
+        const std::size_t tail = bytes % kHuge;
+        if (tail >= kHuge / 2) return bytes - tail + kHuge;
         return (bytes + page - 1) / page * page;
     }
 #endif

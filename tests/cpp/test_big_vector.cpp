@@ -11,8 +11,9 @@
 using namespace mss;
 
 namespace {
-/// The VmFlags line of the mapping of /proc/self/smaps that holds @p p ("" when none is found).
-std::string vmFlagsOf(const void* p) {
+/// The VmFlags line of the mapping of /proc/self/smaps that holds @p p ("" when none is found); @p end, if
+/// given, receives the end of that mapping.
+std::string vmFlagsOf(const void* p, std::uintptr_t* end = nullptr) {
     std::ifstream smaps("/proc/self/smaps");
     const auto a = reinterpret_cast<std::uintptr_t>(p);
     std::string line;
@@ -23,6 +24,7 @@ std::string vmFlagsOf(const void* p) {
         std::istringstream head(line);
         if (head >> std::hex >> lo >> dash >> hi && dash == '-') {
             inside = a >= lo && a < hi;
+            if (inside && end) *end = hi;
             continue;
         }
         if (inside && line.rfind("VmFlags:", 0) == 0) return line;
@@ -55,5 +57,18 @@ TEST(BigVector, LargeBlocksAreAlignedAndMarkedForHugePages) {
     const VoxelGrid g(GridSpec{{256, 128, 128}, 1.0, Vec3::Zero()}, 1);
     EXPECT_EQ(reinterpret_cast<std::uintptr_t>(g.data.data()) % (std::size_t(2) << 20), 0u);
     EXPECT_EQ(countSolid(g), g.size());
+}
+
+TEST(BigVector, ATailOfHalfAHugePageOrMoreIsMappedWhole) {
+    // 5 MiB: two whole huge pages and a tail of half of one, which gets a whole huge page of its own (4 KiB
+    // pages there each faulted on their own); the mapping reaches to the end of that page
+    constexpr std::size_t kHuge = std::size_t(2) << 20;
+    BigVector<std::uint8_t> big(5 * (kHuge / 2));
+    std::uintptr_t end = 0;
+    ASSERT_FALSE(vmFlagsOf(big.data(), &end).empty());
+    const auto begin = reinterpret_cast<std::uintptr_t>(big.data());
+    EXPECT_GE(end, begin + 3 * kHuge);
+    big.back() = 1; // the block's own bytes are usable to the last
+    EXPECT_EQ(big.back(), 1);
 }
 #endif
