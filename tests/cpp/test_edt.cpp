@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <climits>
 #include <cmath>
 #include <random>
 #ifdef _OPENMP
@@ -115,4 +117,28 @@ TEST(Edt, NoBackgroundIsAnError) {
     g.dims = {3, 3, 3};
     VoxelGrid v(g, 1);
     EXPECT_THROW(distanceTransform(v), std::invalid_argument);
+}
+
+TEST(Edt, FewSeedsFarApartMatchBruteForce) {
+    // long distances along y and z (up to ~90 voxels): the envelope's intersections are fractions of whole
+    // numbers up to ~10^4 compared by multiplying out (test_envelope_without_division); a few background
+    // seeds in a solid block, checked against the distance to the nearest seed
+    GridSpec g;
+    g.dims = {12, 130, 110};
+    VoxelGrid v(g, 1);
+    std::mt19937 rng(7);
+    std::vector<std::array<int, 3>> seeds{{0, 0, 0}, {11, 129, 109}};
+    for (int s = 0; s < 5; ++s) seeds.push_back({int(rng() % 12), int(rng() % 130), int(rng() % 110)});
+    for (const auto& s : seeds) v(s[0], s[1], s[2]) = 0;
+    const ScalarGrid e = distanceTransform(v);
+    for (int k = 0; k < g.dims[2]; ++k)
+        for (int j = 0; j < g.dims[1]; ++j)
+            for (int i = 0; i < g.dims[0]; ++i) {
+                long long best = LLONG_MAX;
+                for (const auto& s : seeds)
+                    best = std::min(best, (long long)(s[0] - i) * (s[0] - i) +
+                                              (long long)(s[1] - j) * (s[1] - j) +
+                                              (long long)(s[2] - k) * (s[2] - k));
+                ASSERT_NEAR(e(i, j, k), std::sqrt(double(best)), 1e-4) << i << " " << j << " " << k;
+            }
 }
