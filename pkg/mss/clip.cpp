@@ -364,6 +364,34 @@ struct MeshQuery::Impl {
         hint = bestTri;
         return best;
     }
+    /// Whether every triangle is farther than sqrt(@p t2) from p: the same branch and bound with the bound
+    /// fixed at t2, ending at the first triangle nearer (after @p hint's).
+    bool fartherThan(const Vec3& p, double t2, int& hint) const {
+        auto nearer = [&](int q) {
+            const auto& t = tris[std::size_t(q)];
+            if (squaredDistanceToTriangle(p, t[0], t[1], t[2]) > t2) return false;
+            hint = q;
+            return true;
+        };
+        if (hint >= 0 && hint < int(tris.size()) && nearer(hint)) return false;
+        int stack[128];
+        int top = 0;
+        if (squaredDistanceToBox(p, boxes[0].lo, boxes[0].hi) <= t2) stack[top++] = 0;
+        while (top > 0) {
+            const Box& b = boxes[std::size_t(stack[--top])];
+            if (b.count > 0) {
+                for (int t = b.first; t < b.first + b.count; ++t)
+                    if (nearer(t)) return false;
+                continue;
+            }
+            for (const int c : {b.right, int(&b - boxes.data()) + 1}) { // the left child on top
+                const Box& bc = boxes[std::size_t(c)];
+                if (std::max(squaredDistanceToBox(p, bc.lo, bc.hi), squaredDistanceToSlab(p, bc)) <= t2)
+                    stack[top++] = c;
+            }
+        }
+        return true;
+    }
     // winding-number hierarchy: nodes over a permutation of the triangles
     struct Node {
         Vec3 center;      // area-weighted centroid
@@ -458,6 +486,17 @@ double MeshQuery::distance(const Vec3& p) const {
         hint = -1;
     }
     return std::sqrt(impl_->squaredDistance(p, hint));
+}
+
+bool MeshQuery::fartherThan(const Vec3& p, double t) const {
+    if (!(t >= 0.0)) return t < 0.0; // every distance is >= 0; NaN: no
+    thread_local std::uint64_t owner = 0;
+    thread_local int hint = -1;
+    if (owner != impl_->id) {
+        owner = impl_->id;
+        hint = -1;
+    }
+    return impl_->fartherThan(p, t * t, hint);
 }
 
 double MeshQuery::winding(const Vec3& p) const {

@@ -133,6 +133,33 @@ TEST(Clip, DistanceIsExactWhereAWholeRingIsNearest) {
     }
 }
 
+TEST(Clip, FartherThanAgreesWithTheDistance) {
+    // fartherThan(p, t) is distance(p) > t, decided with the branch and bound pruned at t: at thresholds
+    // well below, just below, at, just above and well above the brute-force distance, from the ellipsoid's
+    // axis (a ring of triangles nearly as near) and from points all over the femur's box
+    for (const std::string name : {"ellipsoid_2_1_1.stl", "human_femur.stl"}) {
+        const TriangleMesh m = readMesh(kData + "/" + name);
+        const MeshInfo info = analyzeMesh(m);
+        const Vec3 mid = 0.5 * (info.lower + info.upper), ext = info.upper - info.lower;
+        MeshQuery q(m);
+        std::mt19937 rng(11);
+        std::uniform_real_distribution<double> u(-0.2, 1.2);
+        std::vector<Vec3> points;
+        for (int k = 0; k <= 20; ++k) points.push_back(mid + Vec3((-0.45 + 0.045 * k) * ext.x(), 0.0, 0.0));
+        for (int k = 0; k < 20; ++k)
+            points.push_back(info.lower + ext.cwiseProduct(Vec3(u(rng), u(rng), u(rng))));
+        for (const Vec3& p : points) {
+            const double d = bruteDistance(m, p), eps = 1e-9 * ext.norm();
+            for (double t : {0.5 * d, d - 1e-3 * ext.norm(), d - eps})
+                if (t >= 0) EXPECT_TRUE(q.fartherThan(p, t)) << name << " d " << d << " t " << t;
+            for (double t : {d + eps, d + 1e-3 * ext.norm(), 2.0 * d + 1.0})
+                EXPECT_FALSE(q.fartherThan(p, t)) << name << " d " << d << " t " << t;
+        }
+        EXPECT_TRUE(q.fartherThan(mid, -1.0)); // every distance is more than a negative one
+        EXPECT_FALSE(q.fartherThan(mid, std::nan("")));
+    }
+}
+
 class ClipEveryMesh : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ClipEveryMesh, NoSphereProtrudes) {

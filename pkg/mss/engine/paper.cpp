@@ -27,7 +27,7 @@ std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Genera
                 near = near || (b.c - c.position).norm() < opt.deltaMin; // δmin, section 3.4
             if (near) continue;
             double r = c.voxelValue;
-            if (bound) r = std::min(r, bound(c.position)); // clipped (section 3.5)
+            if (bound) r = bound.clamp(c.position, r); // clipped (section 3.5)
             if (r < std::max(rMinVox, 1e-3)) continue;
             balls.push_back({c.position, r});
             ++added;

@@ -64,6 +64,13 @@ double Selection::orbitBound(const Orbit& o) const {
     return b;
 }
 
+double Selection::clampToBound(const Orbit& o) const {
+    double r = o.r;
+    if (bound)
+        for (const Ball& x : sym.images(o)) r = bound.clamp(x.c, r);
+    return r;
+}
+
 // While the target is exactly mirror symmetric and every placed orbit is whole, the coverage is symmetric
 // too: images apart from each other gain the same, so one is counted (the ellipsoid's orbits have up to 8).
 long long Selection::orbitGain(const Orbit& o) const {
@@ -91,7 +98,7 @@ void Selection::place(const Orbit& o) {
 
 void Selection::warmStart(const std::vector<Orbit>& start) {
     for (Orbit o : start) {
-        o.r = std::min(o.r, orbitBound(o));
+        o.r = clampToBound(o);
         o.bounded = true;
         if (o.r < rMinVox || sym.images(o).size() > std::size_t(t.budget) - placed) continue;
         place(o);
@@ -125,7 +132,7 @@ void Selection::takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stam
     auto constrain = [&](std::size_t p) { // false: dropped
         if (cands[p].bounded) return true;
         cands[p].bounded = true;
-        cands[p].r = std::min(cands[p].r, orbitBound(cands[p]));
+        cands[p].r = clampToBound(cands[p]);
         return cands[p].r >= rMinVox;
     };
 #pragma omp parallel for schedule(dynamic, 1)

@@ -50,6 +50,8 @@ struct Selection {
 
     /// The largest radius the constraints allow for all images of an orbit (+inf without constraint).
     double orbitBound(const Orbit& o) const;
+    /// The radius of @p o cut down to orbitBound(o) (BoundVox::clamp: cheaper where the bound does not bind).
+    double clampToBound(const Orbit& o) const;
     /// Mismatch removed by adding all images of @p o to the coverage (exact, eq. 2 on voxels).
     long long orbitGain(const Orbit& o) const;
     /// orbitGain() of each of the @p n orbits @p os, which differ in radius only, into @p out: one pass over
