@@ -1,6 +1,26 @@
 #include "mss/big_vector.hpp"
 
-namespace mss::detail {
+#include <mutex>
+#include <utility>
+#include <vector>
+
+namespace mss {
+
+namespace {
+struct Reuse {
+    std::mutex lock;
+    int alive = 0; // BigBlockReuse objects
+    std::vector<std::pair<void*, std::size_t>> blocks;
+    std::size_t bytes = 0;
+};
+Reuse& reuse() {
+    static Reuse r;
+    return r;
+}
+constexpr std::size_t kMaxKept = std::size_t(1) << 30;
+} // namespace
+
+namespace detail {
 
 void prefaultHugePages(void* p, std::size_t len) {
     constexpr std::size_t kPage = std::size_t(2) << 20;
@@ -11,4 +31,45 @@ void prefaultHugePages(void* p, std::size_t len) {
     for (long long q = 0; q < pages; ++q) bytes[std::size_t(q) * kPage] = 0;
 }
 
-} // namespace mss::detail
+void* takeReusedBlock(std::size_t len) {
+    Reuse& r = reuse();
+    const std::lock_guard<std::mutex> guard(r.lock);
+    for (std::size_t q = 0; q < r.blocks.size(); ++q)
+        if (r.blocks[q].second == len) {
+            void* p = r.blocks[q].first;
+            r.blocks.erase(r.blocks.begin() + std::ptrdiff_t(q));
+            r.bytes -= len;
+            return p;
+        }
+    return nullptr;
+}
+
+bool keepForReuse(void* p, std::size_t len) {
+    Reuse& r = reuse();
+    const std::lock_guard<std::mutex> guard(r.lock);
+    if (r.alive == 0 || r.bytes + len > kMaxKept) return false;
+    r.blocks.emplace_back(p, len);
+    r.bytes += len;
+    return true;
+}
+
+} // namespace detail
+
+BigBlockReuse::BigBlockReuse() {
+    Reuse& r = reuse();
+    const std::lock_guard<std::mutex> guard(r.lock);
+    ++r.alive;
+}
+
+BigBlockReuse::~BigBlockReuse() {
+    Reuse& r = reuse();
+    const std::lock_guard<std::mutex> guard(r.lock);
+    if (--r.alive > 0) return;
+#if defined(__linux__)
+    for (const auto& [p, len] : r.blocks) munmap(p, len);
+#endif
+    r.blocks.clear();
+    r.bytes = 0;
+}
+
+} // namespace mss

@@ -508,6 +508,7 @@ Mismatch mismatch(const VoxelGrid& target, const SphereSet& spheres) {
 Result generate(const VoxelGrid& volume, const GenerateOptions& options) {
     validateOptions(options);
     const OmpScope omp(options.threads);
+    const BigBlockReuse reuse; // the optimiser's runs under a bound reuse each other's coverage blocks
     const auto start = Clock::now();
     Metrics m;
     const VoxelGrid S = padVoxels(volume, 2); // eq. 6
@@ -518,6 +519,7 @@ Result generate(const TriangleMesh& mesh, const Resolution& resolution, const Ge
                 int supersample) {
     validateOptions(options);
     const OmpScope omp(options.threads);
+    const BigBlockReuse reuse; // the optimiser's runs under a bound reuse each other's coverage blocks
     const auto start = Clock::now();
     Metrics m;
     auto t0 = Clock::now();

@@ -71,4 +71,34 @@ TEST(BigVector, ATailOfHalfAHugePageOrMoreIsMappedWhole) {
     big.back() = 1; // the block's own bytes are usable to the last
     EXPECT_EQ(big.back(), 1);
 }
+
+TEST(BigVector, BlocksAreReusedWhileAScopeIsAliveAndUnmappedAfter) {
+    constexpr std::size_t kN = std::size_t(3) << 20; // 3 MiB: a large block
+    const void* first = nullptr;
+    {
+        const BigBlockReuse reuse;
+        {
+            BigVector<std::uint8_t> a(kN, 7);
+            first = a.data();
+        } // given back: kept
+        BigVector<std::uint8_t> b(kN);
+        EXPECT_EQ(static_cast<const void*>(b.data()), first);               // the same block again
+        for (std::size_t q = 0; q < kN; q += 4093) ASSERT_EQ(b[q], 0) << q; // value-initialised anew
+        BigVector<std::uint8_t> c(kN); // none kept of that size now: a fresh one
+        EXPECT_NE(static_cast<const void*>(c.data()), first);
+        {
+            const BigBlockReuse nested; // ends first: nothing is unmapped while the outer one lives
+        }
+        const void* kept = c.data();
+        c = BigVector<std::uint8_t>();
+        BigVector<std::uint8_t> d(kN);
+        EXPECT_EQ(static_cast<const void*>(d.data()), kept);
+    } // the last scope ends: every kept block is unmapped
+    BigVector<std::uint8_t> e(kN);
+    {
+        const void* p = e.data();
+        e = BigVector<std::uint8_t>(); // no scope: unmapped at once
+        EXPECT_TRUE(vmFlagsOf(p).empty()) << "a block given back outside any scope is still mapped";
+    }
+}
 #endif
