@@ -25,7 +25,8 @@ class BoundVox {
 public:
     BoundVox() = default;
     /// The bound alone: clamp() asks it every time.
-    template <class F, class = std::enable_if_t<std::is_invocable_r_v<double, const F&, const Vec3&>>>
+    template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, BoundVox> &&
+                                                std::is_invocable_r_v<double, const F&, const Vec3&>>>
     BoundVox(F bound) : bound_(std::move(bound)) {}
     /// The bound, and @p clamp: min(r, bound(c)) exactly, from a cheaper test where it can tell that the
     /// bound does not bind.
