@@ -54,6 +54,67 @@ TEST_P(CoverageCounts, ManyBallsOnOneVoxelCountExactly) {
     EXPECT_EQ(cov.mismatch(), bruteMismatch(S, {}));
 }
 
+TEST_P(CoverageCounts, MirrorPairsChangedTogetherAsEachAlone) {
+    // an orbit's x-mirror images (the same rows) are changed in one pass over the union of their runs:
+    // overlapping, touching, apart, against the grid's ends, large (changed slice by slice in parallel) and
+    // mixed with a ball alone; the mismatch, the covered count and every gain after it as with one change
+    // a ball (test_mirror_pair_change)
+    const VoxelGrid S = ellipsoid(60, 26, 22, 18);
+    Coverage together(S, GetParam()), alone(S, GetParam());
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<std::vector<Ball>> orbits;
+    const double cx = 0.5 * (S.nx() - 1);
+    for (int t = 0; t < 14; ++t) {
+        const double r = t == 0 ? 14.5 : 1 + 9 * u(rng), off = t == 1 ? 0.25 : 25 * u(rng);
+        const double y = 4 + 18 * u(rng), z = 4 + 14 * u(rng);
+        std::vector<Ball> imgs{Ball{Vec3(cx - off, y, z), r}, Ball{Vec3(cx + off, y, z), r}};
+        if (t % 4 == 3) imgs.push_back(Ball{Vec3(cx + off, y + 1, z), r});             // no partner: alone
+        if (t == 5) imgs = {Ball{Vec3(-3, y, z), r}, Ball{Vec3(2 * cx + 3, y, z), r}}; // against the ends
+        orbits.push_back(imgs);
+        together.add(imgs);
+        for (const Ball& b : imgs) alone.add(b);
+        ASSERT_EQ(together.mismatch(), alone.mismatch()) << t;
+        ASSERT_EQ(together.covered(), alone.covered()) << t;
+        for (int q = 0; q < 20; ++q) {
+            const Ball probe{Vec3(60 * u(rng), 26 * u(rng), 22 * u(rng)), 1 + 8 * u(rng)};
+            ASSERT_EQ(together.gain(probe), alone.gain(probe)) << t << " " << q;
+        }
+    }
+    std::vector<Ball> all;
+    for (const auto& o : orbits) all.insert(all.end(), o.begin(), o.end());
+    EXPECT_EQ(together.mismatch(), bruteMismatch(S, all));
+    // removed again, ball by ball from the coverage changed in pairs and in pairs from the other (each
+    // voxel's count must be right, not just whether it is covered), until none is left
+    for (std::size_t t = 0; t < orbits.size(); ++t) {
+        for (const Ball& b : orbits[t]) together.remove(b);
+        alone.remove(orbits[t]);
+        ASSERT_EQ(together.mismatch(), alone.mismatch()) << t;
+        for (int q = 0; q < 20; ++q) {
+            const Ball probe{Vec3(60 * u(rng), 26 * u(rng), 22 * u(rng)), 1 + 8 * u(rng)};
+            ASSERT_EQ(together.gain(probe), alone.gain(probe)) << t << " " << q;
+        }
+    }
+    EXPECT_EQ(together.mismatch(), bruteMismatch(S, {}));
+    // a pair whose runs flip only where they overlap: the rest of each row covered before
+    Coverage pre(S, GetParam());
+    const std::vector<Ball> sides{Ball{Vec3(cx - 8, 13, 11), 4.5}, Ball{Vec3(cx + 8, 13, 11), 4.5}},
+        pair{Ball{Vec3(cx - 3, 13, 11), 6}, Ball{Vec3(cx + 3, 13, 11), 6}};
+    for (const Ball& b : sides) pre.add(b);
+    pre.add(pair);
+    for (const Ball& b : sides) pre.remove(b);
+    std::vector<Ball> placed = pair;
+    EXPECT_EQ(pre.mismatch(), bruteMismatch(S, placed));
+    for (int q = 0; q < 40; ++q) {
+        const Ball probe{Vec3(cx - 10 + 20 * u(rng), 13 + 4 * u(rng), 11 + 4 * u(rng)), 1 + 6 * u(rng)};
+        std::vector<Ball> with = placed;
+        with.push_back(probe);
+        ASSERT_EQ(pre.gain(probe), bruteMismatch(S, placed) - bruteMismatch(S, with)) << q;
+    }
+    pre.remove(pair[0]);
+    EXPECT_EQ(pre.mismatch(), bruteMismatch(S, {pair[1]}));
+}
+
 INSTANTIATE_TEST_SUITE_P(Widths, CoverageCounts, ::testing::Values(std::size_t(255), std::size_t(65535)));
 
 TEST(Coverage, MoreBallsThanItsLimitAreALogicError) {

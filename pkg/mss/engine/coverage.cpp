@@ -104,31 +104,47 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
 }
 #endif
 
-/// One row of Coverage::changeSlice: the counts @p c of voxels i0..i1 change by @p delta; the prefix @p p
+/// One row of Coverage::changeSlice: the counts @p c of voxels u0..u1 change by @p delta, and those of
+/// o0..o1 (within, or empty: o0 > o1) by 2 delta more (two mirror images' runs that overlap); the prefix @p p
 /// (and the row's @p base) follow where a voxel flips between covered and uncovered. (An AVX2 clone of it
 /// made no measurable difference: the rows' loops are short and the prefix scan serial.)
 /// @p Count: the counts' type (8 bits where at most 255 balls are ever placed).
 template <class Count>
-void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t& base, int nx, int i0, int i1,
-               int delta, long long& dMismatch, long long& dCovered) {
-    const Count flipAt = delta > 0 ? 0 : 1; // coverage before a flip
+void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t& base, int nx, int u0, int u1,
+               int o0, int o1, int delta, long long& dMismatch, long long& dCovered) {
     int flips = 0, inside = 0;
-    for (int i = i0; i <= i1; ++i) { // vectorised
-        const bool flip = c[i] == flipAt;
-        flips += flip;
-        inside += flip & (s[i] != 0);
+    // coverage before a flip: 0 when adding, the change when removing
+    auto count = [&](int i0, int i1, int d) {
+        const Count flipAt = static_cast<Count>(d > 0 ? 0 : -d);
+        for (int i = i0; i <= i1; ++i) { // vectorised
+            const bool flip = c[i] == flipAt;
+            flips += flip;
+            inside += flip & (s[i] != 0);
+        }
+        for (int i = i0; i <= i1; ++i) c[i] = static_cast<Count>(c[i] + d);
+    };
+    if (o0 > o1) {
+        count(u0, u1, delta);
+    } else {
+        count(u0, o0 - 1, delta);
+        count(o0, o1, 2 * delta);
+        count(o1 + 1, u1, delta);
     }
-    for (int i = i0; i <= i1; ++i) c[i] = static_cast<Count>(c[i] + delta);
     if (flips == 0) return; // no voxel changes between covered and uncovered: prefix unchanged
-    int first = i0;
-    while (c[first] != flipAt + delta) ++first;
-    // from the first flip the prefix is recomputed to the end of the ball's interval; what follows moves by
-    // the change of the interval's sum (each flipped voxel's g comes or goes), or, where the part before is
+    // the first flip: a voxel now uncovered (removing) or covered by this change alone (adding)
+    int first = u0;
+    if (delta > 0)
+        while (c[first] != (first >= o0 && first <= o1 ? 2 * delta : delta)) ++first;
+    else
+        while (c[first] != 0) ++first;
+    // from the first flip the prefix is recomputed to the end of the change; what follows moves by the
+    // change of the interval's sum (each flipped voxel's g comes or goes), or, where the part before is
     // shorter, that part and the base move the other way (modulo 2^16, as the prefix is kept)
-    const auto shift = static_cast<std::uint16_t>(-delta * (2 * inside - flips));
-    const bool left = first < nx - 1 - i1;
+    const int sign = delta > 0 ? 1 : -1;
+    const auto shift = static_cast<std::uint16_t>(-sign * (2 * inside - flips));
+    const bool left = first < nx - 1 - u1;
     auto acc = static_cast<std::uint16_t>((first > 0 ? p[first - 1] : base) - (left ? shift : 0));
-    for (int i = first; i <= i1; ++i) {
+    for (int i = first; i <= u1; ++i) {
         acc = static_cast<std::uint16_t>(acc + (c[i] == 0 ? (s[i] ? 1 : 0xFFFF) : 0));
         p[i] = acc;
     }
@@ -136,11 +152,12 @@ void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t&
         for (int i = 0; i < first; ++i) p[i] = static_cast<std::uint16_t>(p[i] - shift);
         base = static_cast<std::uint16_t>(base - shift);
     } else {
-        for (int i = i1 + 1; i < nx; ++i) p[i] = static_cast<std::uint16_t>(p[i] + shift);
+        for (int i = u1 + 1; i < nx; ++i) p[i] = static_cast<std::uint16_t>(p[i] + shift);
     }
-    // each flipped voxel inside S changes the mismatch by -delta, outside by +delta
-    dMismatch -= delta * (2LL * inside - flips);
-    dCovered += static_cast<long long>(delta) * flips;
+    // each flipped voxel inside S changes the mismatch by -1 when covered, +1 when uncovered; outside the
+    // other way
+    dMismatch -= sign * (2LL * inside - flips);
+    dCovered += static_cast<long long>(sign) * flips;
 }
 } // namespace
 
@@ -301,31 +318,95 @@ void Coverage::rebuildRow(std::size_t row, int from) {
     }
 }
 
+void Coverage::countBalls(int delta) {
+    if (delta > 0 && balls_ + std::size_t(delta) > maxBalls_)
+        throw std::logic_error("Coverage: more than " + std::to_string(maxBalls_) + " balls placed");
+    if (delta < 0 && balls_ < std::size_t(-delta))
+        throw std::logic_error("Coverage: a ball removed where none is placed");
+    balls_ = std::size_t(static_cast<long long>(balls_) + delta);
+}
+
 void Coverage::change(const Ball& b, int delta) {
+    countBalls(delta);
     // rows are independent: a large ball's slices are changed in parallel (the counts summed exactly)
     const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
               k1 = std::min(S_.spec.dims[2] - 1, floorInt(b.c.z() + b.r));
-    if (delta > 0 && balls_ >= maxBalls_)
-        throw std::logic_error("Coverage: more than " + std::to_string(maxBalls_) + " balls placed");
-    if (delta < 0 && balls_ == 0) throw std::logic_error("Coverage: a ball removed where none is placed");
-    balls_ = std::size_t(static_cast<long long>(balls_) + delta);
     long long dMismatch = 0, dCovered = 0;
 #pragma omp parallel for schedule(static) reduction(+ : dMismatch, dCovered) if (b.r > 12.0)
-    for (int k = k0; k <= k1; ++k) changeSlice(b, delta, k, dMismatch, dCovered);
+    for (int k = k0; k <= k1; ++k) changeSlice(b, nullptr, delta, k, dMismatch, dCovered);
     mismatch_ += dMismatch;
     covered_ = static_cast<std::size_t>(static_cast<long long>(covered_) + dCovered);
 }
 
-void Coverage::changeSlice(const Ball& b, int delta, int k, long long& dMismatch, long long& dCovered) {
-    mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k, [&](int j, int kk, int i0, int i1) {
-        const std::size_t row = S_.spec.index(0, j, kk);
+void Coverage::change(const std::vector<Ball>& balls, int delta) {
+    // x-mirror partners (the same rows) in pairs, the rest alone; the result is that of changing each
+    std::vector<char> done(balls.size(), 0);
+    for (std::size_t p = 0; p < balls.size(); ++p) {
+        if (done[p]) continue;
+        const Ball& a = balls[p];
+        std::size_t q = p + 1;
+        while (q < balls.size() && (done[q] || balls[q].r != a.r || balls[q].c.y() != a.c.y() ||
+                                    balls[q].c.z() != a.c.z() || balls[q].c.x() == a.c.x()))
+            ++q;
+        done[p] = 1;
+        if (q == balls.size()) {
+            change(a, delta);
+            continue;
+        }
+        done[q] = 1;
+        countBalls(2 * delta);
+        const Ball& b = balls[q];
+        const int k0 = std::max(0, ceilInt(a.c.z() - a.r)),
+                  k1 = std::min(S_.spec.dims[2] - 1, floorInt(a.c.z() + a.r));
+        long long dMismatch = 0, dCovered = 0;
+#pragma omp parallel for schedule(static) reduction(+ : dMismatch, dCovered) if (a.r > 12.0)
+        for (int k = k0; k <= k1; ++k) changeSlice(a, &b, delta, k, dMismatch, dCovered);
+        mismatch_ += dMismatch;
+        covered_ = static_cast<std::size_t>(static_cast<long long>(covered_) + dCovered);
+    }
+}
+
+void Coverage::changeSlice(const Ball& b, const Ball* other, int delta, int k, long long& dMismatch,
+                           long long& dCovered) {
+    const int last = S_.spec.dims[0] - 1;
+    auto row = [&](std::size_t r, int u0, int u1, int o0, int o1) {
         if (cover8_.empty())
-            changeRow(cover16_.data() + row, S_.data.data() + row, prefix_.data() + row,
-                      base_[row / std::size_t(nx_)], nx_, i0, i1, delta, dMismatch, dCovered);
+            changeRow(cover16_.data() + r, S_.data.data() + r, prefix_.data() + r,
+                      base_[r / std::size_t(nx_)], nx_, u0, u1, o0, o1, delta, dMismatch, dCovered);
         else
-            changeRow(cover8_.data() + row, S_.data.data() + row, prefix_.data() + row,
-                      base_[row / std::size_t(nx_)], nx_, i0, i1, delta, dMismatch, dCovered);
-    });
+            changeRow(cover8_.data() + r, S_.data.data() + r, prefix_.data() + r, base_[r / std::size_t(nx_)],
+                      nx_, u0, u1, o0, o1, delta, dMismatch, dCovered);
+    };
+    if (!other) {
+        mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k, [&](int j, int kk, int i0, int i1) {
+            row(S_.spec.index(0, j, kk), i0, i1, 1, 0);
+        });
+        return;
+    }
+    // the partner's run on each row: the same half-width (the same y, z and radius), as forBallRows
+    // computes it for the partner itself
+    const double r2 = b.r * b.r, dz = k - b.c.z(), rz2 = r2 - dz * dz;
+    if (rz2 < 0) return;
+    const double ry = std::sqrt(rz2);
+    const int j0 = std::max(0, ceilInt(b.c.y() - ry)),
+              j1 = std::min(S_.spec.dims[1] - 1, floorInt(b.c.y() + ry));
+    const double xa = std::min(b.c.x(), other->c.x()), xb = std::max(b.c.x(), other->c.x());
+    for (int j = j0; j <= j1; ++j) {
+        const double dy = j - b.c.y();
+        const double rx2 = rz2 - dy * dy;
+        if (rx2 < 0) continue;
+        const double rx = std::sqrt(rx2);
+        const int a0 = std::max(0, ceilInt(xa - rx)), a1 = std::min(last, floorInt(xa + rx));
+        const int b0 = std::max(0, ceilInt(xb - rx)), b1 = std::min(last, floorInt(xb + rx));
+        const std::size_t r = S_.spec.index(0, j, k);
+        const bool hasA = a0 <= a1, hasB = b0 <= b1;
+        if (hasA && hasB && b0 <= a1) { // overlapping runs: one pass over their union
+            row(r, a0, std::max(a1, b1), b0, std::min(a1, b1));
+        } else {
+            if (hasA) row(r, a0, a1, 1, 0);
+            if (hasB) row(r, b0, b1, 1, 0);
+        }
+    }
 }
 
 } // namespace mss::engine

@@ -45,6 +45,11 @@ public:
     void setMirrorPlanes(const std::array<bool, 3>& planes) { mirror_ = planes; }
     void add(const Ball& b) { change(b, +1); }
     void remove(const Ball& b) { change(b, -1); }
+    /// add() / remove() of each of @p balls (an orbit's images): the same counts and mismatch; two that
+    /// differ only in x (mirror images under the x plane: the same rows) are changed in one pass over the
+    /// union of their runs.
+    void add(const std::vector<Ball>& balls) { change(balls, +1); }
+    void remove(const std::vector<Ball>& balls) { change(balls, -1); }
 
     long long mismatch() const { return mismatch_; }
     std::size_t solid() const { return solid_; }
@@ -75,7 +80,11 @@ private:
                                  [&](int j, int k, int i0, int i1) { f(S_.spec.index(0, j, k), i0, i1); });
     }
     void change(const Ball& b, int delta);
-    void changeSlice(const Ball& b, int delta, int k, long long& dMismatch, long long& dCovered);
+    void change(const std::vector<Ball>& balls, int delta);
+    /// @p other: null, or the x-mirror partner of @p b (the same y, z and radius), changed with it
+    void changeSlice(const Ball& b, const Ball* other, int delta, int k, long long& dMismatch,
+                     long long& dCovered);
+    void countBalls(int delta);
     // gain() of two images that differ only in x (they share rows), and of any overlapping images
     long long gainRowPair(const std::vector<Ball>& balls, bool mirrored) const;
     long long gainMerged(const std::vector<Ball>& balls, bool mirrored) const;

@@ -13,8 +13,7 @@ void debug(Clock::time_point tStart, const char* what) {
 }
 
 void unplaceAll(Selection& s) {
-    for (const Orbit& o : s.chosen)
-        for (const Ball& b : s.sym.images(o)) s.cov.remove(b);
+    for (const Orbit& o : s.chosen) s.cov.remove(s.sym.images(o));
 }
 
 /// Symmetry repair: whole orbits can leave the budget short by one (say 10 = 1 sphere on all planes + 4 pairs
@@ -32,7 +31,7 @@ void repairSymmetry(Selection& s, Clock::time_point tStart, bool tune) {
         const std::size_t savedPlaced = s.placed;
         const long long before = s.cov.mismatch();
         std::vector<Orbit> touched{s.chosen[std::size_t(centre)]};
-        for (const Ball& b : s.sym.images(s.chosen[std::size_t(centre)])) s.cov.remove(b);
+        s.cov.remove(s.sym.images(s.chosen[std::size_t(centre)]));
         s.placed -= 1;
         s.chosen.erase(s.chosen.begin() + centre);
         const std::size_t kept = s.chosen.size();
@@ -46,8 +45,7 @@ void repairSymmetry(Selection& s, Clock::time_point tStart, bool tune) {
         unplaceAll(s);
         s.chosen = saved;
         s.placed = savedPlaced;
-        for (const Orbit& o : s.chosen)
-            for (const Ball& b : s.sym.images(o)) s.cov.add(b);
+        for (const Orbit& o : s.chosen) s.cov.add(s.sym.images(o));
         break;
     }
 }

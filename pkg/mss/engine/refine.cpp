@@ -147,11 +147,11 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps) {
                     if (moved[oj] && (oj == oi || overlaps(s.sym, o, chosen[oj]))) stale = false;
                 if (stale) continue;
             }
-            for (const Ball& b : s.sym.images(o)) s.cov.remove(b);
+            s.cov.remove(s.sym.images(o));
             long long best = s.orbitGain(o);
             const long long start = best;
             tune(s, o, best);
-            for (const Ball& b : s.sym.images(o)) s.cov.add(b);
+            s.cov.add(s.sym.images(o));
             movedNow[oi] = best > start;
             improved = improved || best > start;
         }

@@ -91,7 +91,7 @@ void Selection::orbitGains(const Orbit* os, int n, long long* out) const {
 }
 
 void Selection::place(const Orbit& o) {
-    for (const Ball& b : sym.images(o)) cov.add(b);
+    cov.add(sym.images(o));
     placed += sym.images(o).size();
     chosen.push_back(o);
 }
@@ -234,13 +234,13 @@ bool Selection::prune() {
     bool any = false;
     for (std::size_t q = chosen.size(); q-- > 0;) {
         const auto imgs = sym.images(chosen[q]);
-        for (const Ball& b : imgs) cov.remove(b);
+        cov.remove(imgs);
         if (met()) {
             placed -= imgs.size();
             chosen.erase(chosen.begin() + static_cast<std::ptrdiff_t>(q));
             any = true;
         } else {
-            for (const Ball& b : imgs) cov.add(b);
+            cov.add(imgs);
         }
     }
     return any;
