@@ -147,8 +147,11 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps) {
                     if (moved[oj] && (oj == oi || overlaps(s.sym, o, chosen[oj]))) stale = false;
                 if (stale) continue;
             }
+            // its gain where it stands: what taking it out added to the mismatch (orbitGain() exactly, since
+            // gains are the exact change of the mismatch; one evaluation a tune less, and a serial one)
+            const long long before = s.cov.mismatch();
             s.cov.remove(s.sym.images(o));
-            long long best = s.orbitGain(o);
+            long long best = s.cov.mismatch() - before;
             const long long start = best;
             tune(s, o, best);
             s.cov.add(s.sym.images(o));
