@@ -1,20 +1,21 @@
 #include "mss/big_vector.hpp"
 
-#include <mutex>
 #include <utility>
 #include <vector>
 
 namespace mss {
 
 namespace {
+/// Per thread: generations on threads side by side (a Dask worker's) keep and reuse their own blocks only,
+/// and each thread's last scope gives its blocks back, so that overlapping generations never hold blocks for
+/// good.
 struct Reuse {
-    std::mutex lock;
     int alive = 0; // BigBlockReuse objects
     std::vector<std::pair<void*, std::size_t>> blocks;
     std::size_t bytes = 0;
 };
 Reuse& reuse() {
-    static Reuse r;
+    thread_local Reuse r;
     return r;
 }
 constexpr std::size_t kMaxKept = std::size_t(1) << 30;
@@ -33,7 +34,6 @@ void prefaultHugePages(void* p, std::size_t len) {
 
 void* takeReusedBlock(std::size_t len) {
     Reuse& r = reuse();
-    const std::lock_guard<std::mutex> guard(r.lock);
     for (std::size_t q = 0; q < r.blocks.size(); ++q)
         if (r.blocks[q].second == len) {
             void* p = r.blocks[q].first;
@@ -46,7 +46,6 @@ void* takeReusedBlock(std::size_t len) {
 
 bool keepForReuse(void* p, std::size_t len) {
     Reuse& r = reuse();
-    const std::lock_guard<std::mutex> guard(r.lock);
     if (r.alive == 0 || r.bytes + len > kMaxKept) return false;
     r.blocks.emplace_back(p, len);
     r.bytes += len;
@@ -57,13 +56,11 @@ bool keepForReuse(void* p, std::size_t len) {
 
 BigBlockReuse::BigBlockReuse() {
     Reuse& r = reuse();
-    const std::lock_guard<std::mutex> guard(r.lock);
     ++r.alive;
 }
 
 BigBlockReuse::~BigBlockReuse() {
     Reuse& r = reuse();
-    const std::lock_guard<std::mutex> guard(r.lock);
     if (--r.alive > 0) return;
 #if defined(__linux__)
     for (const auto& [p, len] : r.blocks) munmap(p, len);

@@ -21,20 +21,20 @@ namespace detail {
 /// ~1.1-1.9 ms a MB here (64 MB: 93-121 ms serially, 68-70 ms on two threads), and a generation's arrays are
 /// all fresh; touched in the caller's serial fill, the faults queue up one by one.
 void prefaultHugePages(void* p, std::size_t len);
-/// A block of exactly @p len mapped bytes given back while a BigBlockReuse is alive, or null
-/// (big_vector.cpp).
+/// A block of exactly @p len mapped bytes given back on this thread while a BigBlockReuse is alive on it, or
+/// null (big_vector.cpp).
 void* takeReusedBlock(std::size_t len);
-/// Keeps the mapped block [p, p + len) for takeReusedBlock() while a BigBlockReuse is alive; false: not kept
-/// (none alive, or a GiB kept already), the caller unmaps it.
+/// Keeps the mapped block [p, p + len) for takeReusedBlock() while a BigBlockReuse is alive on this thread;
+/// false: not kept (none alive, or a GiB kept already), the caller unmaps it.
 bool keepForReuse(void* p, std::size_t len);
 } // namespace detail
 
-/// While one of these is alive (on any thread), large blocks given back are kept and handed out again to
-/// an allocation of the same size, instead of unmapped and mapped afresh; the last one to end unmaps them.
-/// Why: fresh memory costs the kernel's zeroing and a fault per huge page (1.7 ms a MB where the virtual
-/// machine's host has to back it anew, 0.08 where not), and a generation under a bound runs the optimiser
-/// two or three times on one grain, each with a coverage of 3 bytes a voxel (torus 40 --clip: 55 MB each,
-/// clear_page 11% of the run's CPU). generate() holds one.
+/// While one of these is alive on a thread, large blocks given back on that thread are kept and handed out
+/// again to an allocation of the same size on it, instead of unmapped and mapped afresh; the thread's last
+/// one to end unmaps them. Why: fresh memory costs the kernel's zeroing and a fault per huge page (1.7 ms a
+/// MB where the virtual machine's host has to back it anew, 0.08 where not), and a generation under a bound
+/// runs the optimiser two or three times on one grain, each with a coverage of 3 bytes a voxel (torus 40
+/// --clip: 55 MB each, clear_page 11% of the run's CPU). generate() holds one.
 class BigBlockReuse {
 public:
     BigBlockReuse();

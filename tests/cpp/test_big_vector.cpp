@@ -5,8 +5,10 @@
 
 #include <cstdint>
 #include <fstream>
+#include <future>
 #include <sstream>
 #include <string>
+#include <thread>
 
 using namespace mss;
 
@@ -100,5 +102,20 @@ TEST(BigVector, BlocksAreReusedWhileAScopeIsAliveAndUnmappedAfter) {
         e = BigVector<std::uint8_t>(); // no scope: unmapped at once
         EXPECT_TRUE(vmFlagsOf(p).empty()) << "a block given back outside any scope is still mapped";
     }
+    // a scope on another thread keeps nothing of this one's (generations side by side on a worker's threads
+    // never hold each other's blocks)
+    std::promise<void> started, done;
+    std::thread other([&] {
+        const BigBlockReuse theirs;
+        started.set_value();
+        done.get_future().wait();
+    });
+    started.get_future().wait();
+    BigVector<std::uint8_t> f(kN);
+    const void* p = f.data();
+    f = BigVector<std::uint8_t>();
+    EXPECT_TRUE(vmFlagsOf(p).empty()) << "another thread's scope kept this thread's block";
+    done.set_value();
+    other.join();
 }
 #endif
