@@ -230,36 +230,21 @@ long long Coverage::gain(const std::vector<Ball>& balls, bool mirrored) const {
 }
 
 long long Coverage::gainRowPair(const std::vector<Ball>& balls, bool mirrored) const {
-    const auto& d = S_.spec.dims;
-    const double xa = std::min(balls[0].c.x(), balls[1].c.x()), xb = std::max(balls[0].c.x(), balls[1].c.x());
     const Ball& b = balls[0];
-    const double r2 = b.r * b.r;
     long long total = 0;
     const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
               k1 = std::min(halfEnd(mirrored, 2), floorInt(b.c.z() + b.r));
-    for (int k = k0; k <= k1; ++k) {
-        const double dz = k - b.c.z();
-        const double rz2 = r2 - dz * dz;
-        if (rz2 < 0) continue;
-        const double ry = std::sqrt(rz2);
-        const int j0 = std::max(0, ceilInt(b.c.y() - ry)),
-                  j1 = std::min(halfEnd(mirrored, 1), floorInt(b.c.y() + ry));
-        for (int j = j0; j <= j1; ++j) {
-            const long long w = weight(mirrored, j, k);
-            const double dy = j - b.c.y();
-            const double rx2 = rz2 - dy * dy;
-            if (rx2 < 0) continue;
-            const double rx = std::sqrt(rx2);
-            const int a0 = std::max(0, ceilInt(xa - rx)), a1 = std::min(d[0] - 1, floorInt(xa + rx));
-            const int b0 = std::max(0, ceilInt(xb - rx)), b1 = std::min(d[0] - 1, floorInt(xb + rx));
+    for (int k = k0; k <= k1; ++k)
+        forPairRows(b, balls[1].c.x(), k, halfEnd(mirrored, 1), [&](int j, int a0, int a1, int b0, int b1) {
             const std::size_t row = S_.spec.index(0, j, k);
             const bool hasA = a0 <= a1, hasB = b0 <= b1;
+            long long g;
             if (hasA && hasB && b0 <= a1 + 1)
-                total += w * sum(row, a0, std::max(a1, b1));
+                g = sum(row, a0, std::max(a1, b1));
             else
-                total += w * ((hasA ? sum(row, a0, a1) : 0) + (hasB ? sum(row, b0, b1) : 0));
-        }
-    }
+                g = (hasA ? sum(row, a0, a1) : 0) + (hasB ? sum(row, b0, b1) : 0);
+            total += weight(mirrored, j, k) * g;
+        });
     return total;
 }
 
@@ -368,7 +353,6 @@ void Coverage::change(const std::vector<Ball>& balls, int delta) {
 
 void Coverage::changeSlice(const Ball& b, const Ball* other, int delta, int k, long long& dMismatch,
                            long long& dCovered) {
-    const int last = S_.spec.dims[0] - 1;
     auto row = [&](std::size_t r, int u0, int u1, int o0, int o1) {
         if (cover8_.empty())
             changeRow(cover16_.data() + r, S_.data.data() + r, prefix_.data() + r,
@@ -383,21 +367,7 @@ void Coverage::changeSlice(const Ball& b, const Ball* other, int delta, int k, l
         });
         return;
     }
-    // the partner's run on each row: the same half-width (the same y, z and radius), as forBallRows
-    // computes it for the partner itself
-    const double r2 = b.r * b.r, dz = k - b.c.z(), rz2 = r2 - dz * dz;
-    if (rz2 < 0) return;
-    const double ry = std::sqrt(rz2);
-    const int j0 = std::max(0, ceilInt(b.c.y() - ry)),
-              j1 = std::min(S_.spec.dims[1] - 1, floorInt(b.c.y() + ry));
-    const double xa = std::min(b.c.x(), other->c.x()), xb = std::max(b.c.x(), other->c.x());
-    for (int j = j0; j <= j1; ++j) {
-        const double dy = j - b.c.y();
-        const double rx2 = rz2 - dy * dy;
-        if (rx2 < 0) continue;
-        const double rx = std::sqrt(rx2);
-        const int a0 = std::max(0, ceilInt(xa - rx)), a1 = std::min(last, floorInt(xa + rx));
-        const int b0 = std::max(0, ceilInt(xb - rx)), b1 = std::min(last, floorInt(xb + rx));
+    forPairRows(b, other->c.x(), k, S_.spec.dims[1] - 1, [&](int j, int a0, int a1, int b0, int b1) {
         const std::size_t r = S_.spec.index(0, j, k);
         const bool hasA = a0 <= a1, hasB = b0 <= b1;
         if (hasA && hasB && b0 <= a1) { // overlapping runs: one pass over their union
@@ -406,7 +376,7 @@ void Coverage::changeSlice(const Ball& b, const Ball* other, int delta, int k, l
             if (hasA) row(r, a0, a1, 1, 0);
             if (hasB) row(r, b0, b1, 1, 0);
         }
-    }
+    });
 }
 
 } // namespace mss::engine

@@ -4,7 +4,9 @@
 #include "mss/ball_rows.hpp"
 #include "mss/engine/ball.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -85,6 +87,27 @@ private:
     void changeSlice(const Ball& b, const Ball* other, int delta, int k, long long& dMismatch,
                      long long& dCovered);
     void countBalls(int delta);
+    /// The rows (j, k) of slice @p k, j <= @p jEnd, of ball @p b and its partner at x = @p x (the same y, z
+    /// and radius): f(j, a0, a1, b0, b1) with the runs of the one nearer x = 0 (a) and of the other (b), each
+    /// as forBallRows gives it for that ball alone (either may be empty: a0 > a1).
+    template <class F> void forPairRows(const Ball& b, double x, int k, int jEnd, F&& f) const {
+        using mss::detail::ceilInt;
+        using mss::detail::floorInt;
+        const double dz = k - b.c.z(), rz2 = b.r * b.r - dz * dz;
+        if (rz2 < 0) return;
+        const double ry = std::sqrt(rz2);
+        const int j0 = std::max(0, ceilInt(b.c.y() - ry)), j1 = std::min(jEnd, floorInt(b.c.y() + ry));
+        const double xa = std::min(b.c.x(), x), xb = std::max(b.c.x(), x);
+        const int last = S_.spec.dims[0] - 1;
+        for (int j = j0; j <= j1; ++j) {
+            const double dy = j - b.c.y();
+            const double rx2 = rz2 - dy * dy;
+            if (rx2 < 0) continue;
+            const double rx = std::sqrt(rx2);
+            f(j, std::max(0, ceilInt(xa - rx)), std::min(last, floorInt(xa + rx)),
+              std::max(0, ceilInt(xb - rx)), std::min(last, floorInt(xb + rx)));
+        }
+    }
     // gain() of two images that differ only in x (they share rows), and of any overlapping images
     long long gainRowPair(const std::vector<Ball>& balls, bool mirrored) const;
     long long gainMerged(const std::vector<Ball>& balls, bool mirrored) const;
