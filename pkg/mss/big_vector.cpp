@@ -27,9 +27,28 @@ void prefaultHugePages(void* p, std::size_t len) {
     constexpr std::size_t kPage = std::size_t(2) << 20;
     auto* bytes = static_cast<volatile unsigned char*>(p);
     const long long pages = static_cast<long long>(len / kPage);
+    // The tail beyond the last whole huge page (under half of one: BigAllocator) has small pages; they are
+    // populated in the kernel, in two halves on the threads (MADV_POPULATE_WRITE, Linux 5.14; elsewhere they
+    // fault on first touch as before). Faulted one by one in the caller's serial fill, the tails of E, S and
+    // the coverage counts were 550 faults of ~12 us (femur at resolution 103; voxelising it 7.2 -> 4.9 ms,
+    // its EDT 14.4 -> 13.3 ms).
+    const std::size_t tail = len - std::size_t(pages) * kPage;
+    const long long tasks = pages + (tail > 0 ? 2 : 0);
     // the block is fresh from mmap: its bytes are zero, so writing a zero changes nothing but the mapping
-#pragma omp parallel for schedule(static, 1) if (pages >= 2)
-    for (long long q = 0; q < pages; ++q) bytes[std::size_t(q) * kPage] = 0;
+#pragma omp parallel for schedule(static, 1) if (tasks >= 2)
+    for (long long q = 0; q < tasks; ++q) {
+        if (q < pages) {
+            bytes[std::size_t(q) * kPage] = 0;
+            continue;
+        }
+#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
+        constexpr std::size_t kSmall = 4096;
+        const std::size_t half = (tail / 2 + kSmall - 1) / kSmall * kSmall;
+        const std::size_t from = std::size_t(pages) * kPage + (q == pages ? 0 : half);
+        const std::size_t to = q == pages ? std::size_t(pages) * kPage + half : len;
+        if (to > from) madvise(static_cast<unsigned char*>(p) + from, to - from, MADV_POPULATE_WRITE);
+#endif
+    }
 }
 
 void* takeReusedBlock(std::size_t len) {

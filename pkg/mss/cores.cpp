@@ -10,6 +10,10 @@
 #include <sched.h>
 #include <unistd.h>
 #endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#include <vector>
 
 namespace mss {
 
@@ -75,6 +79,32 @@ long othersRunning() {
 #endif
     }
     return least;
+}
+
+bool spreadThreads(int threads) {
+#if defined(__linux__) && defined(_OPENMP)
+    cpu_set_t mask;
+    if (threads < 1 || sched_getaffinity(0, sizeof(mask), &mask) != 0) return false;
+    const int here = sched_getcpu();
+    if (here < 0 || here >= CPU_SETSIZE || !CPU_ISSET(here, &mask)) return false;
+    std::vector<int> cpus{here};
+    for (int c = 0; c < CPU_SETSIZE && int(cpus.size()) < threads; ++c)
+        if (c != here && CPU_ISSET(c, &mask)) cpus.push_back(c);
+    if (int(cpus.size()) < threads) return false;
+    int failed = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : failed)
+    {
+        const int t = omp_get_thread_num();
+        cpu_set_t one;
+        CPU_ZERO(&one);
+        CPU_SET(cpus[std::size_t(t)], &one);
+        failed += sched_setaffinity(0, sizeof(one), &one) != 0;
+    }
+    return failed == 0;
+#else
+    (void)threads;
+    return false;
+#endif
 }
 
 } // namespace mss

@@ -23,4 +23,14 @@ int threadsForFreeCores(long cores, long others, int maxThreads);
 /// rest of a pipeline runs for a moment) at processesRunning() less ownThreadsRunning(); -1 where unknown.
 long othersRunning();
 
+/// Pins each thread of an OpenMP team of @p threads to a core of its own (the calling thread to the core it
+/// is on, the others to the next cores of the affinity mask); false, and nothing changed, when the mask has
+/// fewer cores or the system cannot pin (then threads go where the scheduler puts them). For a process that
+/// owns cores that are free: a new OpenMP thread starts on its creator's core, and on a 2-core VM the two
+/// often shared one core for milliseconds to the whole run (a worker that sleeps is woken onto the waker's
+/// core again), each parallel region then as slow as one thread or slower (femur 70: the ASCII STL parsed in
+/// two halves, one after the other on one core). libgomp reuses its threads, so later teams of up to
+/// @p threads run on distinct cores.
+bool spreadThreads(int threads);
+
 } // namespace mss

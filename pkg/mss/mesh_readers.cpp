@@ -37,9 +37,7 @@ void addPolygon(TriangleMesh& mesh, const std::vector<long long>& poly, const st
 }
 
 bool parseDouble(std::string_view w, double& v) {
-    const char* b = w.data() + (!w.empty() && w[0] == '+');
-    const auto r = std::from_chars(b, w.data() + w.size(), v);
-    return !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+    return detail::parseDouble(w.data(), w.data() + w.size(), v);
 }
 
 bool parseInt(std::string_view w, long long& v) {

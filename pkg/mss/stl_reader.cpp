@@ -88,60 +88,62 @@ TriangleMesh readBinaryStl(const std::string& path, const FileBytes& buf) {
     return mesh;
 }
 
+/// The next whitespace-separated word of [@p p, @p e), @p p moved past it (empty at the end).
+inline std::string_view nextWord(const char*& p, const char* e) {
+    while (p < e && space(*p)) ++p;
+    const char* w = p;
+    while (p < e && !space(*p)) ++p;
+    return std::string_view(w, static_cast<std::size_t>(p - w));
+}
+
 /// Parses ASCII STL text [@p b, @p e) into the corners of its facets, three per facet, in order; false (and
 /// @p error, with its line counted from @p b) at the first fault. @p header: the text must start with "solid"
-/// (the file's start; a later part starts at a facet).
+/// (the file's start; a later part starts at a facet). The cursor is a local that the compiler keeps in a
+/// register, and lines are counted only for an error: with lambdas that shared the cursor and counted every
+/// newline, the scan was half of reading the femur's ASCII STL.
 bool parseAsciiStl(const char* b, const char* e, bool header, std::vector<Vec3>& corners,
                    std::string& error) {
     const char* p = b;
-    std::size_t line = 1;
-    auto skipSpace = [&]() {
-        while (p < e && space(*p)) line += (*p++ == '\n');
-    };
-    auto word = [&]() {
-        skipSpace();
-        const char* w = p;
-        while (p < e && !space(*p)) ++p;
-        return std::string_view(w, static_cast<std::size_t>(p - w));
-    };
     auto bad = [&](const std::string& what) {
+        const std::size_t line = 1 + static_cast<std::size_t>(std::count(b, std::min(p, e), '\n'));
         error = "ASCII STL line " + std::to_string(line) + ": " + what;
         return false;
     };
-    bool ok = true;
-    auto number = [&]() {
-        const std::string_view w = word();
-        double v = 0.0;
-        const char* d = w.data() + (!w.empty() && w[0] == '+');
-        const auto r = std::from_chars(d, w.data() + w.size(), v);
-        if (ok && (w.empty() || r.ec != std::errc() || r.ptr != w.data() + w.size()))
-            ok = bad("expected a number, got '" + std::string(w) + "'");
-        if (ok && !std::isfinite(v)) ok = bad("non-finite coordinate '" + std::string(w) + "'");
-        return v;
+    // the next word as a finite number, else false with the error
+    auto number = [&](double& v) {
+        const char* w = p;
+        const std::string_view word = nextWord(p, e);
+        if (!parseDouble(word.data(), word.data() + word.size(), v)) {
+            p = w; // the error's line: where the word begins
+            while (p < e && space(*p)) ++p;
+            return bad("expected a number, got '" + std::string(word) + "'");
+        }
+        if (!std::isfinite(v)) return bad("non-finite coordinate '" + std::string(word) + "'");
+        return true;
     };
     if (header) {
-        if (word() != "solid") return bad("does not start with 'solid'");
+        if (nextWord(p, e) != "solid") return bad("does not start with 'solid'");
         while (p < e && *p != '\n') ++p; // the solid's name
     }
     Vec3 corner[3];
     int count = 0;
     for (;;) {
-        const std::string_view w = word();
+        const std::string_view w = nextWord(p, e);
         if (w.empty()) break;
-        if (w == "endsolid" || w == "solid") { // the end, or several solids in one file
+        if (w == "vertex") {
+            if (count == 3) return bad("more than three vertices in a facet");
+            double x, y, z;
+            if (!number(x) || !number(y) || !number(z)) return false;
+            corner[count++] = Vec3(x, y, z);
+        } else if (w == "endsolid" || w == "solid") { // the end, or several solids in one file
             while (p < e && *p != '\n') ++p;
-            continue;
-        }
-        if (w == "facet") {
-            if (word() != "normal") return bad("expected 'normal'");
-            number(), number(), number();
+        } else if (w == "facet") {
+            if (nextWord(p, e) != "normal") return bad("expected 'normal'");
+            double n;
+            if (!number(n) || !number(n) || !number(n)) return false;
             count = 0;
         } else if (w == "outer") {
-            if (word() != "loop") return bad("expected 'loop'");
-        } else if (w == "vertex") {
-            if (count == 3) return bad("more than three vertices in a facet");
-            const double x = number(), y = number(), z = number();
-            corner[count++] = Vec3(x, y, z);
+            if (nextWord(p, e) != "loop") return bad("expected 'loop'");
         } else if (w == "endloop") {
             if (count != 3) return bad("facet with " + std::to_string(count) + " vertices");
         } else if (w == "endfacet") {
@@ -151,7 +153,6 @@ bool parseAsciiStl(const char* b, const char* e, bool header, std::vector<Vec3>&
         } else {
             return bad("unexpected '" + std::string(w) + "'");
         }
-        if (!ok) return false;
     }
     return true;
 }

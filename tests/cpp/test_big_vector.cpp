@@ -9,6 +9,11 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
+#if defined(__linux__)
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 using namespace mss;
 
@@ -60,6 +65,27 @@ TEST(BigVector, LargeBlocksAreAlignedAndMarkedForHugePages) {
     EXPECT_EQ(reinterpret_cast<std::uintptr_t>(g.data.data()) % (std::size_t(2) << 20), 0u);
     EXPECT_EQ(countSolid(g), g.size());
 }
+
+#ifdef MADV_POPULATE_WRITE
+TEST(BigVector, ASmallPageTailIsPopulatedAtAllocation) {
+    // 2 MiB and 300 KiB: a tail of small pages, populated when the block is mapped (not faulted one by one
+    // in the caller's first fill); reserve() allocates without writing
+    const long page = sysconf(_SC_PAGESIZE);
+    void* probe =
+        mmap(nullptr, std::size_t(page), PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    ASSERT_NE(probe, MAP_FAILED);
+    const bool supported = madvise(probe, std::size_t(page), MADV_POPULATE_WRITE) == 0;
+    munmap(probe, std::size_t(page));
+    if (!supported) GTEST_SKIP() << "this kernel has no MADV_POPULATE_WRITE (Linux < 5.14)";
+    constexpr std::size_t kHuge = std::size_t(2) << 20, kTail = 300 << 10;
+    BigVector<std::uint8_t> v;
+    v.reserve(kHuge + kTail);
+    const std::size_t pages = kTail / std::size_t(page);
+    std::vector<unsigned char> resident(pages);
+    ASSERT_EQ(mincore(v.data() + kHuge, pages * std::size_t(page), resident.data()), 0);
+    for (std::size_t q = 0; q < pages; ++q) EXPECT_TRUE(resident[q] & 1) << "tail page " << q;
+}
+#endif
 
 TEST(BigVector, ATailOfHalfAHugePageOrMoreIsMappedWhole) {
     // 5 MiB: two whole huge pages and a tail of half of one, which gets a whole huge page of its own (4 KiB

@@ -5,7 +5,11 @@
 
 #include <csignal>
 #include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 #if defined(__linux__)
+#include <sched.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #endif
@@ -50,4 +54,31 @@ TEST(Cores, BusyProcessesCountAsOthers) {
     EXPECT_EQ(threadsForFreeCores(usableCores(), others, int(usableCores())),
               std::max(1L, usableCores() - others));
 }
+
+#ifdef _OPENMP
+TEST(Cores, SpreadThreadsPinsEachThreadToACoreOfItsOwn) {
+    EXPECT_FALSE(spreadThreads(int(usableCores()) + 1)); // more threads than cores: nothing to pin to
+    EXPECT_FALSE(spreadThreads(0));
+    if (usableCores() < 2) GTEST_SKIP() << "one core: no two threads to spread";
+    cpu_set_t saved;
+    ASSERT_EQ(sched_getaffinity(0, sizeof(saved), &saved), 0);
+    ASSERT_TRUE(spreadThreads(2));
+    int count[2] = {0, 0}, cpu[2] = {-1, -1};
+#pragma omp parallel num_threads(2)
+    {
+        const int t = omp_get_thread_num();
+        cpu_set_t mask;
+        if (sched_getaffinity(0, sizeof(mask), &mask) == 0) {
+            count[t] = CPU_COUNT(&mask);
+            for (int c = 0; c < CPU_SETSIZE; ++c)
+                if (CPU_ISSET(c, &mask)) cpu[t] = c;
+        }
+        sched_setaffinity(0, sizeof(saved), &saved); // the other tests run free again
+    }
+    EXPECT_EQ(count[0], 1);
+    EXPECT_EQ(count[1], 1);
+    EXPECT_NE(cpu[0], cpu[1]);
+    EXPECT_TRUE(CPU_ISSET(cpu[0], &saved) && CPU_ISSET(cpu[1], &saved));
+}
+#endif
 #endif

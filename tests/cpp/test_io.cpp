@@ -1,11 +1,15 @@
 #include "mss/mesh.hpp"
+#include "mss/mesh_readers.hpp"
 #include "mss/npy.hpp"
 #include "mss/spheres.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstring>
 #include <filesystem>
+#include <random>
 
 #include <cstdio>
 #include <fstream>
@@ -222,6 +226,49 @@ TEST(MeshIo, LargeAsciiStlReadsAsInOnePart) {
     EXPECT_EQ(two.triangles.size(), n - 200);
     EXPECT_TRUE(std::equal(two.triangles.begin(), two.triangles.end(), femur.triangles.begin()));
     std::remove(p.c_str());
+}
+
+/// detail::parseDouble must give what std::from_chars gives (after an optional '+'), bit for bit, and
+/// refuse what it refuses: its fast path (Clinger's) on plain decimals, from_chars on the rest.
+TEST(MeshIo, NumbersParseExactlyAsFromChars) {
+    auto check = [](const std::string& w) {
+        double fast = 0.0, ref = 0.0;
+        const bool ok = detail::parseDouble(w.data(), w.data() + w.size(), fast);
+        const char* b = w.data() + (!w.empty() && w[0] == '+');
+        const auto r = std::from_chars(b, w.data() + w.size(), ref);
+        const bool refOk = !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+        ASSERT_EQ(ok, refOk) << "'" << w << "'";
+        if (ok)
+            ASSERT_EQ(std::memcmp(&fast, &ref, sizeof(double)), 0)
+                << "'" << w << "': " << fast << " vs " << ref;
+    };
+    // the cases, '|' between them (the empty one and those with spaces included)
+    const std::string list =
+        "0|-0|+0|-0.0|1|-1.5|206.335|-149.97|0.585458|-0.0105082|1e22|1e23|1e-22|1e-23|"
+        "9007199254740992|9007199254740993|90071992547409921|1234567890123456789|"
+        "12345678901234567890|0.1|0.3|2.2250738585072014e-308|4.9e-324|1.7976931348623157e308|"
+        "1e309|1.|.5|-.5|1e|1e+|1e-|1e+5|1E5|1.5e-3|+-5|--5|-|+||inf|-inf|nan|0x1p3|1,5|1.5.5|"
+        "1e5e5|00012.5000|1e0000000000000000000001|123.456e-20|123.456e20|5e-0| 1|1 ";
+    std::vector<std::string> cases(1);
+    for (char c : list) {
+        if (c == '|')
+            cases.emplace_back();
+        else
+            cases.back() += c;
+    }
+    for (const std::string& w : cases) check(w);
+    std::mt19937_64 rng(12345);
+    for (int q = 0; q < 200000; ++q) {
+        // random plain decimals: up to 20 digits, a point somewhere or none, an exponent or none
+        std::string w = rng() % 2 ? "-" : "";
+        const int digits = 1 + int(rng() % 20), point = int(rng() % (digits + 1));
+        for (int d = 0; d < digits; ++d) {
+            if (d == point && d > 0) w += '.';
+            w += char('0' + rng() % 10);
+        }
+        if (rng() % 3 == 0) w += "e" + std::string(rng() % 2 ? "-" : "") + std::to_string(rng() % 40);
+        check(w);
+    }
 }
 
 TEST(MeshIo, BadFilesGetClearErrors) {
