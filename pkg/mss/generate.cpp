@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <sstream>
@@ -355,11 +356,26 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     Result r;
     r.grid = S.spec;
     const double rMin = std::max(opt.rMin, 1e-9 * h);
-    for (const Ball& b : balls) {
-        const Vec3 c = S.spec.toWorld(b.c);
-        double radius = b.r * h;
-        if (bound) { // final clipping in world units: the guarantee does not rest on the voxel maths
-            const double limit = bound(c);
+    // The clearance at each centre, once and in parallel: the final clipping and the largest protrusion
+    // both ask for it, and an exact query costs 7-40 us (femur 70: this step 4.2 -> 1.7 ms).
+    std::vector<Vec3> centres(balls.size());
+    for (std::size_t q = 0; q < balls.size(); ++q) centres[q] = S.spec.toWorld(balls[q].c);
+    std::vector<double> clear(balls.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int q = 0; q < int(balls.size()); ++q) clear[std::size_t(q)] = clearance(centres[std::size_t(q)]);
+    std::map<std::array<double, 3>, double> known;
+    for (std::size_t q = 0; q < balls.size(); ++q)
+        known.emplace(std::array<double, 3>{centres[q].x(), centres[q].y(), centres[q].z()}, clear[q]);
+    const Clearance clearanceAtCentres = [&known, &clearance](const Vec3& c) {
+        const auto it = known.find({c.x(), c.y(), c.z()});
+        return it != known.end() ? it->second : clearance(c);
+    };
+    const auto finalBound = bound ? radiusBound(clearanceAtCentres, H, opt.planes) : bound;
+    for (std::size_t q = 0; q < balls.size(); ++q) {
+        const Vec3& c = centres[q];
+        double radius = balls[q].r * h;
+        if (finalBound) { // final clipping in world units: the guarantee does not rest on the voxel maths
+            const double limit = finalBound(c);
             if (limit < radius) {
                 // counted when more than rounding (a voxel-unit radius at its limit, scaled back to world
                 // units, lands an ulp or so either side of it)
@@ -370,7 +386,7 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
         if (radius >= rMin) r.spheres.add(c, radius);
     }
     if (r.spheres.size() == 0) noSphereLeft(E, opt);
-    m.protrusion = largestProtrusion(r.spheres, clearance);
+    m.protrusion = largestProtrusion(r.spheres, clearanceAtCentres);
     const Mismatch mm = mismatch(S, r.spheres);
     m.spheres = r.spheres.size();
     m.eta = mm.eta;
