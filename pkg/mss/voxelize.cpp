@@ -110,50 +110,65 @@ inline double edgeFunction(double ay, double az, double by, double bz, double py
 
 /// The crossings of the x-rays through every sub-sample (J, K) of the (y, z) plane with the triangles
 /// (voxel coordinates @p v of the mesh's vertices), sorted by column; @p start: each column's first hit.
-/// O(triangles + rays crossed).
+/// O(triangles + rays crossed). The triangles in 16 parts on the threads (femur at resolution 103: 2.0 ->
+/// 1.1 ms on 2); within a column the hits are sorted later by position, and hits equal in column, position
+/// and sign are alike, so the result does not depend on the parts or the threads.
 std::vector<Hit> rayHits(const TriangleMesh& mesh, const std::vector<Vec3>& v, int s, int NY, int NZ,
                          std::vector<std::uint32_t>& start) {
     const std::size_t nColumns = static_cast<std::size_t>(NY) * NZ;
     auto subCoord = [s](long long J) { return (J + 0.5) / s - 0.5; };
-    std::vector<Hit> hits;
-    hits.reserve(nColumns * 2 + 1024);
-    for (const auto& t : mesh.triangles) {
-        const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
-        const double det = (b.y() - a.y()) * (c.z() - a.z()) - (b.z() - a.z()) * (c.y() - a.y());
-        if (det == 0.0) continue; // parallel to the rays: never crossed
-        const double ylo = std::min({a.y(), b.y(), c.y()}), yhi = std::max({a.y(), b.y(), c.y()});
-        const double zlo = std::min({a.z(), b.z(), c.z()}), zhi = std::max({a.z(), b.z(), c.z()});
-        const long long J0 = std::max(0LL, static_cast<long long>(std::ceil((ylo + 0.5) * s - 0.5)));
-        const long long J1 =
-            std::min<long long>(NY - 1, static_cast<long long>(std::floor((yhi + 0.5) * s - 0.5)));
-        const long long K0 = std::max(0LL, static_cast<long long>(std::ceil((zlo + 0.5) * s - 0.5)));
-        const long long K1 =
-            std::min<long long>(NZ - 1, static_cast<long long>(std::floor((zhi + 0.5) * s - 0.5)));
-        const int sign = det > 0 ? -1 : 1; // outward normal along -x: the ray enters
-        for (long long K = K0; K <= K1; ++K) {
-            const double pz = subCoord(K);
-            for (long long J = J0; J <= J1; ++J) {
-                const double py = subCoord(J);
-                // barycentric weights (up to the common factor det) from the edges opposite each corner
-                double wa = edgeFunction(b.y(), b.z(), c.y(), c.z(), py, pz);
-                double wb = edgeFunction(c.y(), c.z(), a.y(), a.z(), py, pz);
-                double wc = edgeFunction(a.y(), a.z(), b.y(), b.z(), py, pz);
-                const bool inside = det > 0 ? (wa > 0 && wb > 0 && wc > 0) : (wa < 0 && wb < 0 && wc < 0);
-                if (!inside) continue;
-                const double x = (wa * a.x() + wb * b.x() + wc * c.x()) / (wa + wb + wc);
-                hits.push_back({static_cast<std::uint32_t>(J + static_cast<long long>(NY) * K),
-                                static_cast<float>(x), sign});
+    constexpr int kParts = 16;
+    const std::size_t nt = mesh.triangles.size();
+    std::vector<std::vector<Hit>> parts(kParts);
+#pragma omp parallel for schedule(dynamic, 1) if (nt >= 4096)
+    for (int part = 0; part < kParts; ++part) {
+        std::vector<Hit>& hits = parts[std::size_t(part)];
+        hits.reserve((nColumns * 2 + 1024) / kParts);
+        const std::size_t t0 = nt * std::size_t(part) / kParts, t1 = nt * std::size_t(part + 1) / kParts;
+        for (std::size_t q = t0; q < t1; ++q) {
+            const auto& t = mesh.triangles[q];
+            const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+            const double det = (b.y() - a.y()) * (c.z() - a.z()) - (b.z() - a.z()) * (c.y() - a.y());
+            if (det == 0.0) continue; // parallel to the rays: never crossed
+            const double ylo = std::min({a.y(), b.y(), c.y()}), yhi = std::max({a.y(), b.y(), c.y()});
+            const double zlo = std::min({a.z(), b.z(), c.z()}), zhi = std::max({a.z(), b.z(), c.z()});
+            const long long J0 = std::max(0LL, static_cast<long long>(std::ceil((ylo + 0.5) * s - 0.5)));
+            const long long J1 =
+                std::min<long long>(NY - 1, static_cast<long long>(std::floor((yhi + 0.5) * s - 0.5)));
+            const long long K0 = std::max(0LL, static_cast<long long>(std::ceil((zlo + 0.5) * s - 0.5)));
+            const long long K1 =
+                std::min<long long>(NZ - 1, static_cast<long long>(std::floor((zhi + 0.5) * s - 0.5)));
+            const int sign = det > 0 ? -1 : 1; // outward normal along -x: the ray enters
+            for (long long K = K0; K <= K1; ++K) {
+                const double pz = subCoord(K);
+                for (long long J = J0; J <= J1; ++J) {
+                    const double py = subCoord(J);
+                    // barycentric weights (up to the common factor det) from the edges opposite each corner
+                    double wa = edgeFunction(b.y(), b.z(), c.y(), c.z(), py, pz);
+                    double wb = edgeFunction(c.y(), c.z(), a.y(), a.z(), py, pz);
+                    double wc = edgeFunction(a.y(), a.z(), b.y(), b.z(), py, pz);
+                    const bool inside = det > 0 ? (wa > 0 && wb > 0 && wc > 0) : (wa < 0 && wb < 0 && wc < 0);
+                    if (!inside) continue;
+                    const double x = (wa * a.x() + wb * b.x() + wc * c.x()) / (wa + wb + wc);
+                    hits.push_back({static_cast<std::uint32_t>(J + static_cast<long long>(NY) * K),
+                                    static_cast<float>(x), sign});
+                }
             }
         }
     }
     // counting sort by column
     start.assign(nColumns + 1, 0);
-    for (const Hit& h : hits) ++start[h.column + 1];
+    std::size_t total = 0;
+    for (const auto& hits : parts) {
+        total += hits.size();
+        for (const Hit& h : hits) ++start[h.column + 1];
+    }
     for (std::size_t c = 0; c < nColumns; ++c) start[c + 1] += start[c];
-    std::vector<Hit> sorted(hits.size());
+    std::vector<Hit> sorted(total);
     {
         std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-        for (const Hit& h : hits) sorted[fill[h.column]++] = h;
+        for (const auto& hits : parts)
+            for (const Hit& h : hits) sorted[fill[h.column]++] = h;
     }
     return sorted;
 }
