@@ -20,24 +20,28 @@ std::uint64_t mix(const std::array<int, 3>& v) {
     return x ^ (x >> 31);
 }
 
-/// Whether voxel (i, j, k) lies on the medial surface of E (ridge or sheet).
-bool onRidge(const ScalarGrid& E, int i, int j, int k) {
+/// Whether each voxel i = 1 .. nx - 2 of the row of E at @p c (neighbour rows in y at @p ym, @p yp, in z at
+/// @p zm, @p zp) lies on the medial surface of E (ridge or sheet), into @p on[i]: every voxel of the row
+/// tested without a branch, so that the compiler vectorises it (the femur's 2.8 million voxels: 3.6 -> 2.8
+/// ms on 2 threads), with the same float operations as one voxel at a time.
+void ridgeRow(const float* c, const float* ym, const float* yp, const float* zm, const float* zp, int nx,
+              std::uint8_t* on) {
     // |grad E| < 0.9 (central differences span two voxels: squared length < 1.8^2); the octahedron's edge
     // sheets have 0.816
     constexpr float kSheet = 3.24f;
-    const float e = E(i, j, k);
-    if (e < 1.0f) return false;
-    const float up = std::max({E(i - 1, j, k), E(i + 1, j, k), E(i, j - 1, k), E(i, j + 1, k), E(i, j, k - 1),
-                               E(i, j, k + 1)}) -
-                     e;
-    // central differences: |grad E| is 1 off the medial surface and cos(half the angle between the two
-    // nearest faces' normals) on it: a sheet toward an edge of dihedral angle alpha rises by sin(alpha / 2)
-    // per voxel along it, which the test above misses when that direction is a grid axis and alpha < 60
-    // degrees (the axis-aligned tetrahedron's edges: 0.577 per voxel, none of its six edge sheets was a
-    // candidate)
-    const float gx = E(i + 1, j, k) - E(i - 1, j, k), gy = E(i, j + 1, k) - E(i, j - 1, k),
-                gz = E(i, j, k + 1) - E(i, j, k - 1);
-    return up < 0.5f || gx * gx + gy * gy + gz * gz < kSheet;
+    for (int i = 1; i < nx - 1; ++i) {
+        const float e = c[i];
+        const float up =
+            std::max(std::max(std::max(c[i - 1], c[i + 1]), std::max(ym[i], yp[i])), std::max(zm[i], zp[i])) -
+            e;
+        // central differences: |grad E| is 1 off the medial surface and cos(half the angle between the two
+        // nearest faces' normals) on it: a sheet toward an edge of dihedral angle alpha rises by sin(alpha /
+        // 2) per voxel along it, which the test above misses when that direction is a grid axis and alpha <
+        // 60 degrees (the axis-aligned tetrahedron's edges: 0.577 per voxel, none of its six edge sheets was
+        // a candidate)
+        const float gx = c[i + 1] - c[i - 1], gy = yp[i] - ym[i], gz = zp[i] - zm[i];
+        on[i] = std::uint8_t((e >= 1.0f) & ((up < 0.5f) | (gx * gx + gy * gy + gz * gz < kSheet)));
+    }
 }
 
 /// The ridge voxels of E kept by the thinning, in voxel order, whatever the threads; @p total receives the
@@ -49,12 +53,20 @@ bool onRidge(const ScalarGrid& E, int i, int j, int k) {
 std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E, std::size_t maxKeep, std::size_t& total) {
     const auto& d = E.spec.dims;
     std::vector<std::vector<std::uint32_t>> slices(std::size_t(std::max(d[2], 1)));
-#pragma omp parallel for schedule(dynamic, 4)
-    for (int k = 1; k < d[2] - 1; ++k) {
-        auto& slice = slices[std::size_t(k)];
-        for (int j = 1; j < d[1] - 1; ++j)
-            for (int i = 1; i < d[0] - 1; ++i)
-                if (onRidge(E, i, j, k)) slice.push_back(std::uint32_t(i + d[0] * j));
+    const std::size_t sy = std::size_t(d[0]), sz = sy * std::size_t(d[1]);
+#pragma omp parallel
+    {
+        std::vector<std::uint8_t> on(sy);
+#pragma omp for schedule(dynamic, 4)
+        for (int k = 1; k < d[2] - 1; ++k) {
+            auto& slice = slices[std::size_t(k)];
+            for (int j = 1; j < d[1] - 1; ++j) {
+                const float* c = E.data.data() + std::size_t(k) * sz + std::size_t(j) * sy;
+                ridgeRow(c, c - sy, c + sy, c - sz, c + sz, d[0], on.data());
+                for (int i = 1; i < d[0] - 1; ++i)
+                    if (on[std::size_t(i)]) slice.push_back(std::uint32_t(i + d[0] * j));
+            }
+        }
     }
     total = 0;
     for (const auto& slice : slices) total += slice.size();
