@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_set>
 
 namespace mss::engine {
 
@@ -85,19 +84,41 @@ std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E, std::size_t max
 std::vector<Orbit> candidateOrbits(const ScalarGrid& E, const Symmetry& sym, double rMinVox,
                                    std::size_t* ridgeCount) {
     std::vector<Orbit> cands;
-    // positions seen, on an eighth of a voxel (a hash set: a tree took 1 ms more on the femur's 10,000)
-    struct KeyHash {
-        std::size_t operator()(const std::array<long long, 3>& k) const {
-            return std::size_t(mix({int(k[0]), int(k[1]), int(k[2])}));
+    cands.reserve(16384);
+    // positions seen, on an eighth of a voxel: open addressing, linear probing, at most half full (a tree
+    // took 1 ms more on the femur's 10,000 than std::unordered_set, which took 1.4 ms more than this)
+    std::vector<std::array<int, 3>> slots(32768);
+    std::vector<char> taken(slots.size(), 0);
+    std::size_t count = 0;
+    auto insert = [&](const std::array<int, 3>& k) { // false: seen before
+        if (2 * (count + 1) > slots.size()) {
+            std::vector<std::array<int, 3>> old;
+            for (std::size_t q = 0; q < slots.size(); ++q)
+                if (taken[q]) old.push_back(slots[q]);
+            slots.assign(2 * slots.size(), {0, 0, 0});
+            taken.assign(slots.size(), 0);
+            for (const auto& o : old) {
+                std::size_t q = std::size_t(mix(o)) & (slots.size() - 1);
+                while (taken[q]) q = (q + 1) & (slots.size() - 1);
+                taken[q] = 1;
+                slots[q] = o;
+            }
+        }
+        for (std::size_t q = std::size_t(mix(k)) & (slots.size() - 1);; q = (q + 1) & (slots.size() - 1)) {
+            if (!taken[q]) {
+                taken[q] = 1;
+                slots[q] = k;
+                ++count;
+                return true;
+            }
+            if (slots[q] == k) return false;
         }
     };
-    std::unordered_set<std::array<long long, 3>, KeyHash> seen;
-    seen.reserve(16384);
     auto addCandidate = [&](const Vec3& c, double r) {
         if (r < rMinVox) return;
         Orbit o = sym.make(c, r); // constraints applied when the greedy first looks at it (bounded)
         const Vec3 key = sym.canonical(o.c) * 8.0;
-        if (!seen.insert({std::llround(key.x()), std::llround(key.y()), std::llround(key.z())}).second)
+        if (!insert({int(std::lround(key.x())), int(std::lround(key.y())), int(std::lround(key.z()))}))
             return;
         cands.push_back(o);
     };
