@@ -463,33 +463,37 @@ Mismatch mismatch(const VoxelGrid& target, const SphereSet& spheres) {
     long long approx = 0, both = 0;
 #pragma omp parallel reduction(+ : approx, both)
     {
-        std::vector<std::array<int, 3>> runs; // (j, i0, i1) of one slice
+        // one slice's cover by the spheres, a byte a voxel (a row cleared when the slice first meets it),
+        // then counted a row at a time: sorting and merging each slice's runs was half of it (femur 70: 2.7
+        // -> 0.55 ms on 2 threads)
+        const std::size_t nx = std::size_t(g.dims[0]);
+        std::vector<std::uint8_t> cover(nx * std::size_t(g.dims[1]));
+        std::vector<int> rowSlice(std::size_t(g.dims[1]), -1); // the slice whose cover a row holds
 #pragma omp for schedule(dynamic, 1)
         for (int k = 0; k < g.dims[2]; ++k) {
-            runs.clear();
+            int j0 = g.dims[1], j1 = -1;
             for (std::size_t s : meets)
                 detail::forBallRows(c[s], r[s], g.dims, k, k, [&](int j, int, int i0, int i1) {
-                    runs.push_back({j, i0, i1});
-                });
-            std::sort(runs.begin(), runs.end());
-            for (std::size_t q = 0; q < runs.size();) { // merge each row's runs, count what they cover
-                const int j = runs[q][0];
-                int a = runs[q][1], e = runs[q][2];
-                const std::uint8_t* row = &target(0, j, k);
-                auto count = [&](int lo, int hi) {
-                    approx += hi - lo + 1;
-                    for (int i = lo; i <= hi; ++i) both += row[i] != 0;
-                };
-                for (++q; q < runs.size() && runs[q][0] == j; ++q) {
-                    if (runs[q][1] <= e + 1) {
-                        e = std::max(e, runs[q][2]);
-                    } else {
-                        count(a, e);
-                        a = runs[q][1];
-                        e = runs[q][2];
+                    std::uint8_t* on = cover.data() + std::size_t(j) * nx;
+                    if (rowSlice[std::size_t(j)] != k) {
+                        std::fill_n(on, nx, std::uint8_t(0));
+                        rowSlice[std::size_t(j)] = k;
+                        j0 = std::min(j0, j);
+                        j1 = std::max(j1, j);
                     }
+                    std::fill(on + i0, on + i1 + 1, std::uint8_t(1));
+                });
+            for (int j = j0; j <= j1; ++j) {
+                if (rowSlice[std::size_t(j)] != k) continue;
+                const std::uint8_t* on = cover.data() + std::size_t(j) * nx;
+                const std::uint8_t* row = &target(0, j, k);
+                int rowApprox = 0, rowBoth = 0;
+                for (std::size_t i = 0; i < nx; ++i) { // vectorised
+                    rowApprox += on[i];
+                    rowBoth += on[i] & (row[i] != 0);
                 }
-                count(a, e);
+                approx += rowApprox;
+                both += rowBoth;
             }
         }
     }
