@@ -15,6 +15,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <sched.h>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -82,12 +83,24 @@ mss::Vec3 vec3(const Args& a, const std::string& key) {
 /// Runs `python3 -m yade_mss COMMAND ...` (Debian's python3): the commands drawn with matplotlib (`mss
 /// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's package
 /// comes first, so an uninstalled build draws with its own code. @return the exit status.
+/// The cores this process might use before its threads were pinned (mss::spreadThreads), when they were.
+struct Unpinned {
+    bool pinned = false;
+    cpu_set_t mask{};
+};
+Unpinned& unpinned() {
+    static Unpinned u;
+    return u;
+}
+
 int runPython(const std::vector<std::string>& args) {
     std::string path = MSS_PY_BUILD_DIR;
     if (const char* old = std::getenv("PYTHONPATH")) path += std::string(":") + old;
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start python3 for the pictures");
     if (pid == 0) {
+        // a child inherits its parent thread's cores: python (and a batch's Dask workers) gets them all back
+        if (unpinned().pinned) sched_setaffinity(0, sizeof(cpu_set_t), &unpinned().mask);
         setenv("PYTHONPATH", path.c_str(), 1);
         std::vector<std::string> all{MSS_PYTHON, "-m", "yade_mss"};
         all.insert(all.end(), args.begin(), args.end());
@@ -550,7 +563,13 @@ int main(int argc, char** argv) {
     if (const char* spread = std::getenv(kSpread)) { // set above, before this program ran itself again
         const int threads = std::atoi(spread);
         unsetenv(kSpread);
-        if (threads > 1) mss::spreadThreads(threads);
+        // only where the work runs here (the others run python3, which starts its own processes)
+        const std::string command = argc > 1 ? argv[1] : "";
+        if (threads > 1 && (command == "generate" || command == "compare" || command == "info") &&
+            sched_getaffinity(0, sizeof(cpu_set_t), &unpinned().mask) == 0) {
+            unpinned().pinned = true; // (where only some threads could be pinned too)
+            mss::spreadThreads(threads);
+        }
     }
     CLI::App app{"mss: multi-sphere shape generator (MSS) for DEM clumps"};
     app.require_subcommand(1, 1);
