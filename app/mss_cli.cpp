@@ -80,9 +80,6 @@ mss::Vec3 vec3(const Args& a, const std::string& key) {
     return v;
 }
 
-/// Runs `python3 -m yade_mss COMMAND ...` (Debian's python3): the commands drawn with matplotlib (`mss
-/// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's package
-/// comes first, so an uninstalled build draws with its own code. @return the exit status.
 /// The cores this process might use before its threads were pinned (mss::spreadThreads), when they were.
 struct Unpinned {
     bool pinned = false;
@@ -93,6 +90,9 @@ Unpinned& unpinned() {
     return u;
 }
 
+/// Runs `python3 -m yade_mss COMMAND ...` (Debian's python3): the commands drawn with matplotlib (`mss
+/// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's package
+/// comes first, so an uninstalled build draws with its own code. @return the exit status.
 int runPython(const std::vector<std::string>& args) {
     std::string path = MSS_PY_BUILD_DIR;
     if (const char* old = std::getenv("PYTHONPATH")) path += std::string(":") + old;
