@@ -512,6 +512,11 @@ CoreUse coreUse(int argc, char** argv) {
     return u;
 }
 
+/// Whether subcommand @p command runs in this process (the others run in python3).
+bool runsHere(const std::string& command) {
+    return command == "generate" || command == "compare" || command == "info";
+}
+
 } // namespace
 
 /// Set for the run of this program by itself: the threads to pin to cores of their own.
@@ -565,7 +570,7 @@ int main(int argc, char** argv) {
         unsetenv(kSpread);
         // only where the work runs here (the others run python3, which starts its own processes)
         const std::string command = argc > 1 ? argv[1] : "";
-        if (threads > 1 && (command == "generate" || command == "compare" || command == "info") &&
+        if (threads > 1 && runsHere(command) &&
             sched_getaffinity(0, sizeof(cpu_set_t), &unpinned().mask) == 0) {
             unpinned().pinned = true; // (where only some threads could be pinned too)
             mss::spreadThreads(threads);
@@ -595,7 +600,7 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
-    if (!first.empty() && first[0] != '-' && first != "generate" && first != "compare" && first != "info") {
+    if (!first.empty() && first[0] != '-' && !runsHere(first)) {
         std::cerr << "mss: unknown command '" << argv[1]
                   << "' (generate, compare, info, preview, curve, batch or spheropolygon; mss --help)\n";
         return 2;
