@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -14,11 +15,13 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <malloc.h>
 #include <map>
 #include <sched.h>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -517,54 +520,92 @@ bool runsHere(const std::string& command) {
     return command == "generate" || command == "compare" || command == "info";
 }
 
-} // namespace
-
-/// Set for the run of this program by itself: the threads to pin to cores of their own.
+/// Set for the run of this program: the threads to pin to cores of their own.
 constexpr const char* kSpread = "MSS_SPREAD_THREADS";
 
+/// OpenMP's waiting and thread count for this run, through the environment that libgomp reads when it
+/// starts, unless the user chose (OMP_WAIT_POLICY). @return whether it set them.
+/// Spinning OpenMP threads collapse when the cores are shared: femur 70 spheres, 2 threads, 3 busy
+/// processes on 2 cores: 1.5-2.2 s, against 0.66 s on 1 thread and 0.46-0.63 s with passive waiting
+/// (bench/load.sh). But passive waiting wakes each thread through the kernel at every parallel region, and
+/// refinement runs thousands of short ones: idle, 2 passive threads took 0.30 s, as long as one thread,
+/// and threads that spin 10000 rounds before they sleep 0.23 s. So a short spin (OMP_WAIT_POLICY=ACTIVE,
+/// GOMP_SPINCOUNT=10000) when every thread finds a free core now, else OMP_WAIT_POLICY=PASSIVE.
+/// Without --threads (and OMP_NUM_THREADS), a run on busy cores also starts only as many threads as cores
+/// are free, at least one: 2 passive threads among 3 busy processes on 2 cores took 0.56-1.08 s against
+/// 0.62-0.64 s on one (results do not depend on the thread count).
+bool chooseOpenMp(int argc, char** argv) {
+    if (std::getenv("OMP_WAIT_POLICY") || argc < 1) return false;
+    const CoreUse u = coreUse(argc, argv);
+    const long threads = u.threadsAsked > 0 ? u.threadsAsked : u.cores;
+    if (threads <= u.free) {
+        setenv("OMP_WAIT_POLICY", "ACTIVE", 1);
+        setenv("GOMP_SPINCOUNT", "10000", 0);
+        // on a machine nobody else is using, each thread on a core of its own (mss::spreadThreads)
+        if (u.free == u.cores && threads > 1) setenv(kSpread, std::to_string(threads).c_str(), 1);
+    } else {
+        setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+        if (u.known && u.threadsAsked <= 0 && !std::getenv("OMP_NUM_THREADS"))
+            setenv("OMP_NUM_THREADS", std::to_string(std::max(1L, u.free)).c_str(), 1);
+    }
+    return true;
+}
+
+// malloc's settings: its own blocks on transparent huge pages too, and blocks under 32 MB from its heap,
+// kept for reuse: a fresh 4 KiB page costs a fault of 10-15 us under this VM's kernel (copying the
+// ellipsoid's 20480 triangles, 1.5 MB, took 5.7 ms, and building the mesh hierarchy 19 ms; 7-9 ms so). The
+// heap grows 8 MB at a time (top_pad): grown by the default 128 KiB, its new pages seldom made a whole 2 MiB
+// range of the mapping, and took 4 KiB pages (ellipsoid 10: 1500-1900 faults a run -> 900-1250). The large
+// arrays are on huge pages in the library (BigAllocator).
+constexpr std::size_t kMmapThreshold = std::size_t(32) << 20, kTrimThreshold = std::size_t(256) << 20,
+                      kTopPad = std::size_t(8) << 20;
+
+#if MSS_EARLY_ENV
+/// Linked statically (CMakeLists.txt), libgomp reads its environment in a constructor of default priority,
+/// after this one: the settings are made here, in this process (running itself again with them, as the
+/// dynamically linked build does, cost ~3 ms a run). malloc's three through mallopt(); glibc reads
+/// GLIBC_TUNABLES before any code of ours runs, so the huge pages of glibc.malloc.hugetlb=1 are given to the
+/// heap's first 16 MB here, grown and marked at once (femur and ellipsoid runs fit in them; beyond, the heap
+/// grows on small pages). Left alone where the user set malloc tunables.
+__attribute__((constructor(101))) void earlySettings(int argc, char** argv, char**) {
+    chooseOpenMp(argc, argv);
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    if (tunables && std::strstr(tunables, "glibc.malloc.")) return;
+    mallopt(M_MMAP_THRESHOLD, int(kMmapThreshold));
+    mallopt(M_TRIM_THRESHOLD, int(kTrimThreshold));
+    mallopt(M_TOP_PAD, int(kTopPad));
+    auto* before = static_cast<char*>(sbrk(0));
+    static void* volatile block;  // volatile: the compiler may not drop a malloc() whose block is unused
+    block = std::malloc(kTopPad); // more than the heap holds yet: it grows by this and top_pad
+    auto* after = static_cast<char*>(sbrk(0));
+    constexpr std::uintptr_t kPage = 4096;
+    auto* from =
+        reinterpret_cast<char*>((reinterpret_cast<std::uintptr_t>(before) + kPage - 1) & ~(kPage - 1));
+    if (before != reinterpret_cast<char*>(-1) && after > from)
+        madvise(from, std::size_t(after - from), MADV_HUGEPAGE);
+    std::free(block); // back to the heap's top (under the trim threshold: kept)
+}
+#endif
+
+} // namespace
+
 int main(int argc, char** argv) {
-    // Spinning OpenMP threads collapse when the cores are shared: femur 70 spheres, 2 threads, 3 busy
-    // processes on 2 cores: 1.5-2.2 s, against 0.66 s on 1 thread and 0.46-0.63 s with passive waiting
-    // (bench/load.sh). But passive waiting wakes each thread through the kernel at every parallel region, and
-    // refinement runs thousands of short ones: idle, 2 passive threads took 0.30 s, as long as one thread,
-    // and threads that spin 10000 rounds before they sleep 0.23 s. libgomp reads its environment when it
-    // loads, so unless the user chose, this program runs itself again with a short spin
-    // (OMP_WAIT_POLICY=ACTIVE, GOMP_SPINCOUNT=10000) when every thread finds a free core now, else with
-    // OMP_WAIT_POLICY=PASSIVE.
-    // Without --threads (and OMP_NUM_THREADS), a run on busy cores also starts only as many threads as cores
-    // are free, at least one: 2 passive threads among 3 busy processes on 2 cores took 0.56-1.08 s against
-    // 0.62-0.64 s on one (results do not depend on the thread count).
-    if (!std::getenv("OMP_WAIT_POLICY") && argc > 0) {
-        const CoreUse u = coreUse(argc, argv);
-        const long threads = u.threadsAsked > 0 ? u.threadsAsked : u.cores;
-        if (threads <= u.free) {
-            setenv("OMP_WAIT_POLICY", "ACTIVE", 1);
-            setenv("GOMP_SPINCOUNT", "10000", 0);
-            // on a machine nobody else is using, each thread on a core of its own (mss::spreadThreads)
-            if (u.free == u.cores && threads > 1) setenv(kSpread, std::to_string(threads).c_str(), 1);
-        } else {
-            setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
-            if (u.known && u.threadsAsked <= 0 && !std::getenv("OMP_NUM_THREADS"))
-                setenv("OMP_NUM_THREADS", std::to_string(std::max(1L, u.free)).c_str(), 1);
-        }
-        // malloc's own blocks on transparent huge pages too (glibc >= 2.35; older ones ignore the names), and
-        // blocks under 32 MB from its heap, kept for reuse: a fresh 4 KiB page costs a fault of 10-15 us
-        // under this VM's kernel (copying the ellipsoid's 20480 triangles, 1.5 MB, took 5.7 ms, and building
-        // the mesh hierarchy 19 ms; 7-9 ms so). The heap grows 8 MB at a time (top_pad): grown by the
-        // default 128 KiB, its new pages seldom made a whole 2 MiB range of the mapping, and took 4 KiB pages
-        // (ellipsoid 10: 1500-1900 faults a run -> 900-1250). The large arrays are on huge pages in the
-        // library (BigAllocator).
+#if !MSS_EARLY_ENV
+    // libgomp and glibc read their settings when the program starts: it runs itself again with them
+    if (chooseOpenMp(argc, argv)) {
         const char* tunables = std::getenv("GLIBC_TUNABLES");
         std::string t = tunables ? tunables : "";
-        for (const char* tunable :
-             {"glibc.malloc.hugetlb=1", "glibc.malloc.mmap_threshold=33554432",
-              "glibc.malloc.trim_threshold=268435456", "glibc.malloc.top_pad=8388608"}) {
-            const std::string name(tunable, std::strchr(tunable, '=') + 1);
-            if (t.find(name) == std::string::npos) t += (t.empty() ? "" : ":") + std::string(tunable);
+        for (const std::string& tunable : {std::string("glibc.malloc.hugetlb=1"),
+                                           "glibc.malloc.mmap_threshold=" + std::to_string(kMmapThreshold),
+                                           "glibc.malloc.trim_threshold=" + std::to_string(kTrimThreshold),
+                                           "glibc.malloc.top_pad=" + std::to_string(kTopPad)}) {
+            const std::string name = tunable.substr(0, tunable.find('=') + 1);
+            if (t.find(name) == std::string::npos) t += (t.empty() ? "" : ":") + tunable;
         }
         setenv("GLIBC_TUNABLES", t.c_str(), 1);
         execv("/proc/self/exe", argv); // returns only on failure: then go on as we are
     }
+#endif
     if (const char* spread = std::getenv(kSpread)) { // set above, before this program ran itself again
         const int threads = std::atoi(spread);
         unsetenv(kSpread);

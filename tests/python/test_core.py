@@ -1,6 +1,7 @@
 """yade_mss without YADE: generation, scoring, mass properties, files. Run with /usr/bin/python3."""
 import math
 import os
+import re
 import sys
 import tempfile
 import unittest
@@ -262,65 +263,97 @@ class Scoring(unittest.TestCase):
         self.assertAlmostEqual(abs(v[0, 0]), 1.0, places=9)
 
 
-def secondRunEnvironment(env):
-    """Runs `mss generate` on the femur with @env and returns the environment of its second run (the command runs
-    itself again with its choices set, see mss_cli.cpp), read from /proc while it works; None if not seen."""
+def runFemur(env, look=None):
+    """Runs `mss generate` on the femur with @env; while it works, calls look(pid) every 5 ms until that returns
+    something other than None. Returns (that or None, the command's stderr)."""
     import subprocess
     import time
     mss = os.environ.get('MSS_BINARY', 'mss')
     seen = None
     with tempfile.TemporaryDirectory() as d:
         p = subprocess.Popen([mss, 'generate', FEMUR, '--spheres', '70', '--resolution', '150', '-o',
-                              os.path.join(d, 's.csv')], env=env, stdout=subprocess.DEVNULL)
+                              os.path.join(d, 's.csv')], env=env, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE)
         deadline = time.time() + 10
-        while seen is None and time.time() < deadline and p.poll() is None:
+        while look and seen is None and time.time() < deadline and p.poll() is None:
             try:
-                with open('/proc/%d/environ' % p.pid, 'rb') as f:
-                    vars = dict(x.split(b'=', 1) for x in f.read().split(b'\0') if b'=' in x)
+                seen = look(p.pid)
             except OSError:
                 break
-            if b'OMP_WAIT_POLICY' in vars:
-                seen = vars
             time.sleep(0.005)
-        if p.wait() != 0:
-            raise RuntimeError('mss generate failed')
-    return seen
+        err = p.communicate()[1].decode()
+        if p.returncode != 0:
+            raise RuntimeError('mss generate failed: ' + err)
+    return seen, err
+
+
+def openmpSettings(err):
+    """What libgomp printed of its settings (OMP_DISPLAY_ENV=VERBOSE), the last time: a command that runs itself
+    again with its choices (the dynamically linked build) prints them twice."""
+    blocks = err.split('OPENMP DISPLAY ENVIRONMENT BEGIN')
+    if len(blocks) < 2:
+        return None
+    return dict(re.findall(r"^\s*([A-Z_]+) = '([^']*)'", blocks[-1], re.M))
+
+
+def heapOnHugePages(pid):
+    """True when a mapping of the process's heap is marked for transparent huge pages (VmFlags hg), else None."""
+    heap = False
+    with open('/proc/%d/smaps' % pid) as f:
+        for line in f:
+            if re.match(r'^[0-9a-f]+-[0-9a-f]+ ', line):
+                heap = line.rstrip().endswith('[heap]')
+            elif heap and line.startswith('VmFlags:') and 'hg' in line.split()[1:]:
+                return True
+    return None
 
 
 class SharingTheCores(unittest.TestCase):
     def test_busy_cores_make_the_command_wait_passively(self):
         # with more busy processes than cores, `mss` must run its OpenMP threads with passive waiting (no
-        # spin); it chooses as it starts and runs itself again with the policy in its environment
+        # spin), on as many threads as cores are free (none: one); it chooses as it starts, before libgomp
+        # reads its settings, which libgomp prints here as it uses them
         import subprocess
         import time
         busy = [subprocess.Popen([sys.executable, '-c', 'while True: pass']) for _ in range((os.cpu_count() or 1) + 1)]
         try:
             time.sleep(0.3)
-            seen = secondRunEnvironment({k: v for k, v in os.environ.items()
-                                         if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'OMP_NUM_THREADS')})
+            env = {k: v for k, v in os.environ.items() if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'OMP_NUM_THREADS')}
+            env['OMP_DISPLAY_ENV'] = 'VERBOSE'
+            _, err = runFemur(env)
         finally:
             for b in busy:
                 b.kill()
                 b.wait()
-        self.assertIsNotNone(seen, 'the command did not set its waiting policy before it ended')
-        self.assertEqual(seen[b'OMP_WAIT_POLICY'], b'PASSIVE')
-        self.assertNotIn(b'GOMP_SPINCOUNT', seen)
-        self.assertEqual(seen.get(b'OMP_NUM_THREADS'), b'1')  # no core is free: one thread
+        used = openmpSettings(err)
+        self.assertIsNotNone(used, 'libgomp printed no settings: ' + err)
+        self.assertEqual(used['OMP_WAIT_POLICY'], 'PASSIVE')
+        self.assertEqual(used['GOMP_SPINCOUNT'], '0')  # no spinning at all
+        self.assertEqual(used['OMP_NUM_THREADS'], '1')  # no core is free: one thread
+
+    def test_free_cores_make_the_command_spin_briefly(self):
+        # the other side: cores free, a short spin (thousands of short parallel regions), whatever it runs on
+        env = {k: v for k, v in os.environ.items() if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'OMP_NUM_THREADS')}
+        env['OMP_DISPLAY_ENV'] = 'VERBOSE'
+        _, err = runFemur(env)
+        used = openmpSettings(err)
+        self.assertIsNotNone(used, 'libgomp printed no settings: ' + err)
+        if used['OMP_WAIT_POLICY'] == 'PASSIVE':  # this machine was busy as it started: passive, as above
+            self.assertEqual(used['GOMP_SPINCOUNT'], '0')
+        else:
+            self.assertEqual(used['OMP_WAIT_POLICY'], 'ACTIVE')
+            self.assertEqual(used['GOMP_SPINCOUNT'], '10000')
 
     def test_the_command_asks_malloc_for_huge_pages(self):
-        # `mss` runs itself with malloc's blocks on transparent huge pages and from its heap (a fresh 4 KiB page
-        # costs a fault of 10-15 us under this machine's kernel); a tunable the user set is kept as set
-        for given, expected in ((None, b'glibc.malloc.hugetlb=1'), ('glibc.malloc.hugetlb=0', b'glibc.malloc.hugetlb=0')):
-            env = {k: v for k, v in os.environ.items()
-                   if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'GLIBC_TUNABLES')}
+        # `mss` puts malloc's heap on transparent huge pages (a fresh 4 KiB page costs a fault of 10-15 us
+        # under this machine's kernel): seen in the heap's mappings while it works; malloc settings the user
+        # gave (GLIBC_TUNABLES) are kept as given
+        for given, expected in ((None, True), ('glibc.malloc.hugetlb=0', None)):
+            env = {k: v for k, v in os.environ.items() if k not in ('OMP_WAIT_POLICY', 'GOMP_SPINCOUNT', 'GLIBC_TUNABLES')}
             if given:
                 env['GLIBC_TUNABLES'] = given
-            seen = secondRunEnvironment(env)
-            self.assertIsNotNone(seen, 'the command did not run itself again before it ended')
-            # (glibc rewrites the variable in place as it reads it, so /proc shows part of what was set)
-            tunables = seen.get(b'GLIBC_TUNABLES', b'').split(b':')
-            self.assertIn(expected, tunables)
-            self.assertEqual(sum(t.startswith(b'glibc.malloc.hugetlb=') for t in tunables), 1)
+            seen, _ = runFemur(env, heapOnHugePages)
+            self.assertEqual(seen, expected, given)
 
 
 if __name__ == '__main__':
