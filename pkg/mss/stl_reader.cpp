@@ -18,10 +18,18 @@ namespace {
 /// map allocated a node for every corner looked up (femur read 7.9-8.2 -> 6.8-7.1 ms).
 class VertexMerger {
 public:
-    /// @p m's vertices, if any, must be distinct: they are indexed as they are.
-    explicit VertexMerger(TriangleMesh& m) : mesh_(m) {
-        slots_.assign(1024, -1);
-        if (!mesh_.vertices.empty()) grow();
+    /// @p m's vertices, if any, must be distinct: they are indexed as they are. @p expected: about how many
+    /// vertices there will be in all (the table and the vertex list are sized for it at once; a closed mesh
+    /// has about a sixth as many vertices as corners): grown from 1024 slots and an empty list, the table
+    /// was rehashed five times and the list copied on the way (the ellipsoid's binary STL, 61,440 corners:
+    /// the copies alone a tenth of reading it).
+    explicit VertexMerger(TriangleMesh& m, std::size_t expected = 0) : mesh_(m) {
+        const std::size_t vertices = std::max(expected, mesh_.vertices.size());
+        mesh_.vertices.reserve(vertices);
+        std::size_t size = 1024;
+        while (size < 2 * vertices) size *= 2;
+        slots_.assign(size, -1);
+        if (!mesh_.vertices.empty()) rehash();
     }
     int operator()(const Vec3& p) {
         const std::size_t mask = slots_.size() - 1;
@@ -52,6 +60,9 @@ private:
         std::size_t size = slots_.size() * 2;
         while (size < 2 * mesh_.vertices.size()) size *= 2;
         slots_.assign(size, -1);
+        rehash();
+    }
+    void rehash() {
         const std::size_t mask = slots_.size() - 1;
         for (std::size_t v = 0; v < mesh_.vertices.size(); ++v) {
             std::size_t s = hash(mesh_.vertices[v]) & mask;
@@ -78,7 +89,7 @@ TriangleMesh readBinaryStl(const std::string& path, const FileBytes& buf) {
     std::memcpy(&n, buf.data() + 80, 4);
     TriangleMesh mesh;
     mesh.triangles.reserve(n);
-    VertexMerger merge(mesh);
+    VertexMerger merge(mesh, std::size_t(n) * 3 / 4);
     for (std::uint32_t t = 0; t < n; ++t) {
         const char* rec = buf.data() + 84 + 50ull * t + 12;
         Vec3 p[3];
@@ -187,7 +198,7 @@ TriangleMesh readAsciiStl(const std::string& path, const FileBytes& buf) {
     TriangleMesh meshes[2];     // each part's
     auto mergeCorners = [&](int q) {
         meshes[q].triangles.reserve(parts[q].size() / 3);
-        VertexMerger merge(meshes[q]);
+        VertexMerger merge(meshes[q], parts[q].size() / 4);
         const std::vector<Vec3>& corners = parts[q];
         for (std::size_t c = 0; c + 2 < corners.size(); c += 3)
             addTriangle(meshes[q], merge, {corners[c], corners[c + 1], corners[c + 2]});
@@ -217,7 +228,7 @@ TriangleMesh readAsciiStl(const std::string& path, const FileBytes& buf) {
     }
     if (meshes[0].triangles.empty() && meshes[1].triangles.empty()) fail(path, "ASCII STL has no facets");
     TriangleMesh mesh = std::move(meshes[0]);
-    VertexMerger merge(mesh);
+    VertexMerger merge(mesh, mesh.vertices.size() + meshes[1].vertices.size());
     std::vector<int> global(meshes[1].vertices.size());
     for (std::size_t v = 0; v < global.size(); ++v) global[v] = merge(meshes[1].vertices[v]);
     mesh.triangles.reserve(mesh.triangles.size() + meshes[1].triangles.size());
