@@ -606,7 +606,7 @@ int main(int argc, char** argv) {
         execv("/proc/self/exe", argv); // returns only on failure: then go on as we are
     }
 #endif
-    if (const char* spread = std::getenv(kSpread)) { // set above, before this program ran itself again
+    if (const char* spread = std::getenv(kSpread)) { // set by chooseOpenMp()
         const int threads = std::atoi(spread);
         unsetenv(kSpread);
         // only where the work runs here (the others run python3, which starts its own processes)

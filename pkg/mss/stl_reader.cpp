@@ -20,7 +20,8 @@ class VertexMerger {
 public:
     /// @p m's vertices, if any, must be distinct: they are indexed as they are. @p expected: about how many
     /// vertices there will be in all (the table and the vertex list are sized for it at once; a closed mesh
-    /// has about a sixth as many vertices as corners): grown from 1024 slots and an empty list, the table
+    /// has about a sixth as many vertices as corners, the callers ask for a quarter): grown from 1024 slots
+    /// and an empty list, the table
     /// was rehashed five times and the list copied on the way (the ellipsoid's binary STL, 61,440 corners:
     /// the copies alone a tenth of reading it).
     explicit VertexMerger(TriangleMesh& m, std::size_t expected = 0) : mesh_(m) {
