@@ -566,14 +566,17 @@ constexpr std::size_t kMmapThreshold = std::size_t(32) << 20, kTrimThreshold = s
 /// dynamically linked build does, cost ~3 ms a run). malloc's three through mallopt(); glibc reads
 /// GLIBC_TUNABLES before any code of ours runs, so the huge pages of glibc.malloc.hugetlb=1 are given to the
 /// heap's first 16 MB here, grown and marked at once (femur and ellipsoid runs fit in them; beyond, the heap
-/// grows on small pages). Left alone where the user set malloc tunables.
+/// grows on small pages). A malloc tunable the user set is left as set. Unlike the dynamic build, the malloc
+/// settings are made also where the user chose OpenMP's waiting (that build then does not run itself again).
 __attribute__((constructor(101))) void earlySettings(int argc, char** argv, char**) {
     chooseOpenMp(argc, argv);
+    // as the dynamic build's GLIBC_TUNABLES: each setting unless the user gave that tunable
     const char* tunables = std::getenv("GLIBC_TUNABLES");
-    if (tunables && std::strstr(tunables, "glibc.malloc.")) return;
-    mallopt(M_MMAP_THRESHOLD, int(kMmapThreshold));
-    mallopt(M_TRIM_THRESHOLD, int(kTrimThreshold));
-    mallopt(M_TOP_PAD, int(kTopPad));
+    auto given = [tunables](const char* name) { return tunables && std::strstr(tunables, name); };
+    if (!given("glibc.malloc.mmap_threshold=")) mallopt(M_MMAP_THRESHOLD, int(kMmapThreshold));
+    if (!given("glibc.malloc.trim_threshold=")) mallopt(M_TRIM_THRESHOLD, int(kTrimThreshold));
+    if (!given("glibc.malloc.top_pad=")) mallopt(M_TOP_PAD, int(kTopPad));
+    if (given("glibc.malloc.hugetlb=")) return;
     auto* before = static_cast<char*>(sbrk(0));
     static void* volatile block;  // volatile: the compiler may not drop a malloc() whose block is unused
     block = std::malloc(kTopPad); // more than the heap holds yet: it grows by this and top_pad

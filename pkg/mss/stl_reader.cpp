@@ -1,4 +1,5 @@
 // STL files, binary and ASCII (the ASCII parse in two parts on two threads for large files).
+#include "mss/index_table.hpp"
 #include "mss/mesh_readers.hpp"
 
 #include <algorithm>
@@ -14,40 +15,31 @@ namespace mss::detail {
 namespace {
 
 /// Merges identical vertex positions (STL stores each triangle's corners separately), in order of first
-/// appearance. An open-addressing table of vertex indices, linear probing, at most half full: a node-based
-/// map allocated a node for every corner looked up (femur read 7.9-8.2 -> 6.8-7.1 ms).
+/// appearance, through an IndexTable of the mesh's vertices.
 class VertexMerger {
 public:
     /// @p m's vertices, if any, must be distinct: they are indexed as they are. @p expected: about how many
     /// vertices there will be in all (the table and the vertex list are sized for it at once; a closed mesh
     /// has about a sixth as many vertices as corners, the callers ask for a quarter): grown from 1024 slots
-    /// and an empty list, the table
-    /// was rehashed five times and the list copied on the way (the ellipsoid's binary STL, 61,440 corners:
-    /// the copies alone a tenth of reading it).
-    explicit VertexMerger(TriangleMesh& m, std::size_t expected = 0) : mesh_(m) {
-        const std::size_t vertices = std::max(expected, mesh_.vertices.size());
-        mesh_.vertices.reserve(vertices);
-        std::size_t size = 1024;
-        while (size < 2 * vertices) size *= 2;
-        slots_.assign(size, -1);
-        if (!mesh_.vertices.empty()) rehash();
+    /// and an empty list, the table was rehashed five times and the list copied on the way (the ellipsoid's
+    /// binary STL, 61,440 corners: the copies alone a tenth of reading it).
+    explicit VertexMerger(TriangleMesh& m, std::size_t expected = 0)
+        : mesh_(m), table_(std::max(expected, m.vertices.size())) {
+        mesh_.vertices.reserve(std::max(expected, mesh_.vertices.size()));
+        table_.addAll(mesh_.vertices.size(), [this](int v) { return hash(mesh_.vertices[std::size_t(v)]); });
     }
     int operator()(const Vec3& p) {
-        const std::size_t mask = slots_.size() - 1;
-        for (std::size_t s = hash(p) & mask;; s = (s + 1) & mask) {
-            const int v = slots_[s];
-            if (v < 0) {
-                slots_[s] = static_cast<int>(mesh_.vertices.size());
-                mesh_.vertices.push_back(p);
-                if (2 * mesh_.vertices.size() > slots_.size()) grow();
-                return static_cast<int>(mesh_.vertices.size()) - 1;
-            }
-            if (mesh_.vertices[std::size_t(v)] == p) return v; // -0 == 0
-        }
+        const int v = table_.findOrAdd(
+            hash(p), mesh_.vertices.size(),
+            [&](int q) { return mesh_.vertices[std::size_t(q)] == p; }, // -0 == 0
+            [this](int q) { return hash(mesh_.vertices[std::size_t(q)]); });
+        if (v >= 0) return v;
+        mesh_.vertices.push_back(p);
+        return static_cast<int>(mesh_.vertices.size()) - 1;
     }
 
 private:
-    static std::size_t hash(const Vec3& p) {
+    static std::uint64_t hash(const Vec3& p) {
         std::uint64_t h = 1469598103934665603ull, w;
         for (int a = 0; a < 3; ++a) {
             const double v = p[a] == 0.0 ? 0.0 : p[a]; // -0 hashes as 0
@@ -55,24 +47,10 @@ private:
             h = (h ^ w) * 1099511628211ull;
             h ^= h >> 29;
         }
-        return static_cast<std::size_t>(h ^ (h >> 32));
-    }
-    void grow() {
-        std::size_t size = slots_.size() * 2;
-        while (size < 2 * mesh_.vertices.size()) size *= 2;
-        slots_.assign(size, -1);
-        rehash();
-    }
-    void rehash() {
-        const std::size_t mask = slots_.size() - 1;
-        for (std::size_t v = 0; v < mesh_.vertices.size(); ++v) {
-            std::size_t s = hash(mesh_.vertices[v]) & mask;
-            while (slots_[s] >= 0) s = (s + 1) & mask;
-            slots_[s] = static_cast<int>(v);
-        }
+        return h ^ (h >> 32);
     }
     TriangleMesh& mesh_;
-    std::vector<int> slots_;
+    IndexTable table_;
 };
 
 void addTriangle(TriangleMesh& mesh, VertexMerger& merge, const Vec3 (&p)[3]) {

@@ -1,3 +1,4 @@
+#include "mss/index_table.hpp"
 #include "mss/mesh.hpp"
 #include "mss/mesh_readers.hpp"
 #include "mss/npy.hpp"
@@ -120,6 +121,36 @@ TEST(MeshIo, StlCornersMergeInOrderOfFirstAppearance) {
     ASSERT_EQ(m.vertices.size(), order.size());
     EXPECT_EQ(m.triangles[1][0], 0); // -0 merged with 0
     for (std::size_t v = 0; v < order.size(); ++v) EXPECT_EQ(m.vertices[v], order[v]);
+}
+
+TEST(IndexTable, IndicesInOrderOfAdditionThroughCollisionsAndGrowth) {
+    // the table under the STL reader's vertex merging and the candidates' positions seen: 5000 keys whose
+    // hashes collide in runs of 7 (long probes), each added once and then found at its index, the table grown
+    // from 1024 slots several times; a second add of a key finds it and adds nothing
+    std::vector<int> keys;
+    mss::detail::IndexTable table;
+    auto hash = [](int k) { return std::uint64_t(k / 7); };
+    auto findOrAdd = [&](int k) {
+        return table.findOrAdd(
+            hash(k), keys.size(), [&](int q) { return keys[std::size_t(q)] == k; },
+            [&](int q) { return hash(keys[std::size_t(q)]); });
+    };
+    for (int n = 0; n < 5000; ++n) {
+        const int k = (n * 7919) % 5003; // distinct, in a scrambled order
+        ASSERT_EQ(findOrAdd(k), -1) << n;
+        keys.push_back(k);
+    }
+    for (std::size_t n = 0; n < keys.size(); ++n) ASSERT_EQ(findOrAdd(keys[n]), int(n));
+    EXPECT_EQ(keys.size(), 5000u);
+    EXPECT_EQ(table.used(), keys.size());
+    mss::detail::IndexTable filled(10); // too small: addAll grows it, each key recorded once
+    filled.addAll(keys.size(), [&](int q) { return hash(keys[std::size_t(q)]); });
+    EXPECT_EQ(filled.used(), keys.size());
+    for (std::size_t n = 0; n < keys.size(); n += 97)
+        EXPECT_EQ(filled.findOrAdd(
+                      hash(keys[n]), keys.size(), [&](int q) { return keys[std::size_t(q)] == keys[n]; },
+                      [&](int q) { return hash(keys[std::size_t(q)]); }),
+                  int(n));
 }
 
 TEST(MeshIo, ObjOffPlyAscii) {
