@@ -29,7 +29,7 @@ namespace {
 /// trials about 5599 centres), and the ends of nearby radii lie on the same cache lines of the prefix.
 __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radii, int n,
                                                const std::array<int, 3>& d, const std::uint16_t* prefix,
-                                               const std::uint16_t* base, long long* out) {
+                                               long long* out) {
     constexpr int kMax = Coverage::kMaxRadii;
     double r2[kMax];
     int k0[kMax], k1[kMax];
@@ -44,8 +44,9 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
     }
     const __m256d cx = _mm256_set1_pd(c.x()), cy = _mm256_set1_pd(c.y());
     const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
-    const __m256d lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
-    const long long nx = d[0];
+    const __m256d one = _mm256_set1_pd(1.0), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
+    const long long stride = d[0] + 1; // a row's prefix: its base, then one entry per voxel
+    const __m256d laneRows = _mm256_mul_pd(lanes, _mm256_set1_pd(double(stride)));
     for (int k = kLo; k <= kHi; ++k) {
         const double dz = k - c.z();
         double rz2[kMax];
@@ -72,6 +73,7 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
             const __m256d dy = _mm256_sub_pd(jv, cy);
             const __m256d dy2 = _mm256_mul_pd(dy, dy);
             const long long jk = j + static_cast<long long>(d[1]) * k;
+            const std::uint16_t* p = prefix + jk * stride; // row j's base; row j + l's at l * stride
             for (int m = 0; m < n; ++m) {
                 if (j0[m] > j1[m] || j > j1[m] || j + 3 < j0[m]) continue;
                 const __m256d rx2 = _mm256_sub_pd(_mm256_set1_pd(rz2[m]), dy2);
@@ -85,18 +87,20 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
                                   _mm256_cmp_pd(jv, _mm256_set1_pd(double(j0[m])), _CMP_GE_OQ));
                 const __m256d ok = _mm256_and_pd(_mm256_and_pd(inRows, _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ)),
                                                  _mm256_cmp_pd(lo, hi, _CMP_LE_OQ));
-                const int mask = _mm256_movemask_pd(ok);
-                if (mask == 0) continue;
+                if (_mm256_movemask_pd(ok) == 0) continue;
+                // every lane reads two entries of a row, without a branch: the sum is the entry at hi (base +
+                // 1
+                // + hi) less the one before lo (base + lo); a lane without voxels reads the entry before lo
+                // of row j twice (lo is in 0..nx, as c is in the grid), which sums to 0
+                const __m256d off = _mm256_and_pd(ok, laneRows);
+                const __m256d end = _mm256_blendv_pd(lo, _mm256_add_pd(hi, one), ok);
                 alignas(16) int los[4], his[4];
-                _mm_store_si128(reinterpret_cast<__m128i*>(los), _mm256_cvttpd_epi32(lo));
-                _mm_store_si128(reinterpret_cast<__m128i*>(his), _mm256_cvttpd_epi32(hi));
-                long long total = 0;
-                for (int l = 0; l < 4; ++l) {
-                    if (!(mask >> l & 1)) continue;
-                    const std::uint16_t* p = prefix + (jk + l) * nx;
-                    const std::uint16_t before = los[l] > 0 ? p[los[l] - 1] : base[jk + l];
-                    total += static_cast<std::int16_t>(static_cast<std::uint16_t>(p[his[l]] - before));
-                }
+                _mm_store_si128(reinterpret_cast<__m128i*>(los), _mm256_cvttpd_epi32(_mm256_add_pd(lo, off)));
+                _mm_store_si128(reinterpret_cast<__m128i*>(his),
+                                _mm256_cvttpd_epi32(_mm256_add_pd(end, off)));
+                int total = 0;
+                for (int l = 0; l < 4; ++l)
+                    total += static_cast<std::int16_t>(static_cast<std::uint16_t>(p[his[l]] - p[los[l]]));
                 out[m] += total;
             }
         }
@@ -106,12 +110,12 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
 
 /// One row of Coverage::changeSlice: the counts @p c of voxels u0..u1 change by @p delta, and those of
 /// o0..o1 (within, or empty: o0 > o1) by 2 delta more (two mirror images' runs that overlap); the prefix @p p
-/// (and the row's @p base) follow where a voxel flips between covered and uncovered. (An AVX2 clone of it
+/// (p[-1]: the row's base) follows where a voxel flips between covered and uncovered. (An AVX2 clone of it
 /// made no measurable difference: the rows' loops are short and the prefix scan serial.)
 /// @p Count: the counts' type (8 bits where at most 255 balls are ever placed).
 template <class Count>
-void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t& base, int nx, int u0, int u1,
-               int o0, int o1, int delta, long long& dMismatch, long long& dCovered) {
+void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, int nx, int u0, int u1, int o0, int o1,
+               int delta, long long& dMismatch, long long& dCovered) {
     int flips = 0, inside = 0;
     // coverage before a flip: 0 when adding, the change when removing
     auto count = [&](int i0, int i1, int d) {
@@ -143,14 +147,13 @@ void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, std::uint16_t&
     const int sign = delta > 0 ? 1 : -1;
     const auto shift = static_cast<std::uint16_t>(-sign * (2 * inside - flips));
     const bool left = first < nx - 1 - u1;
-    auto acc = static_cast<std::uint16_t>((first > 0 ? p[first - 1] : base) - (left ? shift : 0));
+    auto acc = static_cast<std::uint16_t>(p[first - 1] - (left ? shift : 0));
     for (int i = first; i <= u1; ++i) {
         acc = static_cast<std::uint16_t>(acc + (c[i] == 0 ? (s[i] ? 1 : 0xFFFF) : 0));
         p[i] = acc;
     }
     if (left) {
-        for (int i = 0; i < first; ++i) p[i] = static_cast<std::uint16_t>(p[i] - shift);
-        base = static_cast<std::uint16_t>(base - shift);
+        for (int i = -1; i < first; ++i) p[i] = static_cast<std::uint16_t>(p[i] - shift); // the base too
     } else {
         for (int i = u1 + 1; i < nx; ++i) p[i] = static_cast<std::uint16_t>(p[i] + shift);
     }
@@ -166,7 +169,7 @@ long long Coverage::gain(const Ball& b) const {
     static const bool kAvx2 = __builtin_cpu_supports("avx2");
     if (kAvx2) {
         long long g = 0;
-        gainsAvx2(b.c, &b.r, 1, S_.spec.dims, prefix_.data(), base_.data(), &g);
+        gainsAvx2(b.c, &b.r, 1, S_.spec.dims, prefix_.data(), &g);
         return g;
     }
 #endif
@@ -178,7 +181,7 @@ void Coverage::gains(const Vec3& c, const double* radii, int n, long long* out) 
 #if MSS_GAIN_AVX2
     static const bool kAvx2 = __builtin_cpu_supports("avx2");
     if (kAvx2) {
-        gainsAvx2(c, radii, n, S_.spec.dims, prefix_.data(), base_.data(), out);
+        gainsAvx2(c, radii, n, S_.spec.dims, prefix_.data(), out);
         return;
     }
 #endif
@@ -198,13 +201,15 @@ Coverage::Coverage(const VoxelGrid& target, std::size_t maxBalls)
         cover8_.assign(target.size(), 0);
     else
         cover16_.assign(target.size(), 0);
-    prefix_.resize(target.size());
-    base_.assign(target.size() / std::size_t(nx_), 0);
+    prefix_.resize(target.size() / std::size_t(nx_) * std::size_t(nx_ + 1));
     solid_ = countSolid(target);
     mismatch_ = static_cast<long long>(solid_);
     const long long rows = static_cast<long long>(target.size() / std::size_t(nx_));
 #pragma omp parallel for schedule(static)
-    for (long long row = 0; row < rows; ++row) rebuildRow(std::size_t(row) * std::size_t(nx_), 0);
+    for (long long row = 0; row < rows; ++row) {
+        rowPrefix(std::size_t(row))[-1] = 0;
+        rebuildRow(std::size_t(row), 0);
+    }
 }
 
 long long Coverage::gain(const std::vector<Ball>& balls, bool mirrored) const {
@@ -236,7 +241,7 @@ long long Coverage::gainRowPair(const std::vector<Ball>& balls, bool mirrored) c
               k1 = std::min(halfEnd(mirrored, 2), floorInt(b.c.z() + b.r));
     for (int k = k0; k <= k1; ++k)
         forPairRows(b, balls[1].c.x(), k, halfEnd(mirrored, 1), [&](int j, int a0, int a1, int b0, int b1) {
-            const std::size_t row = S_.spec.index(0, j, k);
+            const std::size_t row = rowOf(j, k);
             const bool hasA = a0 <= a1, hasB = b0 <= b1;
             long long g;
             if (hasA && hasB && b0 <= a1 + 1)
@@ -276,7 +281,7 @@ long long Coverage::gainMerged(const std::vector<Ball>& balls, bool mirrored) co
                 iv[p] = {i0, i1};
             }
             if (n == 0) continue;
-            const std::size_t row = S_.spec.index(0, j, k);
+            const std::size_t row = rowOf(j, k);
             long long rowTotal = 0;
             int a = iv[0].first, e = iv[0].second;
             for (int p = 1; p < n; ++p) {
@@ -294,12 +299,14 @@ long long Coverage::gainMerged(const std::vector<Ball>& balls, bool mirrored) co
     return total;
 }
 
-void Coverage::rebuildRow(std::size_t row, int from) {
-    std::uint16_t acc = from > 0 ? prefix_[row + from - 1] : base_[row / std::size_t(nx_)];
+void Coverage::rebuildRow(std::size_t r, int from) {
+    std::uint16_t* p = rowPrefix(r);
+    const std::size_t v = r * std::size_t(nx_);
+    std::uint16_t acc = p[from - 1];
     for (int i = from; i < nx_; ++i) {
-        const bool covered = cover8_.empty() ? cover16_[row + i] != 0 : cover8_[row + i] != 0;
-        if (!covered) acc = static_cast<std::uint16_t>(acc + (S_.data[row + i] ? 1 : 0xFFFF));
-        prefix_[row + i] = acc;
+        const bool covered = cover8_.empty() ? cover16_[v + i] != 0 : cover8_[v + i] != 0;
+        if (!covered) acc = static_cast<std::uint16_t>(acc + (S_.data[v + i] ? 1 : 0xFFFF));
+        p[i] = acc;
     }
 }
 
@@ -354,21 +361,21 @@ void Coverage::change(const std::vector<Ball>& balls, int delta) {
 void Coverage::changeSlice(const Ball& b, const Ball* other, int delta, int k, long long& dMismatch,
                            long long& dCovered) {
     auto row = [&](std::size_t r, int u0, int u1, int o0, int o1) {
+        const std::size_t v = r * std::size_t(nx_);
         if (cover8_.empty())
-            changeRow(cover16_.data() + r, S_.data.data() + r, prefix_.data() + r,
-                      base_[r / std::size_t(nx_)], nx_, u0, u1, o0, o1, delta, dMismatch, dCovered);
+            changeRow(cover16_.data() + v, S_.data.data() + v, rowPrefix(r), nx_, u0, u1, o0, o1, delta,
+                      dMismatch, dCovered);
         else
-            changeRow(cover8_.data() + r, S_.data.data() + r, prefix_.data() + r, base_[r / std::size_t(nx_)],
-                      nx_, u0, u1, o0, o1, delta, dMismatch, dCovered);
+            changeRow(cover8_.data() + v, S_.data.data() + v, rowPrefix(r), nx_, u0, u1, o0, o1, delta,
+                      dMismatch, dCovered);
     };
     if (!other) {
-        mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k, [&](int j, int kk, int i0, int i1) {
-            row(S_.spec.index(0, j, kk), i0, i1, 1, 0);
-        });
+        mss::detail::forBallRows(b.c, b.r, S_.spec.dims, k, k,
+                                 [&](int j, int kk, int i0, int i1) { row(rowOf(j, kk), i0, i1, 1, 0); });
         return;
     }
     forPairRows(b, other->c.x(), k, S_.spec.dims[1] - 1, [&](int j, int a0, int a1, int b0, int b1) {
-        const std::size_t r = S_.spec.index(0, j, k);
+        const std::size_t r = rowOf(j, k);
         const bool hasA = a0 <= a1, hasB = b0 <= b1;
         if (hasA && hasB && b0 <= a1) { // overlapping runs: one pass over their union
             row(r, a0, std::max(a1, b1), b0, std::min(a1, b1));

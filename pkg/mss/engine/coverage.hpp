@@ -32,7 +32,7 @@ public:
     /// gain(b) row by row, portable: what the vector path must equal (the tests compare them).
     long long gainRows(const Ball& b) const {
         long long total = 0;
-        forColumns(b, [&](std::size_t row, int i0, int i1) { total += sum(row, i0, i1); });
+        forColumns(b, [&](std::size_t r, int i0, int i1) { total += sum(r, i0, i1); });
         return total;
     }
     static constexpr int kMaxRadii = 4;
@@ -72,14 +72,23 @@ private:
         if (mirrored && mirror_[2] && 2 * k != S_.spec.dims[2] - 1) w *= 2;
         return w;
     }
-    long long sum(std::size_t row, int i0, int i1) const {
-        const std::uint16_t before = i0 > 0 ? prefix_[row + i0 - 1] : base_[row / std::size_t(nx_)];
-        return static_cast<std::int16_t>(static_cast<std::uint16_t>(prefix_[row + i1] - before));
+    /// The prefix of row @p r (j + ny k): entry i is the sum before voxel i + 1, entry -1 the row's base.
+    const std::uint16_t* rowPrefix(std::size_t r) const {
+        return prefix_.data() + r * std::size_t(nx_ + 1) + 1;
+    }
+    std::uint16_t* rowPrefix(std::size_t r) { return prefix_.data() + r * std::size_t(nx_ + 1) + 1; }
+    /// Sum of g over the uncovered voxels i0..i1 of row @p r
+    long long sum(std::size_t r, int i0, int i1) const {
+        const std::uint16_t* p = rowPrefix(r);
+        return static_cast<std::int16_t>(static_cast<std::uint16_t>(p[i1] - p[i0 - 1]));
+    }
+    std::size_t rowOf(int j, int k) const {
+        return std::size_t(j) + std::size_t(S_.spec.dims[1]) * std::size_t(k);
     }
     void rebuildRow(std::size_t row, int from);
     template <class F> void forColumns(const Ball& b, F&& f) const {
         mss::detail::forBallRows(b.c, b.r, S_.spec.dims, 0, S_.spec.dims[2] - 1,
-                                 [&](int j, int k, int i0, int i1) { f(S_.spec.index(0, j, k), i0, i1); });
+                                 [&](int j, int k, int i0, int i1) { f(rowOf(j, k), i0, i1); });
     }
     void change(const Ball& b, int delta);
     void change(const std::vector<Ball>& balls, int delta);
@@ -117,9 +126,10 @@ private:
     BigVector<std::uint16_t> cover16_; ///< the counts, else
     // prefix sums modulo 2^16: only differences within a row are ever used, and they are at most the row's
     // length, which is checked to be under 2^15 (half the bytes of int32: the prefix is read at both ends of
-    // every row of every ball evaluated, and written where coverage flips)
+    // every row of every ball evaluated, and written where coverage flips). Per row nx + 1 entries: first the
+    // base (the prefix before the row's first voxel), then one per voxel, so that every interval's sum is
+    // two loads without a branch (the gain's inner loop: 13.0 -> 10.7 ms for 8400 trials on the femur).
     BigVector<std::uint16_t> prefix_;
-    std::vector<std::uint16_t> base_; ///< per row: the prefix before its first voxel
     std::array<bool, 3> mirror_{false, false, false};
     int nx_;
     std::size_t maxBalls_, balls_ = 0;

@@ -67,6 +67,9 @@ void movesAlong(const Selection& s, const Orbit& o, double step, int a, double s
     }
     trial.r = std::min(trial.r, limit);
     if (trial.r < s.rMinVox) return;
+    // the radius up where the orbit already touches the bound is the orbit itself, which cannot gain more
+    // than it does (femur 70: 619 of 1725 radius trials; the task then evaluates the radius down alone)
+    if (a == 3 && trial.r == o.r) return;
     out.push_back({trial, a, sgn});
 }
 
