@@ -252,6 +252,50 @@ TEST(Coverage, LongRowsKeepExactSumsModulo16Bits) {
     EXPECT_EQ(cov.gainRows(whole), uncovered);
 }
 
+TEST(Coverage, ByteCountsOverLongRunsCountExactly) {
+    // byte counts (at most 255 balls) are changed 16 voxels at a time, their flips summed in byte lanes every
+    // 255 blocks: runs of thousands of voxels, alone and as overlapping mirror images (a double change over
+    // their overlap), against brute force and the row loop
+    GridSpec g;
+    g.dims = {9001, 3, 3};
+    VoxelGrid S(g, 0);
+    for (int i = 1; i < 9000; ++i) {
+        S(i, 1, 1) = static_cast<std::uint8_t>(i % 5 != 0);
+        S(i, 2, 1) = static_cast<std::uint8_t>(i % 7 < 3);
+    }
+    Coverage cov(S, 255);
+    std::vector<Ball> placed;
+    auto check = [&](const char* what) {
+        EXPECT_EQ(cov.mismatch(), bruteMismatch(S, placed)) << what;
+        for (const Ball& probe : {Ball{Vec3(4500.3, 1, 1), 4400.0}, Ball{Vec3(17.5, 1.2, 1), 9.0}}) {
+            std::vector<Ball> with = placed;
+            with.push_back(probe);
+            EXPECT_EQ(cov.gain(probe), bruteMismatch(S, placed) - bruteMismatch(S, with)) << what;
+            EXPECT_EQ(cov.gainRows(probe), cov.gain(probe)) << what;
+        }
+    };
+    const Ball big{Vec3(4000.25, 1, 1), 3990.0}, small{Vec3(3.0, 1, 1), 2.5};
+    cov.add(big);
+    placed.push_back(big);
+    check("one ball over 7980 voxels a row");
+    cov.add(small);
+    placed.push_back(small);
+    check("a small ball at the row's start");
+    const std::vector<Ball> pair{{Vec3(3000.5, 1.4, 1), 2600.0}, {Vec3(6000.5, 1.4, 1), 2600.0}};
+    cov.add(pair); // x-mirror partners whose runs overlap over 2200 voxels: one pass, counts + 2 there
+    placed.insert(placed.end(), pair.begin(), pair.end());
+    check("overlapping mirror images");
+    cov.remove(big);
+    placed.erase(placed.begin());
+    check("the first ball removed");
+    cov.remove(pair);
+    placed.resize(1);
+    check("the pair removed");
+    cov.remove(small);
+    placed.clear();
+    check("all removed");
+}
+
 TEST(Coverage, RowsLongerThan32767VoxelsAreRefused) {
     GridSpec g;
     g.dims = {32768, 3, 3};
