@@ -39,7 +39,7 @@ void repairSymmetry(Selection& s, Clock::time_point tStart, bool tune) {
         s.greedy();
         debug(tStart, "repair: greedy");
         touched.insert(touched.end(), s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
-        if (tune) refine(s, &touched, 2);
+        if (tune) refine(s, &touched, 2, false);
         debug(tStart, "repair: refine");
         if (s.placed > savedPlaced && double(s.cov.mismatch()) <= 1.05 * double(before)) continue;
         unplaceAll(s);
@@ -68,7 +68,7 @@ void growToTarget(Selection& s, Metrics& m, double& secondsRefine) {
         m.secondsSelect += secondsSince(t0);
         t0 = Clock::now();
         const std::vector<Orbit> touched(s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
-        refine(s, &touched, 2);
+        refine(s, &touched, 2, false);
         secondsRefine += secondsSince(t0);
         // stop at the target, the cap, or when nothing more could be placed (the main loop then goes on as
         // without growth); the growth is the first greedy round of the main loop, spread out, so it does not
@@ -87,7 +87,7 @@ void fillAlone(Selection& s) {
     const std::size_t before = s.placed, kept = s.chosen.size();
     s.greedy();
     const std::vector<Orbit> touched(s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
-    if (s.placed > before) refine(s, &touched);
+    if (s.placed > before) refine(s, &touched, 3, s.sym.planes() == 0);
 }
 
 } // namespace
@@ -115,9 +115,12 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         if (m.iterations == 0) repairSymmetry(s, tStart, false);
         m.secondsSelect += secondsSince(t0);
         const auto t1 = Clock::now();
-        refine(s);
+        // half-voxel steps first where no mirror plane is kept (see refine.hpp); with planes, the repairs'
+        // trades are judged on refined sets, and a different order of moves turned good trades down
+        const bool coarseFirst = s.sym.planes() == 0;
+        refine(s, nullptr, 3, coarseFirst);
         const bool pruned = s.prune();
-        if (pruned) refine(s);
+        if (pruned) refine(s, nullptr, 3, coarseFirst);
         secondsRefine += secondsSince(t1);
         if (s.full() || s.met()) { // done (a warm start may begin so)
             ++m.iterations;

@@ -73,13 +73,14 @@ void movesAlong(const Selection& s, const Orbit& o, double step, int a, double s
     out.push_back({trial, a, sgn});
 }
 
-/// Tunes one orbit (taken out of the coverage) by steps of 1/2 then 1/4 voxel; @p best: its gain, raised.
+/// Tunes one orbit (taken out of the coverage) by steps of 1/2 then, if @p fine, 1/4 voxel; @p best: its
+/// gain, raised.
 /// Each step tries the moves from the orbit: its centre +- step along each free axis, its radius +- step; not
 /// the reverse of the move just taken (it leads back); the best that gains more is taken, the first in that
 /// order on a tie. The moves about one centre (a direction's three; the radius down and up) are one task:
 /// its constraint looked up (exact queries cost ~4 us each; the bound caches) and its trials evaluated in one
 /// pass over their rows (Coverage::gains), the tasks in parallel.
-void tune(const Selection& s, Orbit& o, long long& best) {
+void tune(const Selection& s, Orbit& o, long long& best, bool fine) {
     struct Task {
         int axis;
         std::array<double, 2> signs; // 0: none
@@ -89,6 +90,7 @@ void tune(const Selection& s, Orbit& o, long long& best) {
     std::vector<Task> tasks;
     tasks.reserve(7);
     for (double step : {0.5, 0.25}) {
+        if (step < 0.5 && !fine) break;
         int lastAxis = -1;
         double lastSign = 0.0;
         for (int rep = 0; rep < 6; ++rep) {
@@ -130,7 +132,7 @@ void tune(const Selection& s, Orbit& o, long long& best) {
 
 } // namespace
 
-void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps) {
+void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps, bool coarseFirst) {
     static const bool kSkip = !std::getenv("MSS_NOSKIP");
     std::vector<Orbit>& chosen = s.chosen;
     std::vector<char> moved(chosen.size(), 1);
@@ -138,13 +140,17 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps) {
         for (std::size_t q = 0; q < chosen.size(); ++q)
             moved[q] = std::any_of(touched->begin(), touched->end(),
                                    [&](const Orbit& t) { return overlaps(s.sym, chosen[q], t); });
+    const std::vector<char> eligible = moved; // what the first sweep (and a last fine one) consider
     for (int sweep = 0; sweep < sweeps; ++sweep) {
+        // coarse first: the sweeps before the last take half-voxel steps only; the last one takes half- then
+        // quarter-voxel steps and considers every orbit the first one did (see refine.hpp)
+        const bool fine = !coarseFirst || sweep == sweeps - 1, last = coarseFirst && fine;
         bool improved = false;
         std::vector<char> movedNow(chosen.size(), 0);
         for (std::size_t oi = 0; oi < chosen.size(); ++oi) {
             Orbit& o = chosen[oi];
-            if (sweep == 0 && touched && !moved[oi]) continue; // far from what changed
-            if (sweep > 0 && kSkip) {
+            if ((sweep == 0 || last) && !eligible[oi]) continue; // far from what changed
+            if (sweep > 0 && !last && kSkip) {
                 bool stale = true;
                 for (std::size_t oj = 0; oj < chosen.size() && stale; ++oj)
                     if (moved[oj] && (oj == oi || overlaps(s.sym, o, chosen[oj]))) stale = false;
@@ -156,13 +162,14 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps) {
             s.cov.remove(s.sym.images(o));
             long long best = s.cov.mismatch() - before;
             const long long start = best;
-            tune(s, o, best);
+            tune(s, o, best, fine);
             s.cov.add(s.sym.images(o));
             movedNow[oi] = best > start;
             improved = improved || best > start;
         }
         moved.swap(movedNow);
-        if (!improved) break;
+        if (last || (!coarseFirst && !improved)) break;
+        if (!improved) sweep = sweeps - 2; // the half-voxel steps have converged: on to the last sweep
     }
 }
 
