@@ -111,6 +111,76 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
 }
 #endif
 
+#if MSS_GAIN_AVX2
+/// Coverage::gainRowPair on AVX2: two balls of one radius at x = @p xa <= @p xb (the same y, z), four rows
+/// at a time, rows j <= @p jEnd of slices k <= @p kEnd, each weighted by @p wj(j) * @p wk(k). A row's sum
+/// over the union of the two runs, as two disjoint pieces [a0, a1] and [max(b0, a1 + 1), b1] (b1 >= a1 and
+/// b0 >= a0: the same radius, xb >= xa), each without a branch (an empty piece reads one entry twice).
+template <class WJ, class WK>
+__attribute__((target("avx2"))) long long gainPairAvx2(const Vec3& c, double r, double xa, double xb,
+                                                       const std::array<int, 3>& d, int jEnd, int kEnd,
+                                                       const std::uint16_t* prefix, WJ wj, WK wk) {
+    const __m256d vxa = _mm256_set1_pd(xa), vxb = _mm256_set1_pd(xb), cy = _mm256_set1_pd(c.y());
+    const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
+    const __m256d one = _mm256_set1_pd(1.0), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
+    const long long stride = d[0] + 1;
+    const __m256d laneRows = _mm256_mul_pd(lanes, _mm256_set1_pd(double(stride)));
+    const double r2 = r * r;
+    const int k0 = std::max(0, ceilInt(c.z() - r)), k1 = std::min(kEnd, floorInt(c.z() + r));
+    long long total = 0;
+    for (int k = k0; k <= k1; ++k) {
+        const double dz = k - c.z(), rz2 = r2 - dz * dz;
+        if (rz2 < 0) continue;
+        const double ry = std::sqrt(rz2);
+        const int j0 = std::max(0, ceilInt(c.y() - ry)), j1 = std::min(jEnd, floorInt(c.y() + ry));
+        const __m256d vj0 = _mm256_set1_pd(double(j0)), vj1 = _mm256_set1_pd(double(j1)),
+                      vrz2 = _mm256_set1_pd(rz2);
+        const long long weightK = wk(k);
+        for (int j = j0; j <= j1; j += 4) {
+            const __m256d jv = _mm256_add_pd(_mm256_set1_pd(double(j)), lanes);
+            const __m256d dy = _mm256_sub_pd(jv, cy);
+            const __m256d rx2 = _mm256_sub_pd(vrz2, _mm256_mul_pd(dy, dy));
+            const __m256d rx = _mm256_sqrt_pd(_mm256_max_pd(rx2, zero));
+            constexpr int kUp = _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC,
+                          kDown = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+            const __m256d a0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxa, rx), kUp));
+            const __m256d a1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxa, rx), kDown));
+            const __m256d b0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxb, rx), kUp));
+            const __m256d b1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxb, rx), kDown));
+            const __m256d row = _mm256_and_pd(
+                _mm256_and_pd(_mm256_cmp_pd(jv, vj1, _CMP_LE_OQ), _mm256_cmp_pd(jv, vj0, _CMP_GE_OQ)),
+                _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ));
+            if (_mm256_movemask_pd(row) == 0) continue;
+            // the pieces [a0, a1] and [m, b1], m = max(b0, a1 + 1) (at most nx: an entry of the row); a lane
+            // off the rows, or an empty piece, reads the entry before its start twice (lanes off the rows
+            // read row j's entries: a0 and m lie in 0..nx, as the centres lie in the grid)
+            const __m256d okA = _mm256_and_pd(row, _mm256_cmp_pd(a0, a1, _CMP_LE_OQ));
+            const __m256d m =
+                _mm256_min_pd(_mm256_max_pd(b0, _mm256_add_pd(a1, one)), _mm256_add_pd(last, one));
+            const __m256d okB = _mm256_and_pd(row, _mm256_cmp_pd(m, b1, _CMP_LE_OQ));
+            const __m256d off = _mm256_and_pd(row, laneRows);
+            const __m256d s1 = _mm256_add_pd(a0, off);
+            const __m256d e1 = _mm256_add_pd(_mm256_blendv_pd(a0, _mm256_add_pd(a1, one), okA), off);
+            const __m256d s2 = _mm256_add_pd(_mm256_blendv_pd(a0, m, row), off);
+            const __m256d e2 = _mm256_add_pd(
+                _mm256_blendv_pd(_mm256_blendv_pd(a0, m, row), _mm256_add_pd(b1, one), okB), off);
+            alignas(16) int is1[4], ie1[4], is2[4], ie2[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(is1), _mm256_cvttpd_epi32(s1));
+            _mm_store_si128(reinterpret_cast<__m128i*>(ie1), _mm256_cvttpd_epi32(e1));
+            _mm_store_si128(reinterpret_cast<__m128i*>(is2), _mm256_cvttpd_epi32(s2));
+            _mm_store_si128(reinterpret_cast<__m128i*>(ie2), _mm256_cvttpd_epi32(e2));
+            const std::uint16_t* p = prefix + (j + static_cast<long long>(d[1]) * k) * stride;
+            for (int l = 0; l < 4; ++l) {
+                const int g = static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie1[l]] - p[is1[l]])) +
+                              static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie2[l]] - p[is2[l]]));
+                total += wj(j + l) * weightK * g;
+            }
+        }
+    }
+    return total;
+}
+#endif
+
 /// The counts of one run of a row, @p c[i0..i1], change by @p d (+-1, +-2); @p flips and @p inside count the
 /// voxels whose coverage flips (count 0 before when adding, -d when removing), all and those in S (@p s);
 /// @p first: the first flip, if none before (-1).
@@ -307,6 +377,15 @@ long long Coverage::gain(const std::vector<Ball>& balls, bool mirrored) const {
 
 long long Coverage::gainRowPair(const std::vector<Ball>& balls, bool mirrored) const {
     const Ball& b = balls[0];
+#if MSS_GAIN_AVX2
+    static const bool kAvx2 = __builtin_cpu_supports("avx2");
+    if (kAvx2)
+        return gainPairAvx2(
+            b.c, b.r, std::min(b.c.x(), balls[1].c.x()), std::max(b.c.x(), balls[1].c.x()), S_.spec.dims,
+            halfEnd(mirrored, 1), halfEnd(mirrored, 2), prefix_.data(),
+            [&](int j) { return mirrored && mirror_[1] && 2 * j != S_.spec.dims[1] - 1 ? 2LL : 1LL; },
+            [&](int k) { return mirrored && mirror_[2] && 2 * k != S_.spec.dims[2] - 1 ? 2LL : 1LL; });
+#endif
     long long total = 0;
     const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
               k1 = std::min(halfEnd(mirrored, 2), floorInt(b.c.z() + b.r));
