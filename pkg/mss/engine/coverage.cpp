@@ -452,12 +452,10 @@ long long Coverage::gainMerged(const std::vector<Ball>& balls, bool mirrored) co
 void Coverage::rebuildRow(std::size_t r, int from) {
     std::uint16_t* p = rowPrefix(r);
     const std::size_t v = r * std::size_t(nx_);
-    std::uint16_t acc = p[from - 1];
-    for (int i = from; i < nx_; ++i) {
-        const bool covered = cover8_.empty() ? cover16_[v + i] != 0 : cover8_[v + i] != 0;
-        if (!covered) acc = static_cast<std::uint16_t>(acc + (S_.data[v + i] ? 1 : 0xFFFF));
-        p[i] = acc;
-    }
+    if (cover8_.empty())
+        prefixRun(cover16_.data() + v, S_.data.data() + v, p, from, nx_ - 1, p[from - 1]);
+    else
+        prefixRun(cover8_.data() + v, S_.data.data() + v, p, from, nx_ - 1, p[from - 1]);
 }
 
 void Coverage::countBalls(int delta) {
