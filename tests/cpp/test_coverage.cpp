@@ -233,6 +233,49 @@ TEST(Coverage, RowPairGainsAreExact) {
     }
 }
 
+TEST(Coverage, OverlappingOrbitImagesGainExactly) {
+    // an orbit's images under mirror planes (2, 4 or 8 balls of one radius: every x centre with every (y, z)
+    // position) overlapping each other are summed as one union per row, four rows at a time where the CPU
+    // allows: against brute force, alone and after other balls, and on a mirrored coverage against the full
+    // sum; a set that is no product (three balls of two radii) takes the general merge
+    const VoxelGrid S = ellipsoid(31, 17, 13, 6);
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<double> ux(8, 22), uy(3, 13), uz(2, 10), rr(2, 9);
+    const std::array<std::array<bool, 3>, 5> planeSets{{{true, true, true},
+                                                        {true, true, false},
+                                                        {false, true, true},
+                                                        {true, false, true},
+                                                        {false, true, false}}};
+    Coverage cov(S);
+    std::vector<Ball> placed{{Vec3(12.5, 7, 6), 4.5}, {Vec3(20, 10, 5), 3.0}};
+    for (const Ball& b : placed) cov.add(b);
+    const long long base = bruteMismatch(S, placed);
+    int overlapping = 0;
+    for (int t = 0; t < 150; ++t) {
+        const Symmetry sym(S.spec, planeSets[std::size_t(t % 5)]);
+        const std::vector<Ball> imgs = sym.images(sym.make(Vec3(ux(rng), uy(rng), uz(rng)), rr(rng)));
+        if (imgs.size() < 2) continue;
+        overlapping += (imgs[0].c - imgs[1].c).norm() <= 2 * imgs[0].r;
+        std::vector<Ball> with = placed;
+        with.insert(with.end(), imgs.begin(), imgs.end());
+        ASSERT_EQ(cov.gain(imgs), base - bruteMismatch(S, with))
+            << "orbit " << imgs[0].c.transpose() << " r " << imgs[0].r << " images " << imgs.size();
+    }
+    EXPECT_GT(overlapping, 50);
+    Coverage mirrored(S);
+    mirrored.setMirrorPlanes({true, true, true});
+    const Symmetry all(S.spec, {true, true, true});
+    mirrored.add(all.images(all.make(Vec3(11, 6, 4.5), 3.5)));
+    for (int t = 0; t < 100; ++t) {
+        const std::vector<Ball> imgs = all.images(all.make(Vec3(ux(rng), uy(rng), uz(rng)), rr(rng)));
+        ASSERT_EQ(mirrored.gain(imgs, true), mirrored.gain(imgs, false)) << imgs[0].c.transpose();
+    }
+    const std::vector<Ball> mixed{{Vec3(10, 8, 6), 4.0}, {Vec3(13, 8, 6), 3.0}, {Vec3(10, 10, 6), 4.0}};
+    std::vector<Ball> with = placed;
+    with.insert(with.end(), mixed.begin(), mixed.end());
+    EXPECT_EQ(cov.gain(mixed), base - bruteMismatch(S, with));
+}
+
 TEST(Coverage, GainsOfSeveralRadiiEqualEachGain) {
     // gains() evaluates up to four radii about one centre in one pass (refinement's trial groups): each sum
     // must be gain() of that ball alone, also for radii whose rows start or end apart and a radius of

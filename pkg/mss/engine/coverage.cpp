@@ -181,6 +181,78 @@ __attribute__((target("avx2"))) long long gainPairAvx2(const Vec3& c, double r, 
 }
 #endif
 
+#if MSS_GAIN_AVX2
+/// Coverage::gainMerged on AVX2 for images that are a product set: one radius @p r, x centres @p xa <= @p xb
+/// (equal for one), and the (y, z) positions @p ys, @p zs (@p n of them, at most 8): every x with every
+/// (y, z). Balls about one x centre have nested runs in a row, so the row's union is the runs about xa and
+/// xb of the largest half-width: rx^2 the largest of r^2 - dz^2 - dy^2 over the positions (as gainMerged
+/// computes each ball's), then the two runs as two disjoint pieces (as gainPairAvx2). Rows @p j0..j1 of
+/// slices @p k0..k1 (gainMerged's box), each weighted by @p wj(j) * @p wk(k).
+template <class WJ, class WK>
+__attribute__((target("avx2"))) long long gainProductAvx2(double r, double xa, double xb, const double* ys,
+                                                          const double* zs, int n,
+                                                          const std::array<int, 3>& d, int j0, int j1, int k0,
+                                                          int k1, const std::uint16_t* prefix, WJ wj, WK wk) {
+    const __m256d vxa = _mm256_set1_pd(xa), vxb = _mm256_set1_pd(xb);
+    const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
+    const __m256d one = _mm256_set1_pd(1.0), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
+    const __m256d none = _mm256_set1_pd(-1.0);
+    const long long stride = d[0] + 1;
+    const __m256d laneRows = _mm256_mul_pd(lanes, _mm256_set1_pd(double(stride)));
+    const __m256d vj1 = _mm256_set1_pd(double(j1));
+    const double r2 = r * r;
+    constexpr int kUp = _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC,
+                  kDown = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+    long long total = 0;
+    for (int k = k0; k <= k1; ++k) {
+        double rz2[8];
+        for (int q = 0; q < n; ++q) {
+            const double dz = k - zs[q];
+            rz2[q] = r2 - dz * dz;
+        }
+        const long long weightK = wk(k);
+        for (int j = j0; j <= j1; j += 4) {
+            const __m256d jv = _mm256_add_pd(_mm256_set1_pd(double(j)), lanes);
+            __m256d rx2 = none; // the largest r^2 - dz^2 - dy^2 that is >= 0, else negative
+            for (int q = 0; q < n; ++q) {
+                const __m256d dy = _mm256_sub_pd(jv, _mm256_set1_pd(ys[q]));
+                rx2 = _mm256_max_pd(rx2, _mm256_sub_pd(_mm256_set1_pd(rz2[q]), _mm256_mul_pd(dy, dy)));
+            }
+            const __m256d row =
+                _mm256_and_pd(_mm256_cmp_pd(jv, vj1, _CMP_LE_OQ), _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ));
+            if (_mm256_movemask_pd(row) == 0) continue;
+            const __m256d rx = _mm256_sqrt_pd(_mm256_max_pd(rx2, zero));
+            const __m256d a0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxa, rx), kUp));
+            const __m256d a1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxa, rx), kDown));
+            const __m256d b0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxb, rx), kUp));
+            const __m256d b1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxb, rx), kDown));
+            const __m256d okA = _mm256_and_pd(row, _mm256_cmp_pd(a0, a1, _CMP_LE_OQ));
+            const __m256d m =
+                _mm256_min_pd(_mm256_max_pd(b0, _mm256_add_pd(a1, one)), _mm256_add_pd(last, one));
+            const __m256d okB = _mm256_and_pd(row, _mm256_cmp_pd(m, b1, _CMP_LE_OQ));
+            const __m256d off = _mm256_and_pd(row, laneRows);
+            const __m256d start2 = _mm256_blendv_pd(a0, m, row);
+            const __m256d s1 = _mm256_add_pd(a0, off);
+            const __m256d e1 = _mm256_add_pd(_mm256_blendv_pd(a0, _mm256_add_pd(a1, one), okA), off);
+            const __m256d s2 = _mm256_add_pd(start2, off);
+            const __m256d e2 = _mm256_add_pd(_mm256_blendv_pd(start2, _mm256_add_pd(b1, one), okB), off);
+            alignas(16) int is1[4], ie1[4], is2[4], ie2[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(is1), _mm256_cvttpd_epi32(s1));
+            _mm_store_si128(reinterpret_cast<__m128i*>(ie1), _mm256_cvttpd_epi32(e1));
+            _mm_store_si128(reinterpret_cast<__m128i*>(is2), _mm256_cvttpd_epi32(s2));
+            _mm_store_si128(reinterpret_cast<__m128i*>(ie2), _mm256_cvttpd_epi32(e2));
+            const std::uint16_t* p = prefix + (j + static_cast<long long>(d[1]) * k) * stride;
+            for (int l = 0; l < 4; ++l) {
+                const int g = static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie1[l]] - p[is1[l]])) +
+                              static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie2[l]] - p[is2[l]]));
+                total += wj(j + l) * weightK * g;
+            }
+        }
+    }
+    return total;
+}
+#endif
+
 /// The counts of one run of a row, @p c[i0..i1], change by @p d (+-1, +-2); @p flips and @p inside count the
 /// voxels whose coverage flips (count 0 before when adding, -d when removing), all and those in S (@p s);
 /// @p first: the first flip, if none before (-1).
@@ -372,6 +444,55 @@ long long Coverage::gain(const std::vector<Ball>& balls, bool mirrored) const {
     for (const Ball& b : balls)
         sameRows = sameRows && b.r == balls[0].r && b.c.y() == balls[0].c.y() && b.c.z() == balls[0].c.z();
     if (sameRows && balls.size() == 2) return gainRowPair(balls, mirrored);
+#if MSS_GAIN_AVX2
+    static const bool kAvx2 = __builtin_cpu_supports("avx2");
+    if (kAvx2 && balls.size() <= 16) { // an orbit's images: a product of x centres and (y, z) positions?
+        double xs[2], ys[8], zs[8];
+        int nx = 0, nyz = 0;
+        bool product = true;
+        for (const Ball& b : balls) {
+            product = product && b.r == balls[0].r;
+            int q = 0;
+            while (q < nx && xs[q] != b.c.x()) ++q;
+            if (q == nx) {
+                if (nx == 2)
+                    product = false;
+                else
+                    xs[nx++] = b.c.x();
+            }
+            q = 0;
+            while (q < nyz && (ys[q] != b.c.y() || zs[q] != b.c.z())) ++q;
+            if (q == nyz) {
+                if (nyz == 8)
+                    product = false;
+                else {
+                    ys[nyz] = b.c.y();
+                    zs[nyz++] = b.c.z();
+                }
+            }
+            if (!product) break;
+        }
+        // as many balls as the product has, none twice
+        for (std::size_t p = 0; p < balls.size() && product; ++p)
+            for (std::size_t q = p + 1; q < balls.size() && product; ++q) product = balls[p].c != balls[q].c;
+        if (product && balls.size() == std::size_t(nx * nyz)) {
+            Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300); // gainMerged's box
+            for (const Ball& b : balls) {
+                lo = lo.cwiseMin(b.c - Vec3::Constant(b.r));
+                hi = hi.cwiseMax(b.c + Vec3::Constant(b.r));
+            }
+            const int k0 = std::max(0, ceilInt(lo.z())),
+                      k1 = std::min(halfEnd(mirrored, 2), floorInt(hi.z()));
+            const int j0 = std::max(0, ceilInt(lo.y())),
+                      j1 = std::min(halfEnd(mirrored, 1), floorInt(hi.y()));
+            return gainProductAvx2(
+                balls[0].r, std::min(xs[0], xs[nx - 1]), std::max(xs[0], xs[nx - 1]), ys, zs, nyz,
+                S_.spec.dims, j0, j1, k0, k1, prefix_.data(),
+                [&](int j) { return mirrored && mirror_[1] && 2 * j != S_.spec.dims[1] - 1 ? 2LL : 1LL; },
+                [&](int k) { return mirrored && mirror_[2] && 2 * k != S_.spec.dims[2] - 1 ? 2LL : 1LL; });
+        }
+    }
+#endif
     return gainMerged(balls, mirrored);
 }
 
