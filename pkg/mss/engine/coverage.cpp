@@ -297,6 +297,31 @@ void countRun(Count* c, const std::uint8_t* s, int i0, int i1, int d, int& flips
             _mm_storel_epi64(reinterpret_cast<__m128i*>(c + i), _mm_add_epi8(cv, dv));
             i += 8;
         }
+    } else {
+        // 16-bit counts (more than 255 balls: a quality target without a cap), 8 voxels at a time; a lane's
+        // flips stay under 2^16 (a row has at most 32767 voxels)
+        const __m128i at = _mm_set1_epi16(static_cast<short>(flipAt)),
+                      dv = _mm_set1_epi16(static_cast<short>(d));
+        const __m128i zero = _mm_setzero_si128();
+        __m128i fAcc = zero, iAcc = zero;
+        for (; i + 8 <= i1 + 1; i += 8) {
+            const __m128i cv = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + i));
+            const __m128i sv =
+                _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + i)), zero);
+            const __m128i eq = _mm_cmpeq_epi16(cv, at);
+            if (first < 0)
+                if (const int mask = _mm_movemask_epi8(eq)) first = i + __builtin_ctz(unsigned(mask)) / 2;
+            fAcc = _mm_sub_epi16(fAcc, eq);
+            iAcc = _mm_sub_epi16(iAcc, _mm_andnot_si128(_mm_cmpeq_epi16(sv, zero), eq));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(c + i), _mm_add_epi16(cv, dv));
+        }
+        alignas(16) std::uint16_t fl[8], in[8];
+        _mm_store_si128(reinterpret_cast<__m128i*>(fl), fAcc);
+        _mm_store_si128(reinterpret_cast<__m128i*>(in), iAcc);
+        for (int l = 0; l < 8; ++l) {
+            flips += fl[l];
+            inside += in[l];
+        }
     }
 #endif
     for (; i <= i1; ++i) {
@@ -333,6 +358,21 @@ void prefixRun(const Count* c, const std::uint8_t* s, std::uint16_t* p, int i0, 
             _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i), x);
             acc = static_cast<std::uint16_t>(_mm_extract_epi16(x, 7));
         }
+    } else {
+        const __m128i zero = _mm_setzero_si128(), one = _mm_set1_epi16(1);
+        for (; i + 8 <= i1 + 1; i += 8) {
+            const __m128i c16 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + i));
+            const __m128i s16 =
+                _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + i)), zero);
+            __m128i x =
+                _mm_and_si128(_mm_or_si128(_mm_cmpeq_epi16(s16, zero), one), _mm_cmpeq_epi16(c16, zero));
+            x = _mm_add_epi16(x, _mm_slli_si128(x, 2));
+            x = _mm_add_epi16(x, _mm_slli_si128(x, 4));
+            x = _mm_add_epi16(x, _mm_slli_si128(x, 8));
+            x = _mm_add_epi16(x, _mm_set1_epi16(static_cast<short>(acc)));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i), x);
+            acc = static_cast<std::uint16_t>(_mm_extract_epi16(x, 7));
+        }
     }
 #endif
     for (; i <= i1; ++i) {
@@ -344,7 +384,7 @@ void prefixRun(const Count* c, const std::uint8_t* s, std::uint16_t* p, int i0, 
 /// One row of Coverage::changeSlice: the counts @p c of voxels u0..u1 change by @p delta, and those of
 /// o0..o1 (within, or empty: o0 > o1) by 2 delta more (two mirror images' runs that overlap); the prefix @p p
 /// (p[-1]: the row's base) follows where a voxel flips between covered and uncovered.
-/// @p Count: the counts' type (8 bits where at most 255 balls are ever placed; those runs by SSE2).
+/// @p Count: the counts' type (8 bits where at most 255 balls are ever placed, else 16; runs by SSE2).
 template <class Count>
 void changeRow(Count* c, const std::uint8_t* s, std::uint16_t* p, int nx, int u0, int u1, int o0, int o1,
                int delta, long long& dMismatch, long long& dCovered) {

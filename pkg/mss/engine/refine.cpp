@@ -73,14 +73,15 @@ void movesAlong(const Selection& s, const Orbit& o, double step, int a, double s
     out.push_back({trial, a, sgn});
 }
 
-/// Tunes one orbit (taken out of the coverage) by steps of 1/2 then, if @p fine, 1/4 voxel; @p best: its
+/// Tunes one orbit (taken out of the coverage) by steps of 1/2 (unless @p quarterOnly) then, if @p fine, 1/4
+/// voxel; @p best: its
 /// gain, raised.
 /// Each step tries the moves from the orbit: its centre +- step along each free axis, its radius +- step; not
 /// the reverse of the move just taken (it leads back); the best that gains more is taken, the first in that
 /// order on a tie. The moves about one centre (a direction's three; the radius down and up) are one task:
 /// its constraint looked up (exact queries cost ~4 us each; the bound caches) and its trials evaluated in one
 /// pass over their rows (Coverage::gains), the tasks in parallel.
-void tune(const Selection& s, Orbit& o, long long& best, bool fine) {
+void tune(const Selection& s, Orbit& o, long long& best, bool fine, bool quarterOnly) {
     struct Task {
         int axis;
         std::array<double, 2> signs; // 0: none
@@ -91,6 +92,7 @@ void tune(const Selection& s, Orbit& o, long long& best, bool fine) {
     tasks.reserve(7);
     for (double step : {0.5, 0.25}) {
         if (step < 0.5 && !fine) break;
+        if (step == 0.5 && quarterOnly) continue;
         int lastAxis = -1;
         double lastSign = 0.0;
         for (int rep = 0; rep < 6; ++rep) {
@@ -141,6 +143,7 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps, bool co
             moved[q] = std::any_of(touched->begin(), touched->end(),
                                    [&](const Orbit& t) { return overlaps(s.sym, chosen[q], t); });
     const std::vector<char> eligible = moved; // what the first sweep (and a last fine one) consider
+    bool anyMoved = false;
     for (int sweep = 0; sweep < sweeps; ++sweep) {
         // coarse first: the sweeps before the last take half-voxel steps only; the last one takes half- then
         // quarter-voxel steps and considers every orbit the first one did (see refine.hpp)
@@ -162,10 +165,13 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps, bool co
             s.cov.remove(s.sym.images(o));
             long long best = s.cov.mismatch() - before;
             const long long start = best;
-            tune(s, o, best, fine);
+            // while nothing has moved, the coverage is what the coarse sweeps saw: the half-voxel steps they
+            // found no gain in find none again (a set refined before: the growth to a quality target, prune)
+            tune(s, o, best, fine, last && !anyMoved);
             s.cov.add(s.sym.images(o));
             movedNow[oi] = best > start;
             improved = improved || best > start;
+            anyMoved = anyMoved || best > start;
         }
         moved.swap(movedNow);
         if (last || (!coarseFirst && !improved)) break;
