@@ -107,6 +107,51 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
 #endif
 
 #if MSS_GAIN_AVX2
+/// The weighted sum of four rows j .. j + 3 (where @p row is set; each row's prefix @p p + l * stride) over
+/// the union of the runs of half-width @p rx about x = @p xa and @p xb (xa <= xb), as two disjoint pieces
+/// [a0, a1] and [m, b1], m = max(b0, a1 + 1) (b1 >= a1 and b0 >= a0: one half-width), each without a branch.
+/// A lane off the rows, or an empty piece, reads the entry before its start twice (lanes off the rows read
+/// row j's entries: a0 and m lie in 0..nx, as the centres lie in the grid). Weight: twice off the middle row
+/// (@p twiceY), times @p weightK.
+__attribute__((target("avx2"))) inline long long unionOfRuns(__m256d rx, __m256d row, __m256d xa, __m256d xb,
+                                                             const std::array<int, 3>& d, int j,
+                                                             const std::uint16_t* p, bool twiceY,
+                                                             long long weightK) {
+    constexpr int kUp = _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC;
+    constexpr int kDown = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
+    const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0),
+                  last = _mm256_set1_pd(double(d[0] - 1));
+    const __m256d laneRows =
+        _mm256_mul_pd(_mm256_set_pd(3.0, 2.0, 1.0, 0.0), _mm256_set1_pd(double(d[0] + 1)));
+    const __m256d a0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(xa, rx), kUp));
+    const __m256d a1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(xa, rx), kDown));
+    const __m256d b0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(xb, rx), kUp));
+    const __m256d b1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(xb, rx), kDown));
+    const __m256d okA = _mm256_and_pd(row, _mm256_cmp_pd(a0, a1, _CMP_LE_OQ));
+    const __m256d m = _mm256_min_pd(_mm256_max_pd(b0, _mm256_add_pd(a1, one)), _mm256_add_pd(last, one));
+    const __m256d okB = _mm256_and_pd(row, _mm256_cmp_pd(m, b1, _CMP_LE_OQ));
+    const __m256d off = _mm256_and_pd(row, laneRows);
+    const __m256d start2 = _mm256_blendv_pd(a0, m, row);
+    alignas(16) int is1[4], ie1[4], is2[4], ie2[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(is1), _mm256_cvttpd_epi32(_mm256_add_pd(a0, off)));
+    _mm_store_si128(
+        reinterpret_cast<__m128i*>(ie1),
+        _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_blendv_pd(a0, _mm256_add_pd(a1, one), okA), off)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(is2), _mm256_cvttpd_epi32(_mm256_add_pd(start2, off)));
+    _mm_store_si128(
+        reinterpret_cast<__m128i*>(ie2),
+        _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_blendv_pd(start2, _mm256_add_pd(b1, one), okB), off)));
+    long long total = 0;
+    for (int l = 0; l < 4; ++l) {
+        const int g = static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie1[l]] - p[is1[l]])) +
+                      static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie2[l]] - p[is2[l]]));
+        total += (twiceY && 2 * (j + l) != d[1] - 1 ? 2 : 1) * weightK * g;
+    }
+    return total;
+}
+#endif
+
+#if MSS_GAIN_AVX2
 /// Coverage::gainRowPair on AVX2: two balls of one radius at x = @p xa <= @p xb (the same y, z), four rows
 /// at a time, rows j <= @p jEnd of slices k <= @p kEnd, each counted twice off the middle row (@p twiceY) and
 /// the middle slice (@p twiceZ): Coverage::weight. A row's sum over the union of the two runs, as two
@@ -117,10 +162,8 @@ __attribute__((target("avx2"))) long long gainPairAvx2(const Vec3& c, double r, 
                                                        const std::uint16_t* prefix, bool twiceY,
                                                        bool twiceZ) {
     const __m256d vxa = _mm256_set1_pd(xa), vxb = _mm256_set1_pd(xb), cy = _mm256_set1_pd(c.y());
-    const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
-    const __m256d one = _mm256_set1_pd(1.0), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
+    const __m256d zero = _mm256_setzero_pd(), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
     const long long stride = d[0] + 1;
-    const __m256d laneRows = _mm256_mul_pd(lanes, _mm256_set1_pd(double(stride)));
     const double r2 = r * r;
     const int k0 = std::max(0, ceilInt(c.z() - r)), k1 = std::min(kEnd, floorInt(c.z() + r));
     long long total = 0;
@@ -137,40 +180,12 @@ __attribute__((target("avx2"))) long long gainPairAvx2(const Vec3& c, double r, 
             const __m256d dy = _mm256_sub_pd(jv, cy);
             const __m256d rx2 = _mm256_sub_pd(vrz2, _mm256_mul_pd(dy, dy));
             const __m256d rx = _mm256_sqrt_pd(_mm256_max_pd(rx2, zero));
-            constexpr int kUp = _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC,
-                          kDown = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
-            const __m256d a0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxa, rx), kUp));
-            const __m256d a1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxa, rx), kDown));
-            const __m256d b0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxb, rx), kUp));
-            const __m256d b1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxb, rx), kDown));
             const __m256d row = _mm256_and_pd(
                 _mm256_and_pd(_mm256_cmp_pd(jv, vj1, _CMP_LE_OQ), _mm256_cmp_pd(jv, vj0, _CMP_GE_OQ)),
                 _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ));
             if (_mm256_movemask_pd(row) == 0) continue;
-            // the pieces [a0, a1] and [m, b1], m = max(b0, a1 + 1) (at most nx: an entry of the row); a lane
-            // off the rows, or an empty piece, reads the entry before its start twice (lanes off the rows
-            // read row j's entries: a0 and m lie in 0..nx, as the centres lie in the grid)
-            const __m256d okA = _mm256_and_pd(row, _mm256_cmp_pd(a0, a1, _CMP_LE_OQ));
-            const __m256d m =
-                _mm256_min_pd(_mm256_max_pd(b0, _mm256_add_pd(a1, one)), _mm256_add_pd(last, one));
-            const __m256d okB = _mm256_and_pd(row, _mm256_cmp_pd(m, b1, _CMP_LE_OQ));
-            const __m256d off = _mm256_and_pd(row, laneRows);
-            const __m256d s1 = _mm256_add_pd(a0, off);
-            const __m256d e1 = _mm256_add_pd(_mm256_blendv_pd(a0, _mm256_add_pd(a1, one), okA), off);
-            const __m256d s2 = _mm256_add_pd(_mm256_blendv_pd(a0, m, row), off);
-            const __m256d e2 = _mm256_add_pd(
-                _mm256_blendv_pd(_mm256_blendv_pd(a0, m, row), _mm256_add_pd(b1, one), okB), off);
-            alignas(16) int is1[4], ie1[4], is2[4], ie2[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(is1), _mm256_cvttpd_epi32(s1));
-            _mm_store_si128(reinterpret_cast<__m128i*>(ie1), _mm256_cvttpd_epi32(e1));
-            _mm_store_si128(reinterpret_cast<__m128i*>(is2), _mm256_cvttpd_epi32(s2));
-            _mm_store_si128(reinterpret_cast<__m128i*>(ie2), _mm256_cvttpd_epi32(e2));
-            const std::uint16_t* p = prefix + (j + static_cast<long long>(d[1]) * k) * stride;
-            for (int l = 0; l < 4; ++l) {
-                const int g = static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie1[l]] - p[is1[l]])) +
-                              static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie2[l]] - p[is2[l]]));
-                total += (twiceY && 2 * (j + l) != d[1] - 1 ? 2 : 1) * weightK * g;
-            }
+            total += unionOfRuns(rx, row, vxa, vxb, d, j,
+                                 prefix + (j + static_cast<long long>(d[1]) * k) * stride, twiceY, weightK);
         }
     }
     return total;
@@ -191,15 +206,11 @@ __attribute__((target("avx2"))) long long gainProductAvx2(double r, double xa, d
                                                           int k1, const std::uint16_t* prefix, bool twiceY,
                                                           bool twiceZ) {
     const __m256d vxa = _mm256_set1_pd(xa), vxb = _mm256_set1_pd(xb);
-    const __m256d zero = _mm256_setzero_pd(), last = _mm256_set1_pd(double(d[0] - 1));
-    const __m256d one = _mm256_set1_pd(1.0), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
+    const __m256d zero = _mm256_setzero_pd(), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
     const __m256d none = _mm256_set1_pd(-1.0);
     const long long stride = d[0] + 1;
-    const __m256d laneRows = _mm256_mul_pd(lanes, _mm256_set1_pd(double(stride)));
     const __m256d vj1 = _mm256_set1_pd(double(j1));
     const double r2 = r * r;
-    constexpr int kUp = _MM_FROUND_TO_POS_INF | _MM_FROUND_NO_EXC,
-                  kDown = _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC;
     long long total = 0;
     for (int k = k0; k <= k1; ++k) {
         double rz2[8];
@@ -219,31 +230,8 @@ __attribute__((target("avx2"))) long long gainProductAvx2(double r, double xa, d
                 _mm256_and_pd(_mm256_cmp_pd(jv, vj1, _CMP_LE_OQ), _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ));
             if (_mm256_movemask_pd(row) == 0) continue;
             const __m256d rx = _mm256_sqrt_pd(_mm256_max_pd(rx2, zero));
-            const __m256d a0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxa, rx), kUp));
-            const __m256d a1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxa, rx), kDown));
-            const __m256d b0 = _mm256_max_pd(zero, _mm256_round_pd(_mm256_sub_pd(vxb, rx), kUp));
-            const __m256d b1 = _mm256_min_pd(last, _mm256_round_pd(_mm256_add_pd(vxb, rx), kDown));
-            const __m256d okA = _mm256_and_pd(row, _mm256_cmp_pd(a0, a1, _CMP_LE_OQ));
-            const __m256d m =
-                _mm256_min_pd(_mm256_max_pd(b0, _mm256_add_pd(a1, one)), _mm256_add_pd(last, one));
-            const __m256d okB = _mm256_and_pd(row, _mm256_cmp_pd(m, b1, _CMP_LE_OQ));
-            const __m256d off = _mm256_and_pd(row, laneRows);
-            const __m256d start2 = _mm256_blendv_pd(a0, m, row);
-            const __m256d s1 = _mm256_add_pd(a0, off);
-            const __m256d e1 = _mm256_add_pd(_mm256_blendv_pd(a0, _mm256_add_pd(a1, one), okA), off);
-            const __m256d s2 = _mm256_add_pd(start2, off);
-            const __m256d e2 = _mm256_add_pd(_mm256_blendv_pd(start2, _mm256_add_pd(b1, one), okB), off);
-            alignas(16) int is1[4], ie1[4], is2[4], ie2[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(is1), _mm256_cvttpd_epi32(s1));
-            _mm_store_si128(reinterpret_cast<__m128i*>(ie1), _mm256_cvttpd_epi32(e1));
-            _mm_store_si128(reinterpret_cast<__m128i*>(is2), _mm256_cvttpd_epi32(s2));
-            _mm_store_si128(reinterpret_cast<__m128i*>(ie2), _mm256_cvttpd_epi32(e2));
-            const std::uint16_t* p = prefix + (j + static_cast<long long>(d[1]) * k) * stride;
-            for (int l = 0; l < 4; ++l) {
-                const int g = static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie1[l]] - p[is1[l]])) +
-                              static_cast<std::int16_t>(static_cast<std::uint16_t>(p[ie2[l]] - p[is2[l]]));
-                total += (twiceY && 2 * (j + l) != d[1] - 1 ? 2 : 1) * weightK * g;
-            }
+            total += unionOfRuns(rx, row, vxa, vxb, d, j,
+                                 prefix + (j + static_cast<long long>(d[1]) * k) * stride, twiceY, weightK);
         }
     }
     return total;
@@ -339,40 +327,24 @@ template <class Count>
 void prefixRun(const Count* c, const std::uint8_t* s, std::uint16_t* p, int i0, int i1, std::uint16_t acc) {
     int i = i0;
 #if defined(__SSE2__)
-    if constexpr (sizeof(Count) == 1) {
-        // 8 voxels at a time: the sums within the vector by three shifted adds, then the carry (the serial
-        // loop's one add a voxel was its dependency chain)
-        const __m128i zero = _mm_setzero_si128(), one = _mm_set1_epi16(1);
-        for (; i + 8 <= i1 + 1; i += 8) {
-            const __m128i c16 =
-                _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(c + i)), zero);
-            const __m128i s16 =
-                _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + i)), zero);
-            // g: 1 in S, 0xFFFF (-1) outside, where uncovered; 0 where covered
-            __m128i x =
-                _mm_and_si128(_mm_or_si128(_mm_cmpeq_epi16(s16, zero), one), _mm_cmpeq_epi16(c16, zero));
-            x = _mm_add_epi16(x, _mm_slli_si128(x, 2));
-            x = _mm_add_epi16(x, _mm_slli_si128(x, 4));
-            x = _mm_add_epi16(x, _mm_slli_si128(x, 8));
-            x = _mm_add_epi16(x, _mm_set1_epi16(static_cast<short>(acc)));
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i), x);
-            acc = static_cast<std::uint16_t>(_mm_extract_epi16(x, 7));
-        }
-    } else {
-        const __m128i zero = _mm_setzero_si128(), one = _mm_set1_epi16(1);
-        for (; i + 8 <= i1 + 1; i += 8) {
-            const __m128i c16 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + i));
-            const __m128i s16 =
-                _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + i)), zero);
-            __m128i x =
-                _mm_and_si128(_mm_or_si128(_mm_cmpeq_epi16(s16, zero), one), _mm_cmpeq_epi16(c16, zero));
-            x = _mm_add_epi16(x, _mm_slli_si128(x, 2));
-            x = _mm_add_epi16(x, _mm_slli_si128(x, 4));
-            x = _mm_add_epi16(x, _mm_slli_si128(x, 8));
-            x = _mm_add_epi16(x, _mm_set1_epi16(static_cast<short>(acc)));
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i), x);
-            acc = static_cast<std::uint16_t>(_mm_extract_epi16(x, 7));
-        }
+    // 8 voxels at a time: the sums within the vector by three shifted adds, then the carry (the serial loop's
+    // one add a voxel was its dependency chain)
+    const __m128i zero = _mm_setzero_si128(), one = _mm_set1_epi16(1);
+    for (; i + 8 <= i1 + 1; i += 8) {
+        __m128i c16;
+        if constexpr (sizeof(Count) == 1)
+            c16 = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(c + i)), zero);
+        else
+            c16 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c + i));
+        const __m128i s16 = _mm_unpacklo_epi8(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(s + i)), zero);
+        // g: 1 in S, 0xFFFF (-1) outside, where uncovered; 0 where covered
+        __m128i x = _mm_and_si128(_mm_or_si128(_mm_cmpeq_epi16(s16, zero), one), _mm_cmpeq_epi16(c16, zero));
+        x = _mm_add_epi16(x, _mm_slli_si128(x, 2));
+        x = _mm_add_epi16(x, _mm_slli_si128(x, 4));
+        x = _mm_add_epi16(x, _mm_slli_si128(x, 8));
+        x = _mm_add_epi16(x, _mm_set1_epi16(static_cast<short>(acc)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(p + i), x);
+        acc = static_cast<std::uint16_t>(_mm_extract_epi16(x, 7));
     }
 #endif
     for (; i <= i1; ++i) {
