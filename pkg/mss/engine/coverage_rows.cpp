@@ -88,12 +88,14 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
                 if (_mm256_movemask_pd(ok) == 0) continue;
                 // every lane reads two entries of a row, without a branch: the sum is the entry at hi (base +
                 // 1
-                // + hi) less the one before lo (base + lo); a lane without voxels reads the entry before lo
-                // of row j twice (lo is in 0..nx, as c is in the grid), which sums to 0
+                // + hi) less the one before lo (base + lo); a lane without voxels reads an entry of row j
+                // twice (its start cut to 0..nx: a centre may lie outside the grid), which sums to 0
                 const __m256d off = _mm256_and_pd(ok, laneRows);
-                const __m256d end = _mm256_blendv_pd(lo, _mm256_add_pd(hi, one), ok);
+                const __m256d start = _mm256_min_pd(lo, _mm256_add_pd(last, one)); // lo itself where ok
+                const __m256d end = _mm256_blendv_pd(start, _mm256_add_pd(hi, one), ok);
                 alignas(16) int los[4], his[4];
-                _mm_store_si128(reinterpret_cast<__m128i*>(los), _mm256_cvttpd_epi32(_mm256_add_pd(lo, off)));
+                _mm_store_si128(reinterpret_cast<__m128i*>(los),
+                                _mm256_cvttpd_epi32(_mm256_add_pd(start, off)));
                 _mm_store_si128(reinterpret_cast<__m128i*>(his),
                                 _mm256_cvttpd_epi32(_mm256_add_pd(end, off)));
                 int total = 0;
@@ -111,7 +113,8 @@ __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radi
 /// the union of the runs of half-width @p rx about x = @p xa and @p xb (xa <= xb), as two disjoint pieces
 /// [a0, a1] and [m, b1], m = max(b0, a1 + 1) (b1 >= a1 and b0 >= a0: one half-width), each without a branch.
 /// A lane off the rows, or an empty piece, reads the entry before its start twice (lanes off the rows read
-/// row j's entries: a0 and m lie in 0..nx, as the centres lie in the grid). Weight: twice off the middle row
+/// row j's entries; the starts cut to 0..nx, as a centre may lie outside the grid). Weight: twice off the
+/// middle row
 /// (@p twiceY), times @p weightK.
 __attribute__((target("avx2"))) inline long long unionOfRuns(__m256d rx, __m256d row, __m256d xa, __m256d xb,
                                                              const std::array<int, 3>& d, int j,
@@ -131,12 +134,13 @@ __attribute__((target("avx2"))) inline long long unionOfRuns(__m256d rx, __m256d
     const __m256d m = _mm256_min_pd(_mm256_max_pd(b0, _mm256_add_pd(a1, one)), _mm256_add_pd(last, one));
     const __m256d okB = _mm256_and_pd(row, _mm256_cmp_pd(m, b1, _CMP_LE_OQ));
     const __m256d off = _mm256_and_pd(row, laneRows);
-    const __m256d start2 = _mm256_blendv_pd(a0, m, row);
+    const __m256d s1 = _mm256_min_pd(a0, _mm256_add_pd(last, one)); // a0 itself where the row has voxels
+    const __m256d start2 = _mm256_blendv_pd(s1, m, row);
     alignas(16) int is1[4], ie1[4], is2[4], ie2[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(is1), _mm256_cvttpd_epi32(_mm256_add_pd(a0, off)));
+    _mm_store_si128(reinterpret_cast<__m128i*>(is1), _mm256_cvttpd_epi32(_mm256_add_pd(s1, off)));
     _mm_store_si128(
         reinterpret_cast<__m128i*>(ie1),
-        _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_blendv_pd(a0, _mm256_add_pd(a1, one), okA), off)));
+        _mm256_cvttpd_epi32(_mm256_add_pd(_mm256_blendv_pd(s1, _mm256_add_pd(a1, one), okA), off)));
     _mm_store_si128(reinterpret_cast<__m128i*>(is2), _mm256_cvttpd_epi32(_mm256_add_pd(start2, off)));
     _mm_store_si128(
         reinterpret_cast<__m128i*>(ie2),
