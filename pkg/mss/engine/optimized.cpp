@@ -115,12 +115,14 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         if (m.iterations == 0) repairSymmetry(s, tStart, false);
         m.secondsSelect += secondsSince(t0);
         const auto t1 = Clock::now();
-        // half-voxel steps first where no mirror plane is kept (see refine.hpp); with planes, the repairs'
-        // trades are judged on refined sets, and a different order of moves turned good trades down
+        // where no mirror plane is kept, a sweep of half-voxel steps, then one of half- and quarter-voxel
+        // steps over every orbit (see refine.hpp); with planes, three sweeps of both: the repairs' trades are
+        // judged on refined sets, and a different order of moves turned good trades down
         const bool coarseFirst = s.sym.planes() == 0;
-        refine(s, nullptr, 3, coarseFirst);
+        const int sweeps = coarseFirst ? 2 : 3;
+        refine(s, nullptr, sweeps, coarseFirst);
         const bool pruned = s.prune();
-        if (pruned) refine(s, nullptr, 3, coarseFirst);
+        if (pruned) refine(s, nullptr, sweeps, coarseFirst);
         secondsRefine += secondsSince(t1);
         if (s.full() || s.met()) { // done (a warm start may begin so)
             ++m.iterations;
