@@ -87,7 +87,8 @@ void fillAlone(Selection& s) {
     const std::size_t before = s.placed, kept = s.chosen.size();
     s.greedy();
     const std::vector<Orbit> touched(s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
-    if (s.placed > before) refine(s, &touched, 3, s.sym.planes() == 0);
+    if (s.placed > before)
+        refine(s, &touched, 3, false); // grains with planes: the three sweeps of both steps
 }
 
 } // namespace

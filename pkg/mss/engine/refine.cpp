@@ -73,14 +73,13 @@ void movesAlong(const Selection& s, const Orbit& o, double step, int a, double s
     out.push_back({trial, a, sgn});
 }
 
-/// Tunes one orbit (taken out of the coverage) by steps of 1/2 (unless @p quarterOnly) then, if @p fine, 1/4
-/// voxel; @p best: its
-/// gain, raised.
-/// Each step tries the moves from the orbit: its centre +- step along each free axis, its radius +- step; not
-/// the reverse of the move just taken (it leads back); the best that gains more is taken, the first in that
-/// order on a tie. The moves about one centre (a direction's three; the radius down and up) are one task:
-/// its constraint looked up (exact queries cost ~4 us each; the bound caches) and its trials evaluated in one
-/// pass over their rows (Coverage::gains), the tasks in parallel.
+/// Tunes one orbit (taken out of the coverage) by steps of 1/2 voxel (unless @p quarterOnly), then, if @p
+/// fine, of 1/4 voxel; @p best: its gain, raised. Each step tries the moves from the orbit: its centre +-
+/// step along each free axis, its radius +- step; not the reverse of the move just taken (it leads back); the
+/// best that gains more is taken, the first in that order on a tie. The moves about one centre (a direction's
+/// three; the radius down and up) are one task: its constraint looked up (exact queries cost ~4 us each; the
+/// bound caches) and its trials evaluated in one pass over their rows (Coverage::gains), the tasks in
+/// parallel.
 void tune(const Selection& s, Orbit& o, long long& best, bool fine, bool quarterOnly) {
     struct Task {
         int axis;
