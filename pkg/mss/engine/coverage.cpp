@@ -75,70 +75,62 @@ long long Coverage::gain(const std::vector<Ball>& balls, bool mirrored) const {
         for (const Ball& b : balls) total += gain(b);
         return total;
     }
+#if MSS_GAIN_AVX2
+    static const bool kAvx2 = __builtin_cpu_supports("avx2");
+    long long product = 0;
+    if (kAvx2 && gainOfProduct(balls, mirrored, product)) return product;
+#endif
     // Images that differ only in x (mirror plane normal to x) share their rows: one root per row.
     bool sameRows = true;
     for (const Ball& b : balls)
         sameRows = sameRows && b.r == balls[0].r && b.c.y() == balls[0].c.y() && b.c.z() == balls[0].c.z();
     if (sameRows && balls.size() == 2) return gainRowPair(balls, mirrored);
-#if MSS_GAIN_AVX2
-    static const bool kAvx2 = __builtin_cpu_supports("avx2");
-    if (kAvx2 && balls.size() <= 16) { // an orbit's images: a product of x centres and (y, z) positions?
-        double xs[2], ys[8], zs[8];
-        int nx = 0, nyz = 0;
-        bool product = true;
-        for (const Ball& b : balls) {
-            product = product && b.r == balls[0].r;
-            int q = 0;
-            while (q < nx && xs[q] != b.c.x()) ++q;
-            if (q == nx) {
-                if (nx == 2)
-                    product = false;
-                else
-                    xs[nx++] = b.c.x();
-            }
-            q = 0;
-            while (q < nyz && (ys[q] != b.c.y() || zs[q] != b.c.z())) ++q;
-            if (q == nyz) {
-                if (nyz == 8)
-                    product = false;
-                else {
-                    ys[nyz] = b.c.y();
-                    zs[nyz++] = b.c.z();
-                }
-            }
-            if (!product) break;
-        }
-        // as many balls as the product has, none twice
-        for (std::size_t p = 0; p < balls.size() && product; ++p)
-            for (std::size_t q = p + 1; q < balls.size() && product; ++q) product = balls[p].c != balls[q].c;
-        if (product && balls.size() == std::size_t(nx * nyz)) {
-            Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300); // gainMerged's box
-            for (const Ball& b : balls) {
-                lo = lo.cwiseMin(b.c - Vec3::Constant(b.r));
-                hi = hi.cwiseMax(b.c + Vec3::Constant(b.r));
-            }
-            const int k0 = std::max(0, ceilInt(lo.z())),
-                      k1 = std::min(halfEnd(mirrored, 2), floorInt(hi.z()));
-            const int j0 = std::max(0, ceilInt(lo.y())),
-                      j1 = std::min(halfEnd(mirrored, 1), floorInt(hi.y()));
-            return gainProductAvx2(balls[0].r, std::min(xs[0], xs[nx - 1]), std::max(xs[0], xs[nx - 1]), ys,
-                                   zs, nyz, S_.spec.dims, j0, j1, k0, k1, prefix_.data(),
-                                   mirrored && mirror_[1], mirrored && mirror_[2]);
-        }
-    }
-#endif
     return gainMerged(balls, mirrored);
 }
 
+#if MSS_GAIN_AVX2
+bool Coverage::gainOfProduct(const std::vector<Ball>& balls, bool mirrored, long long& out) const {
+    // an orbit's images: one radius, every x centre (at most two) with every (y, z) position (at most 8)
+    if (balls.size() > 16) return false;
+    double xs[2], ys[8], zs[8];
+    int nx = 0, nyz = 0;
+    for (const Ball& b : balls) {
+        if (b.r != balls[0].r) return false;
+        int q = 0;
+        while (q < nx && xs[q] != b.c.x()) ++q;
+        if (q == nx) {
+            if (nx == 2) return false;
+            xs[nx++] = b.c.x();
+        }
+        q = 0;
+        while (q < nyz && (ys[q] != b.c.y() || zs[q] != b.c.z())) ++q;
+        if (q == nyz) {
+            if (nyz == 8) return false;
+            ys[nyz] = b.c.y();
+            zs[nyz++] = b.c.z();
+        }
+    }
+    // as many balls as the product has, none twice
+    if (balls.size() != std::size_t(nx * nyz)) return false;
+    for (std::size_t p = 0; p < balls.size(); ++p)
+        for (std::size_t q = p + 1; q < balls.size(); ++q)
+            if (balls[p].c == balls[q].c) return false;
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300); // gainMerged's box
+    for (const Ball& b : balls) {
+        lo = lo.cwiseMin(b.c - Vec3::Constant(b.r));
+        hi = hi.cwiseMax(b.c + Vec3::Constant(b.r));
+    }
+    const int k0 = std::max(0, ceilInt(lo.z())), k1 = std::min(halfEnd(mirrored, 2), floorInt(hi.z()));
+    const int j0 = std::max(0, ceilInt(lo.y())), j1 = std::min(halfEnd(mirrored, 1), floorInt(hi.y()));
+    out = gainProductAvx2(balls[0].r, std::min(xs[0], xs[nx - 1]), std::max(xs[0], xs[nx - 1]), ys, zs, nyz,
+                          S_.spec.dims, j0, j1, k0, k1, prefix_.data(), mirrored && mirror_[1],
+                          mirrored && mirror_[2]);
+    return true;
+}
+#endif
+
 long long Coverage::gainRowPair(const std::vector<Ball>& balls, bool mirrored) const {
     const Ball& b = balls[0];
-#if MSS_GAIN_AVX2
-    static const bool kAvx2 = __builtin_cpu_supports("avx2");
-    if (kAvx2)
-        return gainPairAvx2(b.c, b.r, std::min(b.c.x(), balls[1].c.x()), std::max(b.c.x(), balls[1].c.x()),
-                            S_.spec.dims, halfEnd(mirrored, 1), halfEnd(mirrored, 2), prefix_.data(),
-                            mirrored && mirror_[1], mirrored && mirror_[2]);
-#endif
     long long total = 0;
     const int k0 = std::max(0, ceilInt(b.c.z() - b.r)),
               k1 = std::min(halfEnd(mirrored, 2), floorInt(b.c.z() + b.r));

@@ -156,52 +156,11 @@ __attribute__((target("avx2"))) inline long long unionOfRuns(__m256d rx, __m256d
 #endif
 
 #if MSS_GAIN_AVX2
-/// Coverage::gainRowPair on AVX2: two balls of one radius at x = @p xa <= @p xb (the same y, z), four rows
-/// at a time, rows j <= @p jEnd of slices k <= @p kEnd, each counted twice off the middle row (@p twiceY) and
-/// the middle slice (@p twiceZ): Coverage::weight. A row's sum over the union of the two runs, as two
-/// disjoint pieces [a0, a1] and [max(b0, a1 + 1), b1] (b1 >= a1 and b0 >= a0: the same radius, xb >= xa),
-/// each without a branch (an empty piece reads one entry twice).
-__attribute__((target("avx2"))) long long gainPairAvx2(const Vec3& c, double r, double xa, double xb,
-                                                       const std::array<int, 3>& d, int jEnd, int kEnd,
-                                                       const std::uint16_t* prefix, bool twiceY,
-                                                       bool twiceZ) {
-    const __m256d vxa = _mm256_set1_pd(xa), vxb = _mm256_set1_pd(xb), cy = _mm256_set1_pd(c.y());
-    const __m256d zero = _mm256_setzero_pd(), lanes = _mm256_set_pd(3.0, 2.0, 1.0, 0.0);
-    const long long stride = d[0] + 1;
-    const double r2 = r * r;
-    const int k0 = std::max(0, ceilInt(c.z() - r)), k1 = std::min(kEnd, floorInt(c.z() + r));
-    long long total = 0;
-    for (int k = k0; k <= k1; ++k) {
-        const double dz = k - c.z(), rz2 = r2 - dz * dz;
-        if (rz2 < 0) continue;
-        const double ry = std::sqrt(rz2);
-        const int j0 = std::max(0, ceilInt(c.y() - ry)), j1 = std::min(jEnd, floorInt(c.y() + ry));
-        const __m256d vj0 = _mm256_set1_pd(double(j0)), vj1 = _mm256_set1_pd(double(j1)),
-                      vrz2 = _mm256_set1_pd(rz2);
-        const long long weightK = twiceZ && 2 * k != d[2] - 1 ? 2 : 1;
-        for (int j = j0; j <= j1; j += 4) {
-            const __m256d jv = _mm256_add_pd(_mm256_set1_pd(double(j)), lanes);
-            const __m256d dy = _mm256_sub_pd(jv, cy);
-            const __m256d rx2 = _mm256_sub_pd(vrz2, _mm256_mul_pd(dy, dy));
-            const __m256d rx = _mm256_sqrt_pd(_mm256_max_pd(rx2, zero));
-            const __m256d row = _mm256_and_pd(
-                _mm256_and_pd(_mm256_cmp_pd(jv, vj1, _CMP_LE_OQ), _mm256_cmp_pd(jv, vj0, _CMP_GE_OQ)),
-                _mm256_cmp_pd(rx2, zero, _CMP_GE_OQ));
-            if (_mm256_movemask_pd(row) == 0) continue;
-            total += unionOfRuns(rx, row, vxa, vxb, d, j,
-                                 prefix + (j + static_cast<long long>(d[1]) * k) * stride, twiceY, weightK);
-        }
-    }
-    return total;
-}
-#endif
-
-#if MSS_GAIN_AVX2
 /// Coverage::gainMerged on AVX2 for images that are a product set: one radius @p r, x centres @p xa <= @p xb
 /// (equal for one), and the (y, z) positions @p ys, @p zs (@p n of them, at most 8): every x with every
 /// (y, z). Balls about one x centre have nested runs in a row, so the row's union is the runs about xa and
 /// xb of the largest half-width: rx^2 the largest of r^2 - dz^2 - dy^2 over the positions (as gainMerged
-/// computes each ball's), then the two runs as two disjoint pieces (as gainPairAvx2). Rows @p j0..j1 of
+/// computes each ball's), then the two runs as two disjoint pieces (unionOfRuns). Rows @p j0..j1 of
 /// slices @p k0..k1 (gainMerged's box), each counted twice off the middle row (@p twiceY) and the middle
 /// slice (@p twiceZ): Coverage::weight.
 __attribute__((target("avx2"))) long long gainProductAvx2(double r, double xa, double xb, const double* ys,

@@ -21,10 +21,8 @@ constexpr int kMaxRadii = 4; ///< Coverage::kMaxRadii
 /// Coverage::gain of the @p n (at most 4) balls of centre @p c and radii @p radii, each alone, into @p out.
 void gainsAvx2(const Vec3& c, const double* radii, int n, const std::array<int, 3>& d,
                const std::uint16_t* prefix, long long* out);
-/// Coverage::gainRowPair: balls of radius @p r at x = @p xa <= @p xb, the y and z of @p c.
-long long gainPairAvx2(const Vec3& c, double r, double xa, double xb, const std::array<int, 3>& d, int jEnd,
-                       int kEnd, const std::uint16_t* prefix, bool twiceY, bool twiceZ);
-/// Coverage::gainMerged of an orbit's images: every x of @p xa, @p xb with every (y, z) of @p ys, @p zs.
+/// Coverage::gainMerged of an orbit's images: every x of @p xa, @p xb with every (y, z) of @p ys, @p zs (an
+/// x pair: one (y, z)).
 long long gainProductAvx2(double r, double xa, double xb, const double* ys, const double* zs, int n,
                           const std::array<int, 3>& d, int j0, int j1, int k0, int k1,
                           const std::uint16_t* prefix, bool twiceY, bool twiceZ);
