@@ -24,8 +24,11 @@ DATA = os.path.join(ROOT, 'tests', 'data')
 
 
 def run(*args):
-    out = subprocess.run([MSS] + [str(a) for a in args], check=True, capture_output=True, text=True).stdout
-    return {line.split()[0]: line.split()[1:] for line in out.splitlines() if line.strip()}
+    """mss with these arguments: its output lines as {first word: the rest}; its own message if it fails."""
+    p = subprocess.run([MSS] + [str(a) for a in args], capture_output=True, text=True)
+    if p.returncode != 0:
+        raise RuntimeError('mss %s: %s' % (' '.join(str(a) for a in args), p.stderr.strip() or p.stdout.strip()))
+    return {line.split()[0]: line.split()[1:] for line in p.stdout.splitlines() if line.strip()}
 
 
 def generate(mesh, out, *opts):

@@ -16,11 +16,12 @@ bound (radii free) calibrates it against the engine's unbounded result.
 Then the polished set shaken (basin hopping) and, for the sphere count the bar takes, the engine's output at other
 counts polished.
 
-usage: bench/tetra_bound.py [--starts K] [--shake K] [--counts N,N,...]   (defaults 6, 6, 33,35,37,38; a bounded
-start takes 1-2 minutes on one core, an unbounded one 4-7: about 45 minutes in all)
+usage: bench/tetra_bound.py [--starts K] [--shake K] [--counts N,N,...]   (defaults 6, 6, 33,35,37,38; the
+unbounded search takes max(2, K / 3) random starts; a bounded start takes 1-2 minutes on one core, an unbounded
+one 4-7: about 45 minutes in all)
 """
+import argparse
 import os
-import subprocess
 import sys
 import tempfile
 import time
@@ -29,7 +30,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fidelity import MSS, run, tetrahedron  # noqa: E402
+from fidelity import run, tetrahedron  # noqa: E402
 
 VERTS = np.array([[.5, .5, .5], [.5, -.5, -.5], [-.5, .5, -.5], [-.5, -.5, .5]])
 H = 1 / 103.
@@ -174,9 +175,8 @@ def report(label, tmp, mesh, C, r, seconds):
 
 def engineSet(tmp, mesh, n, extra=()):
     out = os.path.join(tmp, 'engine.csv')
-    subprocess.run([MSS, 'generate', mesh, '-o', out, '--spheres', str(n), '--resolution', '103', *extra],
-                   check=True, capture_output=True)
-    e = np.loadtxt(out, delimiter=',', skiprows=1)
+    run('generate', mesh, '-o', out, '--spheres', n, '--resolution', 103, *extra)
+    e = np.loadtxt(out, delimiter=',', skiprows=1, ndmin=2)
     return e[:, :3], e[:, 3]
 
 
@@ -186,18 +186,21 @@ def polish(C, r, bounded):
 
 
 def thirty(tmp, mesh, bounded, starts):
-    """The engine's 30 spheres, polished, and the joint optimiser from random starts; the best polished set."""
+    """The engine's 30 spheres, polished, and the joint optimiser from random starts: (D, C, r) of the best."""
     mode = 'bounded' if bounded else 'unbounded'
     C, r = engineSet(tmp, mesh, N_SPHERES, () if bounded else ('--max-protrusion', 'inf'))
-    found = [report('%s: engine' % mode, tmp, mesh, C, r, 0)]
-    t = time.time()
-    C, r = polish(C, r, bounded)
-    found.append(report('%s: engine, polished' % mode, tmp, mesh, C, r, time.time() - t))
-    for seed in range(starts):
+    found = [(report('%s: engine' % mode, tmp, mesh, C, r, 0), 0)]
+    sets = [(C, r)]
+    for label, seed in [('engine, polished', None)] + [('random start %d' % k, k) for k in range(starts)]:
         t = time.time()
-        Cs, rs = optimise(*randomStart(np.random.default_rng(seed), N_SPHERES), bounded)
-        found.append(report('%s: random start %d' % (mode, seed), tmp, mesh, Cs, rs, time.time() - t))
-    return min(found), C, r
+        if seed is None:
+            C, r = polish(C, r, bounded)
+        else:
+            C, r = optimise(*randomStart(np.random.default_rng(seed), N_SPHERES), bounded)
+        found.append((report('%s: %s' % (mode, label), tmp, mesh, C, r, time.time() - t), len(sets)))
+        sets.append((C, r))
+    d, k = min(found)
+    return (d, *sets[k])
 
 
 def shaken(tmp, mesh, C, r, rounds):
@@ -213,10 +216,29 @@ def shaken(tmp, mesh, C, r, rounds):
     return best
 
 
+def counts(text):
+    try:
+        ns = [int(n) for n in text.split(',')]
+    except ValueError:
+        raise argparse.ArgumentTypeError('--counts takes sphere counts separated by commas, not %r' % text)
+    if any(n < 1 for n in ns):
+        raise argparse.ArgumentTypeError('--counts: a sphere count is at least 1, not %r' % text)
+    return ns
+
+
+def atLeastZero(text):
+    if not text.isdigit():
+        raise argparse.ArgumentTypeError('a whole number 0 or more, not %r' % text)
+    return int(text)
+
+
 def main():
-    arg = lambda name, default: sys.argv[sys.argv.index(name) + 1] if name in sys.argv else default  # noqa: E731
-    starts, rounds = int(arg('--starts', 6)), int(arg('--shake', 6))
-    counts = [int(n) for n in arg('--counts', '33,35,37,38').split(',') if n]
+    parser = argparse.ArgumentParser(description='the best spheres for the tetrahedron under the one-voxel bound')
+    parser.add_argument('--starts', type=atLeastZero, default=6, help='random starts of the bounded search (default 6)')
+    parser.add_argument('--shake', type=atLeastZero, default=6, help='basin-hopping rounds (default 6)')
+    parser.add_argument('--counts', type=counts, default=[33, 35, 37, 38], help='other counts to polish')
+    args = parser.parse_args()
+    starts, rounds = args.starts, args.shake
     print('load: %s' % open('/proc/loadavg').read().strip())
     with tempfile.TemporaryDirectory() as tmp:
         mesh = os.path.join(tmp, 'tet.stl')
@@ -226,7 +248,7 @@ def main():
         unbounded = thirty(tmp, mesh, False, max(2, starts // 3))[0]
         print('best D found at 30 spheres: bounded %.4f, unbounded %.4f (Monte Carlo; bar 0.09)' % (bounded,
                                                                                                   unbounded))
-        for n in counts:  # how many spheres the bar takes under the bound
+        for n in args.counts:  # how many spheres the bar takes under the bound
             C, r = engineSet(tmp, mesh, n)
             report('bounded, %d spheres: engine' % n, tmp, mesh, C, r, 0)
             t = time.time()
