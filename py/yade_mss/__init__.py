@@ -12,7 +12,8 @@ Units are those of the input file. Densities come from the material, as in :yref
 
 Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, their mass properties),
 ``_generate`` (generation, scoring), ``_loads`` (the sums that make YADE clumps exact, numpy only),
-``_clumps`` (YADE clumps), ``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings),
+``_clumps`` (YADE clumps), ``_records`` (their records), ``_restore`` (exact properties back),
+``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings),
 ``_specimen`` (labelled volumes, synthetic specimens), ``_batch`` (mss batch), ``_assembly`` (specimens in YADE),
 ``_pictures`` (mss preview, mss curve), ``_spheropolygon`` (2-D: spheropolygons, the O-chart).
 """
@@ -27,7 +28,8 @@ _os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
 from ._results import MassProperties, MssResult, readSpheres  # noqa: E402
 from ._sources import massProperties  # noqa: E402
 from ._generate import compareMany, generate, score  # noqa: E402
-from ._clumps import mssClump, restoreClumpProperties  # noqa: E402
+from ._clumps import mssClump, totalMass  # noqa: E402
+from ._restore import restoreClumpProperties  # noqa: E402
 from ._clumpfiles import readClumps, writeClumps  # noqa: E402
 from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate  # noqa: E402
 from ._batch import batch  # noqa: E402
@@ -37,6 +39,6 @@ from ._spheropolygon import boundaryRegions, ochart, spheropolygon, spheropolygo
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
-           'restoreClumpProperties', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
+           'restoreClumpProperties', 'totalMass', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
            'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen',
            'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart']

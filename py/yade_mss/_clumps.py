@@ -1,26 +1,35 @@
-"""YADE clumps whose members are exactly the generated spheres, with the mass properties asked for.
+"""YADE clumps whose members are YADE's own spheres and whose clump body has the mass properties asked for.
 
 How (YADE 2023.02a, stock, through its Python API; see :mod:`yade_mss._loads` for the sums): while YADE sums
 the members (``appendClumped``, ``updateClumpProperties``), each member wears a temporary non-spherical shape
-(a zero-size ``Box``) and carries the mass chosen for it, one member also a tensor and an orientation, so that
+(a zero-size ``Box``) and carries a mass chosen for it, one member also a tensor and an orientation, so that
 YADE's own sums give the wanted mass, centre of mass and inertia tensor, and YADE itself places the clump in the
-principal frame and records the members' relative positions. Then the ``Sphere`` shapes come back and every
-member keeps its share of the mass (positive, adding up to the clump's). Nothing recomputes a clump's mass
-properties on steps, ``O.save``/``O.load`` or ``loadTmp``; only ``updateClumpProperties``, ``addToClump`` and
-``releaseFromClump`` do, and those sum spheres as YADE always does (see :func:`restoreClumpProperties`).
+principal frame and records the members' relative positions. Then every member becomes the sphere
+``utils.sphere`` makes: its ``Sphere`` shape, mass rho V and inertia 2/5 m r^2 of its material, exactly as after
+``O.bodies.appendClumped``. YADE reads member masses (contact laws such as ``Ip2_ViscElMat_ViscElMat_ViscElPhys``,
+``utils.PWaveTimeStep``, spheres freed by ``releaseFromClump`` or ``erase``), so members must be YADE's; only the
+clump body carries the exact properties, and nothing recomputes them on steps, ``O.save``/``O.load`` or
+``loadTmp``. ``updateClumpProperties``, ``addToClump`` and ``releaseFromClump`` sum the spheres as YADE always
+does (overlaps counted twice); :func:`restoreClumpProperties` gives the exact properties back.
+
+As for any YADE clump, ``utils.getSpheresMass()`` sums the members (overlapping volume counted twice); the
+mass of the grains is the clumps' (:func:`totalMass`).
 
 Why not an extra member: a correction body (tried first) breaks YADE's clump API (release, erase, exporters).
 Why not a C++ extension against YADE's headers: Debian ships none, and a fork's headers tie the package to
 Debian's binary layout.
 
-Each clump's exact properties (unit density, in the frame of its first member) are kept in ``O.tags`` under
-``mss.clump.<id>``, which YADE saves with the scene, so :func:`restoreClumpProperties` works after
-``O.save``/``O.load`` and ``loadTmp`` too.
+Each clump's exact properties (unit density, in the frame of its first member) are kept in ``O.tags`` (YADE saves
+them with the scene; :mod:`yade_mss._records`) with a fingerprint of its members: their ids, radii, positions
+relative to the first member and the first two members' relative orientation (which a clump made any other way
+does not share). A record is applied only to a clump that matches it, so neither ``O.bodies.clear()`` (which
+keeps ``O.tags`` while ids restart at 0) nor an erased clump's reused id can apply it to another clump.
 """
 
 import inspect
-import json
 import math
+import random
+import warnings
 
 import numpy as np
 
@@ -28,9 +37,10 @@ from . import _mss
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._loads import memberLoads
+from ._records import Store, encodeMany
 from ._results import MssResult
 
-TAG = 'mss.clump.'
+_colours = random.Random()  # utils.randomColor's uniform colours, without reseeding the user's `random`
 
 
 def _yade():
@@ -114,114 +124,299 @@ def _quaternion(V, me):
     return me.Quaternion(me.Matrix3(*[float(V[i, j]) for i in range(3) for j in range(3)]))
 
 
-class _Target(object):
-    """What one clump is to get: members (YADE bodies), mass, centre of mass, tensor (world), unit-density ones."""
-
-    def __init__(self, bodies, volume, centroid, inertia, density):
-        self.bodies = bodies
-        self.volume = float(volume)
-        self.centroid = np.asarray(centroid, dtype=float)
-        self.unitInertia = np.asarray(inertia, dtype=float)
-        self.density = float(density)
-        self.M = self.density * self.volume
-        self.I = self.density * self.unitInertia
+def _finite(func, name, value, positive=False):
+    """A real number given as a number (not a bool or a string), finite (and > 0 with *positive*)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError('%s: %s must be a number, got %r' % (func, name, value))
+    v = float(value)
+    if not math.isfinite(v) or (positive and not v > 0):
+        raise ValueError('%s: %s must be a finite number%s, got %r' % (func, name, ' > 0' if positive else '', value))
+    return v
 
 
-def _withLoads(targets, action, me):
-    """Runs *action* (a YADE call that sums clump members) while the members of every target carry the loads
-    that make the sums exact; then gives the spheres back, each with its share of the mass."""
+def _vector3(func, name, value):
+    """Three finite numbers (a list, tuple, numpy array or YADE Vector3) as a numpy array."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError('%s: %s must be 3 numbers, got the string %r' % (func, name, value))
+    try:
+        items = [value[i] for i in range(len(value))]
+    except TypeError:
+        raise TypeError('%s: %s must be 3 numbers, got %r' % (func, name, value))
+    if len(items) != 3:
+        raise ValueError('%s: %s must be 3 numbers, got %d' % (func, name, len(items)))
+    return np.array([_finite(func, name, x) for x in items])
+
+
+def _checkBody(func, body):
+    """The types utils.sphere's keywords must have, checked before YADE sees them (YADE's own errors for these
+    are Boost's signatures or a member silently wrong)."""
+    for key in ('fixed', 'wire', 'highlight'):
+        if key in body and not isinstance(body[key], (bool, np.bool_)):
+            raise TypeError('%s: %s must be True or False, got %r' % (func, key, body[key]))
+    if body.get('dynamic') is not None and not isinstance(body['dynamic'], (bool, np.bool_)):
+        raise TypeError('%s: dynamic must be True, False or None, got %r' % (func, body['dynamic']))
+    if 'mask' in body:
+        m = body['mask']
+        if isinstance(m, (bool, np.bool_)) or not isinstance(m, (int, np.integer)):
+            raise TypeError('%s: mask must be an integer, got %r' % (func, m))
+    if body.get('color') is not None:
+        c = _vector3(func, 'color', body['color'])
+        if not np.all((c >= 0) & (c <= 1)):
+            raise ValueError('%s: color components must be in [0, 1], got %r' % (func, body['color']))
+        body['color'] = tuple(float(v) for v in c)
+    if 'material' in body:
+        m = body['material']
+        if isinstance(m, (bool, np.bool_)) or isinstance(m, float):
+            raise TypeError('%s: material must be a Material, a label, an index into O.materials or a factory, '
+                            'got %r' % (func, m))
+    return body
+
+
+class _Members(object):
+    """Makes members exactly as ``utils.sphere(center, radius, **body)`` does: the options are checked by a first
+    sphere that utils.sphere itself makes, whose material, blocked DOFs, mask, bound flag and shape flags every
+    member then takes (utils.sphere reseeds Python's ``random`` for each colour: most of its time)."""
+
+    def __init__(self, func, body):
+        utils, O, me = _yade()
+        from yade.wrapper import Body, Sphere
+        self.utils, self.me, self.Body, self.Sphere = utils, me, Body, Sphere
+        self.func = func
+        self.body = _checkBody(func, dict(body))
+        m = self.body.get('material')
+        self.factory = m is not None and callable(m) and not isinstance(m, (int, str))
+        try:  # with a colour: utils.sphere would reseed Python's random for a random one
+            proto = utils.sphere((0.0, 0.0, 0.0), 1.0, **dict(self.body, color=self.body.get('color') or (1, 1, 1)))
+        except Exception as e:
+            raise ValueError('%s: utils.sphere refused the body options %s: %s' % (
+                func, ', '.join('%s=%r' % kv for kv in sorted(self.body.items())) or '(none)', e))
+        self.mat = proto.mat
+        self.blocked = proto.state.blockedDOFs
+        self.mask = proto.mask
+        self.bounded = proto.bounded
+        self.wire, self.highlight = proto.shape.wire, proto.shape.highlight
+        c = self.body.get('color')
+        self.color = me.Vector3(*c) if c else None
+        if not self.factory:
+            self.density(self.mat)
+
+    def density(self, mat):
+        rho = mat.density
+        if not rho > 0:
+            raise ValueError('%s: the material density must be > 0, got %g' % (self.func, rho))
+        return rho
+
+    def make(self, centers, radii):
+        """The members: bodies, their masses and inertias (Vector3)."""
+        V3 = self.me.Vector3
+        if self.factory:
+            bodies = [self.utils.sphere(tuple(float(v) for v in p), float(r), **self.body)
+                      for p, r in zip(centers, radii)]
+            return bodies, [b.state.mass for b in bodies], [b.state.inertia for b in bodies]
+        bodies, masses, inertias = [], [], []
+        mat, Body, Sphere = self.mat, self.Body, self.Sphere
+        rho = mat.density
+        for p, r in zip(centers.tolist(), radii.tolist()):
+            b = Body()
+            colour = self.color if self.color is not None else V3(_colours.random(), _colours.random(),
+                                                                   _colours.random())
+            b.shape = Sphere(radius=r, color=colour, wire=self.wire, highlight=self.highlight)
+            b.mat = mat
+            st = b.state = mat.newAssocState()
+            st.pos = st.refPos = V3(*p)
+            m, I = _sphereMass(r, rho, V3)
+            st.mass, st.inertia = m, I
+            b.bounded = self.bounded
+            st.blockedDOFs = self.blocked
+            b.aspherical = False
+            b.mask = self.mask
+            bodies.append(b)
+            masses.append(m)
+            inertias.append(I)
+        return bodies, masses, inertias
+
+
+class _Plan(object):
+    """One clump at unit density: its members (centres, radii), the wanted volume, centre of mass and tensor,
+    and the loads that make YADE's sums give them (:func:`yade_mss._loads.memberLoads`: masses *m*, member 0's
+    tensor, eigenvalues *j* with eigenvectors *V*)."""
+    __slots__ = ('centers', 'radii', 'volume', 'centroid', 'inertia', 'moments', 'm', 'j', 'V', 'offset')
+
+    @staticmethod
+    def of(centers, radii, volume, centroid, inertia):
+        p = _Plan()
+        p.centers = np.asarray(centers, dtype=float).reshape(-1, 3)
+        p.radii = np.asarray(radii, dtype=float).reshape(-1)
+        p.inertia = np.asarray(inertia, dtype=float).reshape(3, 3)
+        L = memberLoads(p.centers, p.radii, float(volume), centroid, p.inertia)
+        p.volume, p.centroid, p.offset = float(volume), L.centroid, L.offset
+        p.moments = np.linalg.eigvalsh(p.inertia)
+        p.m, p.j, p.V = L.m, L.j, L.V
+        return p
+
+    def placed(self, c0, s, R, C):
+        """This plan moved so that its point *c0* goes to *C*, turned by *R* and scaled by *s* about it: the
+        loads are equivariant (masses ~ s^3, tensors ~ s^5 and turned), so nothing is solved again."""
+        q = _Plan()
+        q.centers = C + s * (self.centers - c0).dot(R.T)
+        q.radii = s * self.radii
+        q.volume = s ** 3 * self.volume
+        q.centroid = C + s * R.dot(self.centroid - c0)
+        q.inertia = s ** 5 * R.dot(self.inertia).dot(R.T)
+        q.moments = s ** 5 * self.moments
+        q.m, q.j, q.V, q.offset = s ** 3 * self.m, s ** 5 * self.j, R.dot(self.V), s * self.offset
+        return q
+
+
+def _basePlan(r, mass):
+    """The plan of result *r* in its own frame for *mass* ('target' or 'union'), kept with the result (so a
+    template's clumps reuse it) and remade when its spheres change. :return: (plan, the target's centroid)"""
+    key = (mass, r.centers.tobytes(), r.radii.tobytes())
+    cached = getattr(r, '_mssPlan', None)
+    if cached is not None and cached[0] == key:
+        return cached[1], cached[2]
+    props = r.targetMass if mass == 'target' else r.unionMass()
+    plan = _Plan.of(r.centers, r.radii, props.volume, props.centroid, props.inertia)
+    r._mssPlan = (key, plan, np.asarray(props.centroid, dtype=float))
+    return plan, r._mssPlan[2]
+
+
+def _sphereMass(radius, density, V3):
+    """(mass, inertia) of ``utils.sphere``: the same floating-point operations, so the same bits."""
+    V = (4. / 3) * math.pi * radius ** 3
+    g = (2. / 5.) * V * radius ** 2 * density
+    return V * density, V3(g, g, g)
+
+
+def _withLoads(groups, action, me, setInertia):
+    """Runs *action* (a YADE call that sums clump members) while the members of every group carry the loads
+    that make the sums exact; then every member is YADE's sphere again.
+
+    A group: (bodies, masses for the sums, final masses, final inertias (Vector3), member 0's moments *j* and
+    axes *V*). Through the sums every member keeps its final sphere inertia (isotropic: its orientation does not
+    matter), so member 0's tensor is *j* less the others' (*setInertia*: set the final inertias first, as after a
+    density change; else they are already there)."""
     from yade.wrapper import Box
     tmp = Box(extents=me.Vector3(0, 0, 0))
-    saved = []
+    done = []
     try:
-        for t in targets:
-            x = np.array([[b.state.pos[0], b.state.pos[1], b.state.pos[2]] for b in t.bodies])
-            r = np.array([b.shape.radius for b in t.bodies])
-            t.loads = memberLoads(x, r, t.M, t.centroid, t.I)
-            for b, m in zip(t.bodies, t.loads.m):
-                saved.append((b, b.shape))
+        for bodies, m, final, inertia, j, V in groups:
+            shapes = []
+            done.append((bodies, shapes, final, inertia))
+            for b, mi, Ii in zip(bodies, m, inertia):
+                shapes.append(b.shape)
                 b.shape = tmp
-                b.state.mass = float(m)
-                b.state.inertia = me.Vector3(0, 0, 0)
-            b0 = t.bodies[0]
-            b0.state.inertia = me.Vector3(*[float(v) for v in t.loads.j])
+                st = b.state
+                st.mass = mi
+                if setInertia:
+                    st.inertia = Ii
+            rest = sum(Ii[0] for Ii in inertia[1:])
+            b0 = bodies[0].state
+            b0.inertia = me.Vector3(*(j - rest).tolist())
             # YADE turns a member's tensor by ori.conjugate() (Clump::inertiaTensorRotate): V = matrix(ori*)
-            b0.state.ori = _quaternion(t.loads.V, me).conjugate()
+            b0.ori = _quaternion(V, me).conjugate()
         return action()
     finally:
-        for b, shape in saved:
-            b.shape = shape
-        for t in targets:
-            if hasattr(t, 'loads'):
-                for b, m in zip(t.bodies, t.loads.final):
-                    b.state.mass = float(m)
-                    b.state.inertia = me.Vector3(1, 1, 1) * float(0.4 * m * b.shape.radius ** 2)
+        for bodies, shapes, final, inertia in done:
+            for b, shape, mf in zip(bodies, shapes, final):
+                b.shape = shape
+                b.state.mass = mf
+            bodies[0].state.inertia = inertia[0]
 
 
-def _check(O, cid, t):
-    """The clump took the wanted properties (YADE chose the principal frame itself)."""
+def _check(func, O, cid, M, C, moments):
+    """The clump took the wanted mass, centre and principal moments (YADE chose the principal frame itself)."""
     st = O.bodies[cid].state
-    C = t.loads.centroid
-    size = max(1.0, float(np.abs(C).max()))
-    ok = (abs(st.mass - t.M) <= 1e-9 * t.M and np.linalg.norm(np.array(st.pos) - C) <= 1e-9 * size
-          and np.linalg.norm(stateTensor(st) - t.I) <= 1e-7 * np.linalg.norm(t.I))
+    p, I = st.pos, st.inertia
+    size = max(1.0, abs(C[0]), abs(C[1]), abs(C[2]))
+    top = max(moments)
+    ok = (abs(st.mass - M) <= 1e-9 * M and math.sqrt(sum((p[k] - C[k]) ** 2 for k in range(3))) <= 1e-9 * size
+          and max(abs(a - b) for a, b in zip(sorted((I[0], I[1], I[2])), moments)) <= 1e-7 * top)
     if not ok:
-        raise RuntimeError('mssClump: YADE did not take the requested mass properties of clump %d (mass %g vs %g)'
-                           % (cid, st.mass, t.M))
+        raise RuntimeError('%s: YADE did not take the requested mass properties of clump %d (mass %g vs %g)'
+                           % (func, cid, st.mass, M))
 
 
-def _record(O, cid, t):
-    """Keeps the clump's exact unit-density properties in O.tags, in its first member's frame (members turn
-    with the clump, so the record stays valid whatever the clump does)."""
-    b0 = t.bodies[0]
-    R0 = matrix(b0.state.ori)
-    p0 = np.array([b0.state.pos[0], b0.state.pos[1], b0.state.pos[2]])
-    rec = {'members': [b.id for b in t.bodies], 'radii': [b.shape.radius for b in t.bodies],
-           'volume': t.volume, 'centroid': R0.T.dot(t.loads.centroid - p0).tolist(),
-           'inertia': R0.T.dot(t.unitInertia).dot(R0).ravel().tolist()}
-    O.tags[TAG + str(cid)] = json.dumps(rec, separators=(',', ':'))
-
-
-def _recorded(O, cid):
+def _build(func, plans, members, warn=None):
+    """Appends one clump per plan, members made by *members* (:class:`_Members`); nothing is left in O.bodies
+    if anything fails. :return: [(clumpId, [memberIds])]"""
+    utils, O, me = _yade()
+    made = []
     try:
-        return json.loads(O.tags[TAG + str(cid)])
-    except (KeyError, ValueError):
-        return None
+        for p in plans:
+            bodies, final, inertia = members.make(p.centers, p.radii)
+            rho = members.density(bodies[0].mat)
+            cid, ids = _withLoads([(bodies, (rho * p.m).tolist(), final, inertia, rho * p.j, p.V)],
+                                  lambda: O.bodies.appendClumped(bodies, discretization=0), me, False)
+            ids = list(ids)
+            made.append((cid, ids))
+            _check(func, O, cid, rho * p.volume, p.centroid, (rho * p.moments).tolist())
+            if members.blocked:  # fixed=True (or dynamic=False) means the clump: members are never integrated
+                O.bodies[cid].state.blockedDOFs = members.blocked
+            if p.offset > 0 and warn is not None:
+                warn(func, p.offset)
+        # member 0 wears V* (above), the others YADE's identity orientation
+        texts = encodeMany([ids for cid, ids in made], [p.centers for p in plans], [p.radii for p in plans],
+                           np.array([p.volume for p in plans]), np.array([p.centroid for p in plans]),
+                           np.array([p.inertia for p in plans]), [p.m for p in plans], np.array([p.V for p in plans]),
+                           np.array([p.j for p in plans]),
+                           np.array([np.eye(3) if len(p.radii) > 1 else p.V.T for p in plans]))
+        store = Store(O.tags)
+        for (cid, ids), text in zip(made, texts):
+            store.put(cid, text)
+        store.flush()
+    except Exception:
+        for cid, ids in made:
+            O.bodies.erase(cid, True)
+        raise
+    return made
 
 
-def buildClump(centers, radii, volume, centroid, unitInertia, body, warn=None):
+def buildClump(centers, radii, volume, centroid, unitInertia, body, warn=None, func='mssClump'):
     """Appends one clump of spheres (*body*: keywords for ``utils.sphere``) with mass density x *volume*, centre
     *centroid* and tensor density x *unitInertia*; O.bodies is unchanged if anything fails.
     :return: (clumpId, [memberIds])"""
-    utils, O, me = _yade()
-    bodies = [utils.sphere(tuple(float(x) for x in p), float(r), **body) for p, r in zip(centers, radii)]
-    density = bodies[0].material.density
-    if not density > 0:
-        raise ValueError('mssClump: the material density must be > 0, got %g' % density)
-    t = _Target(bodies, volume, centroid, unitInertia, density)
-    cid, ids = _withLoads([t], lambda: O.bodies.appendClumped(bodies, discretization=0), me)
-    try:
-        _check(O, cid, t)
-    except RuntimeError:
-        O.bodies.erase(cid, True)
-        raise
-    _record(O, cid, t)
-    if t.loads.offset > 0 and warn is not None:
-        warn(t.loads.offset)
-    return cid, list(ids)
+    plan = _Plan.of(centers, radii, volume, centroid, unitInertia)
+    return _build(func, [plan], _Members(func, body), warn)[0]
 
 
-def _offsetWarning(offset):
-    import warnings
-    warnings.warn('mssClump: the centre of mass lies %.3g off the plane or line of the sphere centres; the clump '
-                  'takes the nearest point of it (its mass and tensor are exact)' % offset)
+def _offsetWarning(func, offset):
+    warnings.warn('%s: the centre of mass lies %.3g off the plane or line of the sphere centres; the clump '
+                  'takes the nearest point of it (its mass and tensor are exact)' % (func, offset), stacklevel=3)
+
+
+def _scale(func, scale):
+    return _finite(func, 'scale', scale, positive=True)
+
+
+def _mass(func, mass):
+    if mass not in ('target', 'union'):
+        raise ValueError("%s: mass must be 'target' or 'union', got %r" % (func, mass))
+    return mass
+
+
+def _seed(func, seed):
+    if seed is None:
+        return None
+    if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
+        raise TypeError('%s: seed must be an integer or None, got %r' % (func, seed))
+    return int(seed)
+
+
+def _plans(func, r, mass, placements):
+    """Plans of result *r* placed at (center or None, rotation matrix, scale): the target's (or the union's)
+    centre of mass goes to *center* (None: where it is)."""
+    if mass == 'target' and r.targetMass is None:
+        raise ValueError("%s: this result has no target solid (read from a sphere file?); use mass='union'" % func)
+    base, c0 = _basePlan(r, mass)
+    return [base.placed(c0, s, R, c0 if C is None else C) for C, R, s in placements]
 
 
 def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', seed=None, **options):
     """Builds one YADE clump from a grain and appends it to O.bodies, as ``O.bodies.appendClumped`` does.
 
-    :param source: mesh file, voxel file (.npy), 3-D numpy array, (vertices, triangles), or an :class:`MssResult`
-        (then no generation happens)
+    :param source: mesh file, voxel file (.npy, .tif), 3-D numpy array, (vertices, triangles), or an
+        :class:`MssResult` (then no generation happens)
     :param options: every keyword of :func:`generate` (nSpheres, eta, dice, rMin, voxelSize, resolution,
         method, clip, planes, label, origin, supersample, threads, memoryLimit, ...) and of ``utils.sphere``
         for the bodies (material, color, mask, fixed, wire, highlight). An unknown keyword raises TypeError
@@ -232,24 +427,24 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
     :param float scale: size factor about the centre of mass
     :param str mass: 'target': mass, centre and inertia of the target solid (exact for a mesh; voxel sums);
         'union': those of the union of the spheres (overlaps counted once)
+    :param int seed: seed of ``orientation='random'``
     :return: (clumpId, [memberIds]); O.bodies is unchanged if anything fails
 
-    The clump's members are exactly the spheres; each carries its share of the clump's mass (``state.mass``,
-    positive, adding up to the clump's). YADE's ``updateClumpProperties``, ``addToClump`` and
-    ``releaseFromClump`` recompute a clump from its spheres as YADE always does (overlaps counted twice at
-    discretization 0); :func:`restoreClumpProperties` gives the exact properties back.
+    The members are YADE's spheres, as after ``appendClumped``: mass rho V and inertia 2/5 m r^2 of their
+    material, so contact laws and time steps that read them see what they see for any YADE clump. Only the
+    clump body carries the exact properties. ``fixed=True`` (or ``dynamic=False``) fixes the clump. YADE's
+    ``updateClumpProperties``, ``addToClump`` and ``releaseFromClump`` recompute a clump from its spheres as
+    YADE always does (overlaps counted twice at discretization 0); :func:`restoreClumpProperties` gives the
+    exact properties back.
     """
-    gen, body = split('mssClump', options, GENERATE_OPTIONS, bodyOptions())
+    gen, body = split('mssClump', options, GENERATE_OPTIONS, bodyOptions(),
+                      extra=('source', 'center', 'orientation', 'scale', 'mass', 'seed'))
     utils, O, me = _yade()
-    if mass not in ('target', 'union'):
-        raise ValueError("mssClump: mass must be 'target' or 'union', got %r" % (mass,))
-    if not (float(scale) > 0 and math.isfinite(float(scale))):
-        raise ValueError('mssClump: scale must be > 0, got %r' % (scale,))
-    R = rotation(orientation, seed)
-    if center is not None:
-        C = np.array([float(x) for x in center])
-        if C.shape != (3,) or not np.all(np.isfinite(C)):
-            raise ValueError('mssClump: center must be 3 finite numbers')
+    mass = _mass('mssClump', mass)
+    s = _scale('mssClump', scale)
+    R = rotation(orientation, _seed('mssClump', seed))
+    C = None if center is None else _vector3('mssClump', 'center', center)
+    members = _Members('mssClump', body)
     if isinstance(source, MssResult):
         if gen:
             raise ValueError('mssClump: %s: generation options do nothing for an MssResult (already generated)'
@@ -257,99 +452,17 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
         r = source
     else:
         r = generate(source, **gen)
-    if mass == 'target':
-        if r.targetMass is None:
-            raise ValueError("mssClump: this result has no target solid (read from a sphere file?); use mass='union'")
-        props = r.targetMass
-    else:
-        props = r.unionMass()
-    C = props.centroid if center is None else C
-    s = float(scale)
-    placed = props.transformed(s, R, C)
-    centers = C + (s * (r.centers - props.centroid)).dot(R.T)
-    return buildClump(centers, s * r.radii, placed.volume, C, placed.inertia, body, _offsetWarning)
+    return _build('mssClump', _plans('mssClump', r, mass, [(C, R, s)]), members, _offsetWarning)[0]
 
 
 def _clumpIds(O):
     return [b.id for b in O.bodies if b is not None and b.isClump]
 
 
-def restoreClumpProperties(clumpIds=None, resolution=200):
-    """Gives clumps their exact mass properties back after YADE recomputed them from their spheres
-    (``O.bodies.updateClumpProperties``, ``releaseFromClump``, ``addToClump``) or after a density change
-    (the material's density is read now; members' masses follow).
-
-    A clump from :func:`mssClump` (and friends) whose members are unchanged gets its grain's properties again
-    (``mass='target'``: the grain's; ``'union'``: the union's), at the current density. A clump whose members
-    changed, or any other clump of spheres named in *clumpIds*, gets those of the union of its spheres (overlaps
-    counted once, *resolution* voxels along the longest edge), and is remembered so from then on. The clumps'
-    velocities and angular momenta are kept (the centre of mass may move: its velocity follows).
-
-    :param clumpIds: clump ids; default every clump made by yade_mss in the scene
-    :return: list of (clumpId, 'grain' or 'union')
-    """
+def totalMass():
+    """The mass of the scene as it moves: every body that is not a clump member, so each clump once with its
+    own mass, plus free spheres, walls and facets with theirs. ``utils.getSpheresMass()`` instead sums every
+    sphere, clump members included: for any YADE clump, ours or ``appendClumped``'s, overlapping volume is
+    counted twice there."""
     utils, O, me = _yade()
-    if clumpIds is None:
-        ids = sorted(int(k[len(TAG):]) for k in O.tags.keys() if k.startswith(TAG) and O.tags[k])
-        explicit = False
-    else:
-        ids = [int(i) for i in clumpIds]
-        explicit = True
-    targets, kinds, done = [], [], []
-    from yade.wrapper import Sphere
-    for cid in ids:
-        body = O.bodies[cid] if 0 <= cid < len(O.bodies) else None
-        if body is None or not body.isClump:
-            if explicit:
-                raise ValueError('restoreClumpProperties: body %d is not a clump' % cid)
-            O.tags[TAG + str(cid)] = ''  # the clump was erased: forget it (O.tags cannot delete a key)
-            continue
-        members = [O.bodies[i] for i in sorted(body.shape.members.keys())]
-        for b in members:
-            if not isinstance(b.shape, Sphere):
-                raise ValueError('restoreClumpProperties: member %d of clump %d is a %s, not a Sphere'
-                                 % (b.id, cid, type(b.shape).__name__))
-        rec = _recorded(O, cid)
-        radii = [b.shape.radius for b in members]
-        if rec and sorted(rec['members']) == [b.id for b in members] and \
-                np.allclose(sorted(rec['radii']), sorted(radii), rtol=1e-12, atol=0):
-            byId = {b.id: b for b in members}
-            members = [byId[i] for i in rec['members']]  # the recorded order: its first member is the frame
-            b0 = members[0]
-            R0 = matrix(b0.state.ori)
-            p0 = np.array([b0.state.pos[0], b0.state.pos[1], b0.state.pos[2]])
-            V = rec['volume']
-            C = p0 + R0.dot(rec['centroid'])
-            I = R0.dot(np.reshape(rec['inertia'], (3, 3))).dot(R0.T)
-            kind = 'grain'
-        else:
-            x = [c for b in members for c in (b.state.pos[0], b.state.pos[1], b.state.pos[2])]
-            u = _mss.massSpheres(x, radii, int(resolution))
-            V, C, I = u['volume'], np.array(u['centroid']), np.reshape(u['inertia'], (3, 3))
-            kind = 'union'
-        density = members[0].material.density
-        if not density > 0:
-            raise ValueError('restoreClumpProperties: clump %d: the material density must be > 0, got %g'
-                             % (cid, density))
-        t = _Target(members, V, C, I, density)
-        st = body.state
-        t.cid = cid
-        t.before = (np.array(st.pos), np.array(st.vel), np.array(st.angVel))
-        targets.append(t)
-        kinds.append(kind)
-    if not targets:
-        return done
-    wanted = set(t.cid for t in targets)
-    others = [i for i in _clumpIds(O) if i not in wanted]
-    _withLoads(targets, lambda: O.bodies.updateClumpProperties(excludeList=others, discretization=0), me)
-    for t, kind in zip(targets, kinds):
-        _check(O, t.cid, t)
-        st = O.bodies[t.cid].state
-        pos0, vel0, w = t.before
-        # YADE's update zeroes the velocities: keep the motion (the centre of mass may have moved)
-        st.vel = me.Vector3(*(vel0 + np.cross(w, np.array(st.pos) - pos0)))
-        st.angVel = me.Vector3(*w)
-        st.angMom = me.Vector3(*stateTensor(st).dot(w))
-        _record(O, t.cid, t)
-        done.append((t.cid, kind))
-    return done
+    return float(sum(b.state.mass for b in O.bodies if b is not None and not b.isClumpMember))

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from ._clumps import _yade, bodyOptions, mssClump, randomRotation
+from ._clumps import _Members, _vector3, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._results import MssResult
@@ -49,15 +49,21 @@ class MssTemplate(object):
         return '<MssTemplate %d spheres, equivalent radius %.4g, bounding radius %.4g>' % (
             len(self.result), self.equivalentRadius, self.boundingRadius)
 
-    def place(self, center, rotation, scale=1.0, mass='target', **body):
-        """Builds this grain as a clump whose union's centre of mass (the template's origin) goes to *center*,
-        turned by the matrix *rotation* and scaled by *scale* on top of the template's scale."""
+    def plan(self, center, rotation, scale=1.0, mass='target'):
+        """The plan of this grain as a clump whose union's centre of mass (the template's origin) goes to
+        *center*, turned by the matrix *rotation* and scaled by *scale* on top of the template's scale."""
         t = self.result
-        props = t.targetMass if mass == 'target' and t.targetMass is not None else t.unionMass()
+        mass = mass if t.targetMass is not None else 'union'
+        props = t.targetMass if mass == 'target' else t.unionMass()
         s = self.scale * scale
         c = np.asarray(center, dtype=float) + s * rotation.dot(props.centroid - self.unionCentroid)
-        return mssClump(t, center=c, orientation=rotation, scale=s, mass=mass if t.targetMass is not None else 'union',
-                        **body)
+        return _plans('MssTemplate.place', t, mass, [(c, rotation, s)])[0]
+
+    def place(self, center, rotation, scale=1.0, mass='target', **body):
+        """Builds this grain as a clump (see :meth:`plan`); *body*: ``utils.sphere`` keywords.
+        :return: (clumpId, [memberIds])"""
+        return _build('MssTemplate.place', [self.plan(center, rotation, scale, _mass('MssTemplate.place', mass))],
+                      _Members('MssTemplate.place', body), _offsetWarning)[0]
 
 
 def mssTemplate(source, scale=1.0, **options):
@@ -153,21 +159,31 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
     :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
     :return: list of (clumpId, [memberIds])
     """
-    gen, body = split('mssClumpCloud', options, GENERATE_OPTIONS, bodyOptions())
+    func = 'mssClumpCloud'
+    gen, body = split(func, options, GENERATE_OPTIONS, bodyOptions(),
+                      extra=('templates', 'minCorner', 'maxCorner', 'num', 'periodic', 'seed', 'psdSizes', 'psdCumm',
+                             'distributeMass', 'mass'))
     utils, O, me = _yade()
     from yade import pack
-    templates = _templates('mssClumpCloud', templates, gen)
-    lo = np.array([float(x) for x in minCorner])
-    hi = np.array([float(x) for x in maxCorner])
-    if lo.shape != (3,) or hi.shape != (3,) or not np.all(hi > lo):
-        raise ValueError('mssClumpCloud: maxCorner must exceed minCorner on every axis')
+    mass = _mass(func, mass)
+    if isinstance(num, (bool, np.bool_)) or not isinstance(num, (int, np.integer)) or not (num >= 1 or num == -1):
+        raise ValueError('%s: num must be an integer >= 1, or -1 (as many as fit), got %r' % (func, num))
+    seed = _seed(func, seed)
+    for name, flag in (('periodic', periodic), ('distributeMass', distributeMass)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise TypeError('%s: %s must be True or False, got %r' % (func, name, flag))
+    lo = _vector3(func, 'minCorner', minCorner)
+    hi = _vector3(func, 'maxCorner', maxCorner)
+    if not np.all(hi > lo):
+        raise ValueError('%s: maxCorner must exceed minCorner on every axis' % func)
     if (psdSizes is None) != (psdCumm is None):
-        raise ValueError('mssClumpCloud: give psdSizes and psdCumm together')
-    out = []
+        raise ValueError('%s: give psdSizes and psdCumm together' % func)
+    members = _Members(func, body)
+    templates = _templates(func, templates, gen)
     if psdSizes is not None:
         sample = _psdSampler(psdSizes, psdCumm, distributeMass)
-        if not (int(num) == num and num >= 1):
-            raise ValueError('mssClumpCloud: num must be >= 1 with a size distribution, got %r' % (num,))
+        if num < 1:
+            raise ValueError('%s: num must be >= 1 with a size distribution, got %r' % (func, num))
         rng = np.random.default_rng(None if seed is None or seed < 0 else seed)
         sizes = sample(rng, int(num))
         which = rng.integers(len(templates), size=int(num))
@@ -175,26 +191,26 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
         bounding = np.array([scales[i] * templates[w].boundingRadius for i, w in enumerate(which)])
         centres, order = _placeByBoundingBalls(rng, lo, hi, bounding, periodic)
         if len(order) < num:
-            warnings.warn('mssClumpCloud: placed %d of %d grains (the box is too full)' % (len(order), num))
-        for c, i in zip(centres, order):
-            out.append(templates[which[i]].place(c, randomRotation(rng), scales[i], mass, **body))
-        return out
+            warnings.warn('%s: placed %d of %d grains (the box is too full)' % (func, len(order), num))
+        plans = [templates[which[i]].plan(c, randomRotation(rng), scales[i], mass) for c, i in zip(centres, order)]
+        return _build(func, plans, members, _offsetWarning)
     sp = pack.SpherePack()
     sp.makeClumpCloud(me.Vector3(*lo), me.Vector3(*hi), [t.spherePack for t in templates],
-                      periodic=periodic, num=num, seed=seed)
-    groups = {}
-    for c, r, cid in sp.toList():
-        groups.setdefault(cid, []).append((np.array([c[0], c[1], c[2]]), r))
-    for cid in sorted(groups):
-        P = np.array([c for c, r in groups[cid]])
-        radii = np.array([r for c, r in groups[cid]])
+                      periodic=bool(periodic), num=int(num), seed=-1 if seed is None else seed)
+    rows = np.array([(c[0], c[1], c[2], r, k) for c, r, k in sp.toList()]).reshape(-1, 5)
+    order = np.argsort(rows[:, 4], kind='stable')
+    rows = rows[order]
+    cuts = np.flatnonzero(np.diff(rows[:, 4])) + 1
+    plans = []
+    for g in np.split(rows, cuts) if len(rows) else []:
+        P, radii = g[:, :3], g[:, 3]
         t = next((t for t in templates if len(t.spherePackRadii) == len(radii)
                   and np.allclose(t.spherePackRadii, radii, rtol=1e-12)), None)
         if t is None:
-            raise RuntimeError('mssClumpCloud: a clump of the cloud matches no template')
+            raise RuntimeError('%s: a clump of the cloud matches no template' % func)
         R, tr = _kabsch(t.spherePackCenters, P)
-        out.append(t.place(tr, R, 1.0, mass, **body))
-    return out
+        plans.append(t.plan(tr, R, 1.0, mass))
+    return _build(func, plans, members, _offsetWarning)
 
 
 def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target', **options):
@@ -221,7 +237,7 @@ def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target
     free = [b for b in O.bodies if b is not None and isinstance(b.shape, Sphere) and not b.isClumpMember]
     rng = np.random.default_rng(seed)
     order = rng.permutation(len(free))
-    out, k = [], 0
+    out, k, makers = [], 0, {}
     for t, a in zip(templates, amounts):
         n = int(round(a * len(free)))
         for i in order[k:k + n]:
@@ -229,9 +245,12 @@ def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target
             c = np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]])
             r = b.shape.radius
             s = r / (t.boundingRadius if fit == 'inside' else t.equivalentRadius)
-            opts = dict(body)
-            opts.setdefault('material', b.material)
-            out.append(t.place(c, randomRotation(rng), s, mass, **opts))
+            mat = body.get('material', b.material)
+            key = ('given',) if 'material' in body else (mat.id if mat.id >= 0 else id(mat),)
+            if key not in makers:
+                makers[key] = _Members('mssReplaceByClumps', dict(body, material=mat))
+            out.append(_build('mssReplaceByClumps', [t.plan(c, randomRotation(rng), s, mass)], makers[key],
+                              _offsetWarning)[0])
             O.bodies.erase(b.id)
         k += n
     return out

@@ -1,0 +1,158 @@
+"""The records that let :func:`restoreClumpProperties` give a clump its exact mass properties back, numpy only.
+
+A clump's record (in ``O.tags``, saved with the scene: see :class:`Store`) holds its plan at unit density in the frame
+of its first member (position x0, rotation R0; members turn with the clump, so the record holds wherever the
+clump goes) and a fingerprint of its members: ids, radii, positions, and the first two members' relative
+orientation Q01 = R0^T R1. Member 0 wears the orientation V* of its load tensor's axes V (so R0 = V^T) and the
+others YADE's identity, so Q01 = V R1: a clump made any other way (``appendClumped`` gives identities) does not
+match, even of the same spheres at the same places.
+
+Layout: float64, little endian, base64: [2, n, volume, centroid (3), inertia (9), member 0's load
+tensor (9), Q01 (9), ids (n), radii (n), positions (3n), masses for the sums (n)].
+"""
+
+import base64
+
+import numpy as np
+
+TAG = 'mss.clumps2.'
+OLD_TAG = 'mss.clump.'  # one tag a clump, JSON: yade-mss before records had fingerprints (not read)
+BLOCK = 64
+_HEAD = 3 + 3 + 9 + 9 + 9
+
+
+def quaternionMatrices(q):
+    """Rotation matrices (k, 3, 3) of unit quaternions (k, 4) given as (x, y, z, w), as minieigen indexes them."""
+    q = np.asarray(q, dtype=float).reshape(-1, 4)
+    x, y, z, w = q.T
+    return np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w),
+                     2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+                     2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=1).reshape(-1, 3, 3)
+
+
+def encodeMany(ids, x, radii, volume, C, I, m, V, j, R1):
+    """Records of k clumps just given their loads (member 0 wearing V*): lists of per-clump arrays *ids*, *x*
+    (n, 3), *radii*, *m*; stacked *volume* (k), *C* (k, 3), *I*, *V*, *R1* (k, 3, 3) and *j* (k, 3), at unit
+    density. :return: list of k strings"""
+    k = len(ids)
+    x0 = np.array([xi[0] for xi in x]).reshape(k, 3)
+    Vt = np.transpose(V, (0, 2, 1))
+    crel = np.einsum('kij,kj->ki', V, C - x0)
+    Irel = np.einsum('kij,kjl,klm->kim', V, I, Vt)
+    J = np.einsum('kij,kj,klj->kil', V, j, V)  # V diag(j) V^T
+    Jrel = np.einsum('kij,kjl,klm->kim', V, J, Vt)
+    Q = np.einsum('kij,kjl->kil', V, R1)
+    out = []
+    for i in range(k):
+        rel = (x[i] - x0[i]).dot(Vt[i])
+        a = np.concatenate([[2.0, len(ids[i]), volume[i]], crel[i], Irel[i].ravel(), Jrel[i].ravel(), Q[i].ravel(),
+                            np.asarray(ids[i], dtype=float), radii[i], rel.ravel(), m[i]])
+        out.append(base64.b64encode(a.astype('<f8').tobytes()).decode('ascii'))
+    return out
+
+
+class Record(object):
+    """A decoded record: volume, centroid, inertia, J, Q01 (member 0's frame, unit density), ids, radii, rel
+    (n, 3), m. Raises ValueError for a text that is not one."""
+
+    def __init__(self, text):
+        try:
+            a = np.frombuffer(base64.b64decode(text, validate=True), dtype='<f8')
+        except (ValueError, TypeError):
+            raise ValueError('not a record')
+        n = int(a[1]) if a.size >= 2 and np.isfinite(a[1]) and 1 <= a[1] <= a.size else -1
+        if n < 1 or a[0] != 2 or a.size != _HEAD + 6 * n or not np.all(np.isfinite(a)):
+            raise ValueError('not a record')
+        self.volume = float(a[2])
+        self.centroid, self.inertia = a[3:6], a[6:15].reshape(3, 3)
+        self.J, self.Q01 = a[15:24].reshape(3, 3), a[24:33].reshape(3, 3)
+        k = _HEAD
+        self.ids = [int(v) for v in a[k:k + n]]
+        self.radii = a[k + n:k + 2 * n]
+        self.rel = a[k + 2 * n:k + 5 * n].reshape(n, 3)
+        self.m = a[k + 5 * n:k + 6 * n]
+
+
+class Store(object):
+    """The records of a scene's clumps, kept in *tags* (``O.tags``) 64 clumps a tag: ``mss.clumps2.<id // 64>``
+    holds ``id:record;id:record...``. YADE keeps its tags in a list that every look-up searches from the start,
+    so one tag a clump would make building n clumps cost O(n^2). Read blocks are cached; :meth:`flush` writes
+    the changed ones."""
+
+    def __init__(self, tags):
+        self.tags = tags
+        self.blocks = {}
+        self.changed = set()
+
+    def _block(self, cid):
+        b = cid // BLOCK
+        if b not in self.blocks:
+            try:
+                text = self.tags[TAG + str(b)]
+            except KeyError:
+                text = ''
+            d = {}
+            for entry in text.split(';') if text else ():
+                key, sep, value = entry.partition(':')
+                if sep and key.isdigit():
+                    d[int(key)] = value
+            self.blocks[b] = d
+        return b, self.blocks[b]
+
+    def get(self, cid):
+        """The record of clump *cid*: a :class:`Record`, None (none), or False (not readable: damaged)."""
+        text = self._block(cid)[1].get(cid)
+        if not text:
+            return None
+        try:
+            return Record(text)
+        except ValueError:
+            return False
+
+    def put(self, cid, text):
+        b, d = self._block(cid)
+        d[cid] = text
+        self.changed.add(b)
+
+    def drop(self, cid):
+        b, d = self._block(cid)
+        if d.pop(cid, None) is not None:
+            self.changed.add(b)
+
+    def ids(self):
+        """Every clump id with a record."""
+        out = []
+        for k in self.tags.keys():
+            if k.startswith(TAG) and k[len(TAG):].isdigit():
+                out.extend(self._block(int(k[len(TAG):]) * BLOCK)[1])
+        return sorted(out)
+
+    def flush(self):
+        for b in sorted(self.changed):
+            self.tags[TAG + str(b)] = ';'.join('%d:%s' % kv for kv in sorted(self.blocks[b].items()))
+        self.changed.clear()
+
+
+def matchMembers(rec, ids, radii, x, R0, R1):
+    """How the members found (ids, radii, positions (n, 3), member 0's and 1's rotations) match record *rec*:
+    'same' (ids, radii, positions in member 0's frame and Q01 as recorded), 'changed' (some recorded members
+    left or others joined, the rest where they were: their distances), or None (another clump)."""
+    size = float(np.ptp(x, axis=0).max() + 2 * radii.max())
+    tol = 1e-9 * size
+    if rec.ids == ids:
+        if (np.abs(rec.radii - radii).max() <= 1e-12 * radii.max()
+                and np.abs((x - x[0]).dot(R0) - rec.rel).max() <= tol
+                and np.abs(R0.T.dot(R1) - rec.Q01).max() <= 1e-9):
+            return 'same'
+        return None
+    where = {i: k for k, i in enumerate(rec.ids)}
+    common = [(k, where[i]) for k, i in enumerate(ids) if i in where]
+    if not common:
+        return None
+    a = np.array([k for k, _ in common])
+    b = np.array([k for _, k in common])
+    if np.abs(rec.radii[b] - radii[a]).max() > 1e-12 * radii.max():
+        return None
+    da = np.linalg.norm(x[a][:, None] - x[a][None], axis=2)
+    db = np.linalg.norm(rec.rel[b][:, None] - rec.rel[b][None], axis=2)
+    return 'changed' if np.abs(da - db).max() <= tol else None

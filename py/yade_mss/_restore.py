@@ -1,0 +1,194 @@
+"""restoreClumpProperties: exact mass properties back after YADE recomputed a clump from its spheres."""
+
+import warnings
+
+import numpy as np
+
+from . import _mss
+from ._clumps import _Plan, _check, _clumpIds, _sphereMass, _withLoads, _yade
+from ._records import OLD_TAG, Store, encodeMany, matchMembers, quaternionMatrices
+
+
+def _ids(func, clumpIds, store):
+    if clumpIds is None:
+        return store.ids(), False
+    if isinstance(clumpIds, (str, bytes)) or not hasattr(clumpIds, '__iter__'):
+        raise TypeError('%s: clumpIds must be a list of clump ids, got %r' % (func, clumpIds))
+    ids = list(clumpIds)
+    for i in ids:
+        if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
+            raise TypeError('%s: clump ids must be integers, got %r' % (func, i))
+    return [int(i) for i in ids], True
+
+
+def restoreClumpProperties(clumpIds=None, resolution=200):
+    """Gives clumps their exact mass properties back after YADE recomputed them from their spheres
+    (``O.bodies.updateClumpProperties``, ``releaseFromClump``, ``addToClump``) or after a density change
+    (the material's density is read now; members' masses and inertias follow, as YADE's spheres).
+
+    A clump from :func:`mssClump` (and friends) whose members are unchanged gets its grain's properties again
+    (``mass='target'``: the grain's; ``'union'``: the union's), at the current density. A clump of ours whose
+    members were released or added, and any other clump of spheres named in *clumpIds*, gets those of the union
+    of its spheres (overlaps counted once, *resolution* voxels along the longest edge), and is remembered so
+    from then on. A record that matches no clump any more (the clump was erased, or ``O.bodies.clear()`` gave
+    its id to another clump) is dropped, with a warning where a clump holds the id now; it is never applied.
+    The clumps' velocities and angular momenta are kept (the centre of mass may move: its velocity follows).
+
+    :param clumpIds: clump ids; default every clump made by yade_mss in the scene
+    :param int resolution: voxels along the longest edge of a union's grid
+    :return: list of (clumpId, 'grain' or 'union')
+    """
+    func = 'restoreClumpProperties'
+    utils, O, me = _yade()
+    if isinstance(resolution, (bool, np.bool_)) or not isinstance(resolution, (int, np.integer)) or resolution < 2:
+        raise ValueError('%s: resolution must be an integer >= 2, got %r' % (func, resolution))
+    store = Store(O.tags)
+    try:
+        ids, explicit = _ids(func, clumpIds, store)
+        return _restore(func, O, me, store, ids, explicit, resolution)
+    finally:
+        store.flush()
+
+
+def _restore(func, O, me, store, ids, explicit, resolution):
+    if any(k.startswith(OLD_TAG) for k in O.tags.keys()):
+        warnings.warn('%s: this scene holds records of an older yade-mss (O.tags mss.clump.*), which had no '
+                      'fingerprint of their clumps: not read' % func, stacklevel=3)
+    from yade.wrapper import Sphere
+    V3 = me.Vector3
+    found = []  # clumps to restore: (cid, body, member ids, members, radii, centres, densities, record)
+    quats = []  # members 0 and 1 (or 0 twice) of each, as (x, y, z, w)
+    for cid in ids:
+        body = O.bodies[cid] if 0 <= cid < len(O.bodies) else None
+        if body is None or not body.isClump:
+            if explicit:
+                raise ValueError('%s: body %d is not a clump' % (func, cid))
+            store.drop(cid)  # the clump was erased
+            continue
+        mids = sorted(body.shape.members)
+        members = [O.bodies[i] for i in mids]
+        radii, x, rho = [], [], []
+        for b in members:
+            sh = b.shape
+            if not isinstance(sh, Sphere):
+                raise ValueError('%s: member %d of clump %d is a %s, not a Sphere' % (func, b.id, cid, type(sh).__name__))
+            radii.append(sh.radius)
+            p = b.state.pos
+            x.append((p[0], p[1], p[2]))
+            rho.append(b.mat.density)
+        if not rho[0] > 0:
+            raise ValueError('%s: clump %d: the material density must be > 0, got %g' % (func, cid, rho[0]))
+        for b in (members[0], members[-1] if len(members) == 1 else members[1]):
+            o = b.state.ori
+            quats.append((o[0], o[1], o[2], o[3]))
+        found.append((cid, body, mids, members, radii, x, rho, store.get(cid)))
+    if not found:
+        return []
+    R = quaternionMatrices(quats).reshape(-1, 2, 3, 3)
+    same = _sameMembers(found, R)
+    jobs = []
+    for k, (cid, body, mids, members, radii, x, rho, rec) in enumerate(found):
+        how = 'same' if same[k] else None
+        if rec and not same[k]:
+            how = matchMembers(rec, mids, np.array(radii), np.array(x), R[k, 0], R[k, 1])
+        if rec is not None and how is None:
+            warnings.warn('%s: the record of clump %d %s: dropped, not applied' % (
+                func, cid, 'is not readable' if rec is False else
+                'was made for another clump (the ids, radii or positions of its members differ)'), stacklevel=3)
+            store.drop(cid)
+            if not explicit:
+                continue
+        jobs.append((k, how == 'same'))
+    if not jobs:
+        return []
+    plans = _plans([found[k] for k, s in jobs if s], R[[k for k, s in jobs if s]])
+    grains = iter(plans)
+    work = []
+    for k, s in jobs:
+        cid, body, mids, members, radii, x, rho, rec = found[k]
+        if s:
+            plan, kind = next(grains), 'grain'
+        else:
+            u = _mss.massSpheres([c for p in x for c in p], radii, int(resolution))
+            plan = _Plan.of(x, radii, u['volume'], np.array(u['centroid']), np.reshape(u['inertia'], (3, 3)))
+            kind = 'union'
+        st = body.state
+        p, v, w = st.pos, st.vel, st.angVel
+        before = ((p[0], p[1], p[2]), (v[0], v[1], v[2]), (w[0], w[1], w[2]))
+        final = [_sphereMass(r, d, V3) for r, d in zip(radii, rho)]
+        work.append((cid, members, plan, rho[0], before, kind, final))
+    wanted = set(w[0] for w in work)
+    others = [i for i in _clumpIds(O) if i not in wanted]
+    _withLoads([(members, (rho * p.m).tolist(), [f[0] for f in final], [f[1] for f in final], rho * p.j, p.V)
+                for cid, members, p, rho, before, kind, final in work],
+               lambda: O.bodies.updateClumpProperties(excludeList=others, discretization=0), me, True)
+    done = []
+    for cid, members, p, rho, (pos0, vel0, w), kind, final in work:
+        _check(func, O, cid, rho * p.volume, p.centroid, (rho * p.moments).tolist())
+        st = O.bodies[cid].state
+        # YADE's update zeroes the velocities: keep the motion (the centre of mass may have moved)
+        d = [p.centroid[i] - pos0[i] for i in range(3)]
+        st.vel = V3(vel0[0] + w[1] * d[2] - w[2] * d[1], vel0[1] + w[2] * d[0] - w[0] * d[2],
+                    vel0[2] + w[0] * d[1] - w[1] * d[0])
+        st.angVel = V3(*w)
+        st.angMom = V3(*(rho * p.inertia.dot(w)).tolist())
+        done.append((cid, kind))
+    # member 0 now wears V*: the records again, in its new frame (member 1 did not turn)
+    idx = {f[0]: k for k, f in enumerate(found)}
+    R1s = np.array([R[idx[cid], 1] if len(members) > 1 else p.V.T for cid, members, p, *rest in work])
+    texts = encodeMany([found[idx[w[0]]][2] for w in work], [np.asarray(found[idx[w[0]]][5]) for w in work],
+                       [np.asarray(found[idx[w[0]]][4]) for w in work], np.array([w[2].volume for w in work]),
+                       np.array([w[2].centroid for w in work]), np.array([w[2].inertia for w in work]),
+                       [w[2].m for w in work], np.array([w[2].V for w in work]), np.array([w[2].j for w in work]), R1s)
+    for w, text in zip(work, texts):
+        store.put(w[0], text)
+    return done
+
+
+def _sameMembers(found, R):
+    """For each clump found, whether its members are exactly those of its record (ids, radii, positions in
+    member 0's frame, Q01): :func:`yade_mss._records.matchMembers`'s 'same', for all clumps at once."""
+    out = np.zeros(len(found), dtype=bool)
+    cand = [k for k, f in enumerate(found) if f[7] and f[7].ids == f[2]]
+    if not cand:
+        return out
+    counts = np.array([len(found[k][4]) for k in cand])
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+    which = np.repeat(np.arange(len(cand)), counts)
+    X = np.array([p for k in cand for p in found[k][5]])
+    radii = np.array([r for k in cand for r in found[k][4]])
+    recRadii = np.concatenate([found[k][7].radii for k in cand])
+    recRel = np.concatenate([found[k][7].rel for k in cand])
+    R0 = R[cand, 0]
+    rel = np.einsum('mi,mij->mj', X - X[starts][which], R0[which])
+    size = (np.maximum.reduceat(X, starts, axis=0) - np.minimum.reduceat(X, starts, axis=0)).max(axis=1) \
+        + 2 * np.maximum.reduceat(radii, starts)
+    posErr = np.maximum.reduceat(np.abs(rel - recRel).max(axis=1), starts)
+    radErr = np.maximum.reduceat(np.abs(radii - recRadii), starts)
+    Q = np.einsum('kji,kjl->kil', R0, R[cand, 1])
+    qErr = np.abs(Q - np.array([found[k][7].Q01 for k in cand])).reshape(len(cand), 9).max(axis=1)
+    ok = (posErr <= 1e-9 * size) & (radErr <= 1e-12 * np.maximum.reduceat(radii, starts)) & (qErr <= 1e-9)
+    out[cand] = ok
+    return out
+
+
+def _plans(found, R):
+    """The recorded plans of clumps found unchanged, in the world now (R: members 0 and 1's rotations)."""
+    if not found:
+        return []
+    R0 = R[:, 0]
+    x0 = np.array([f[5][0] for f in found])
+    recs = [f[7] for f in found]
+    C = x0 + np.einsum('kij,kj->ki', R0, np.array([r.centroid for r in recs]))
+    Irel = np.array([r.inertia for r in recs])
+    I = np.einsum('kij,kjl,kml->kim', R0, Irel, R0)
+    j, V = np.linalg.eigh(np.einsum('kij,kjl,kml->kim', R0, np.array([r.J for r in recs]), R0))
+    flip = np.linalg.det(V) < 0
+    V[flip, :, 2] *= -1
+    moments = np.linalg.eigvalsh(Irel)
+    out = []
+    for k, r in enumerate(recs):
+        p = _Plan()
+        p.volume, p.m, p.centroid, p.inertia, p.j, p.V, p.moments = r.volume, r.m, C[k], I[k], j[k], V[k], moments[k]
+        out.append(p)
+    return out
