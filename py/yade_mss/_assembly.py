@@ -46,7 +46,8 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
     """
     gen, body = split('mssAssembly', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin',
                                                                                         'label', 'threads')],
-                      bodyOptions())
+                      bodyOptions(),
+                      extra=('source', 'minVoxels', 'excludeBorder', 'labels', 'voxelSize', 'origin'))
     if isinstance(source, (str, os.PathLike)) and os.path.isdir(source):
         if gen:
             raise ValueError('mssAssembly: %s: generation options do nothing for a finished batch'

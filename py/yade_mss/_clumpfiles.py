@@ -91,7 +91,7 @@ def readClumps(path, **body):
     :param body: keywords of ``utils.sphere`` (material, color, mask, fixed, ...)
     :return: list of (clumpId, [memberIds]) in the order of the file; nothing is added if the file is bad
     """
-    body, = split('readClumps', body, bodyOptions())
+    body, = split('readClumps', body, bodyOptions(), extra=('path',))
     utils, O, me = _yade()
     from . import _mss
     path = os.fspath(path)

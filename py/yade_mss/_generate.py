@@ -4,8 +4,19 @@ import inspect
 import warnings
 
 from . import _mss
+from ._args import flag, integer, number, vector3
 from ._results import MassProperties, MssResult, readSpheres
 from ._sources import _Mesh, _flat, _plane, _source
+
+
+MAX_THREADS = 1024  # OpenMP threads: more fail to start (libgomp) or overflow its stacks
+MAX_MEMORY_GIB = 1 << 20  # 1 PiB: beyond it the byte count overflows
+
+
+def _planeList(planes):
+    if isinstance(planes, (str, bytes)) or not hasattr(planes, '__iter__'):
+        raise TypeError('generate: planes must be a list of ((px, py, pz), (nx, ny, nz)), got %r' % (planes,))
+    return list(planes)
 
 
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=None, resolution=None,
@@ -46,38 +57,50 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     """
     if isinstance(source, MssResult):
         return source
+    f = 'generate'
     if method not in ('optimized', 'paper'):
         raise ValueError("generate: method must be 'optimized' or 'paper', got %r" % (method,))
-    opts = {'maxIterations': int(maxIterations), 'deltaMin': float(deltaMin), 'keepSymmetry': bool(keepSymmetry),
-            'threads': int(threads), 'method': method, 'clip': bool(clip), 'refill': bool(refill),
-            'planes': [_plane(p) for p in planes]}
+    opts = {'maxIterations': integer(f, 'maxIterations', maxIterations, 1),
+            'deltaMin': number(f, 'deltaMin', deltaMin, 0.0),
+            'keepSymmetry': flag(f, 'keepSymmetry', keepSymmetry),
+            'threads': integer(f, 'threads', threads, 0, MAX_THREADS), 'method': method,
+            'clip': flag(f, 'clip', clip), 'refill': flag(f, 'refill', refill),
+            'planes': [_plane(p) for p in _planeList(planes)]}
     if maxProtrusion is not None:  # its range is checked by the core (validateOptions), with the same message
         try:
-            opts['maxProtrusion'] = float(maxProtrusion)
+            opts['maxProtrusion'] = number(f, 'maxProtrusion', maxProtrusion, finite=False, nan=True)
         except (TypeError, ValueError):
             raise ValueError('generate: maxProtrusion must be a number (world units; inf: unbounded), got %r'
                              % (maxProtrusion,))
     if nSpheres is not None:
-        if int(nSpheres) != nSpheres or nSpheres < 1:
-            raise ValueError('generate: nSpheres must be an integer >= 1, got %r' % (nSpheres,))
-        opts['nSpheres'] = int(nSpheres)
+        opts['nSpheres'] = integer(f, 'nSpheres', nSpheres, 1)
     for key, val in (('eta', eta), ('dice', dice), ('rMin', rMin)):
         if val is not None:
-            opts[key] = float(val)
+            opts[key] = number(f, key, val, finite=False, nan=True)  # ranges: the core's checks and messages
+    if voxelSize is not None:
+        voxelSize = number(f, 'voxelSize', voxelSize)
+    if resolution is not None:
+        resolution = integer(f, 'resolution', resolution, 1)
+    if label is not None:
+        label = integer(f, 'label', label, 0)
+    if origin is not None:
+        origin = vector3(f, 'origin', origin)
+    supersample = integer(f, 'supersample', supersample, 1, 16)
     s = _source(source, voxelSize, origin, label)
     if isinstance(s, _Mesh):
         res = {}
         if voxelSize is not None and resolution is not None:
             raise ValueError('generate: give voxelSize or resolution, not both')
         if voxelSize is not None:
-            res['voxelSize'] = float(voxelSize)
+            res['voxelSize'] = voxelSize
         else:
-            res['resolution'] = int(resolution) if resolution is not None else 100
+            res['resolution'] = resolution if resolution is not None else 100
         if memoryLimit is not None:
-            if not (float(memoryLimit) > 0):
-                raise ValueError('generate: memoryLimit must be > 0 GiB, got %r' % (memoryLimit,))
-            res['memoryLimit'] = int(float(memoryLimit) * 2 ** 30)
-        d = _mss.generateMesh(*s.args(), res, opts, int(supersample))
+            gib = number(f, 'memoryLimit', memoryLimit)
+            if not 0 < gib <= MAX_MEMORY_GIB:
+                raise ValueError('generate: memoryLimit must be in (0, %d] GiB, got %r' % (MAX_MEMORY_GIB, memoryLimit))
+            res['memoryLimit'] = int(gib * 2 ** 30)
+        d = _mss.generateMesh(*s.args(), res, opts, supersample)
         target = MassProperties._fromDict(_mss.massMesh(*s.args(), opts['planes']))
     else:
         if resolution is not None:

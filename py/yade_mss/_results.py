@@ -118,6 +118,10 @@ class MssResult(object):
     @staticmethod
     def load(path):
         """Reads a result written by :meth:`save` (.npz)."""
+        ext = os.path.splitext(os.fspath(path))[1].lower()
+        if ext in ('.csv', '.txt', '.vtk'):
+            raise ValueError('MssResult.load: %s: a sphere file, not a saved result (.npz): read it with '
+                             'readSpheres' % (path,))
         try:
             with np.load(str(path), allow_pickle=False) as z:
                 meta = json.loads(str(z['meta']))

@@ -43,6 +43,9 @@ class _Voxels(object):
             raise ValueError('voxels: the array is empty')
         if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
             raise ValueError('voxels: dtype %s is not boolean or integer (threshold a grey-level volume first)' % a.dtype)
+        if a.dtype != bool and a.min() < 0:
+            raise ValueError('voxels: the volume holds negative values (%d): labels are >= 0 (0 is background)'
+                             % a.min())
         if label is None and a.dtype != bool:
             labels = np.unique(a[a != 0])
             if len(labels) > 1:  # the grains would merge into one solid
@@ -77,7 +80,11 @@ def _source(source, voxelSize=None, origin=None, label=None):
             data, shape = _mss.readNpy(path, -1 if label is None else int(label))
             a = np.frombuffer(data, dtype=np.uint8).reshape(shape, order='F')
             return _Voxels(a, voxelSize, origin, os.path.basename(path))
-        raise ValueError("readMesh: %s: unknown mesh extension '%s' (expected .stl, .obj, .off or .ply, or .npy voxels)" % (path, ext))
+        if ext in ('.tif', '.tiff'):  # a TIFF stack, as mssAssembly and mss batch read it
+            from ._specimen import readVolume
+            return _Voxels(readVolume(path), voxelSize, origin, os.path.basename(path), label)
+        raise ValueError("%s: unknown mesh extension '%s' (expected a mesh: .stl, .obj, .off, .ply; or voxels: .npy, "
+                         ".tif, .tiff)" % (path, ext))
     if isinstance(source, dict) and 'vertices' in source and 'triangles' in source:
         return _Mesh(source['vertices'], source['triangles'], 'mesh')
     if isinstance(source, tuple) and len(source) == 2:

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from ._clumps import _Members, _vector3, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
+from ._clumps import _Members, _scale, _vector3, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._results import MssResult
@@ -71,9 +71,8 @@ def mssTemplate(source, scale=1.0, **options):
 
     :param options: every keyword of :func:`generate` (unknown ones raise TypeError before any work)
     """
-    gen, = split('mssTemplate', options, GENERATE_OPTIONS)
-    if not (float(scale) > 0 and math.isfinite(float(scale))):
-        raise ValueError('mssTemplate: scale must be > 0, got %r' % (scale,))
+    gen, = split('mssTemplate', options, GENERATE_OPTIONS, extra=('source', 'scale'))
+    scale = _scale('mssTemplate', scale)
     if isinstance(source, MssResult) and gen:
         raise ValueError('mssTemplate: %s: generation options do nothing for an MssResult' % ', '.join(sorted(gen)))
     return MssTemplate(generate(source, **gen), float(scale))
@@ -225,7 +224,9 @@ def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target
     :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
     :return: list of (clumpId, [memberIds])
     """
-    gen, body = split('mssReplaceByClumps', options, GENERATE_OPTIONS, bodyOptions())
+    gen, body = split('mssReplaceByClumps', options, GENERATE_OPTIONS, bodyOptions(),
+                      extra=('templates', 'amounts', 'fit', 'seed', 'mass'))
+    mass = _mass('mssReplaceByClumps', mass)
     utils, O, me = _yade()
     from yade.wrapper import Sphere
     templates = _templates('mssReplaceByClumps', templates, gen)

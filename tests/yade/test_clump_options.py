@@ -113,6 +113,56 @@ class BadInput(Base):
         self.assertEqual(len(O.bodies), 0)
 
 
+class StrictArguments(Base):
+    """Every public function's own arguments checked, YADE's errors named by the argument; nothing half-built."""
+
+    def refused(self, kind, fragment, f):
+        with self.assertRaises(kind) as ctx:
+            f()
+        self.assertIn(fragment, str(ctx.exception))
+        self.assertEqual(len(O.bodies), 0)
+
+    def test_own_parameters_are_suggested(self):
+        r = generate(ELL, nSpheres=4, resolution=30)
+        self.refused(TypeError, "did you mean 'orientation'", lambda: mssClump(r, orientaton='random'))
+        self.refused(TypeError, "did you mean 'seed'", lambda: mssClump(r, seeed=3))
+        t = mssTemplate(r)
+        self.refused(TypeError, "did you mean 'num'", lambda: mssClumpCloud([t], (0, 0, 0), (9, 9, 9), nmu=3))
+        self.refused(TypeError, "did you mean 'psdSizes'",
+                     lambda: mssClumpCloud([t], (0, 0, 0), (9, 9, 9), psdSize=[1, 2]))
+
+    def test_types_and_ranges(self):
+        r = generate(ELL, nSpheres=4, resolution=30)
+        t = mssTemplate(r)
+        self.refused(TypeError, 'mask must be an integer', lambda: mssClump(r, mask='a'))
+        self.refused(ValueError, 'color must be 3 numbers, got 2', lambda: mssClump(r, color=(1, 0)))
+        self.refused(TypeError, "center must be 3 numbers, got the string 'abc'", lambda: mssClump(r, center='abc'))
+        self.refused(TypeError, 'scale must be a number', lambda: mssClump(r, scale='2'))
+        self.refused(TypeError, 'nSpheres must be an integer, got True', lambda: mssClump(ELL, nSpheres=True))
+        self.refused(ValueError, 'resolution must be an integer, got 30.5',
+                     lambda: mssClump(ELL, nSpheres=3, resolution=30.5))
+        for num in (-5, 0, 2.5, True):
+            self.refused((ValueError, TypeError), 'num', lambda: mssClumpCloud([t], (0, 0, 0), (9, 9, 9), num=num))
+        self.refused(TypeError, 'seed must be an integer', lambda: mssClump(r, orientation='random', seed='x'))
+        self.refused(TypeError, 'periodic must be True or False',
+                     lambda: mssClumpCloud([t], (0, 0, 0), (9, 9, 9), periodic=1))
+
+    def test_yade_errors_name_the_argument(self):
+        r = generate(ELL, nSpheres=4, resolution=30)
+        self.refused(ValueError, "material='nonexistent'", lambda: mssClump(r, material='nonexistent'))
+        self.refused(ValueError, 'material=17', lambda: mssClump(r, material=17))
+
+    def test_tiff_where_npy_is_read(self):
+        import tempfile
+        import tifffile
+        a = np.zeros((12, 12, 12), dtype=np.uint8)
+        a[2:10, 3:9, 2:10] = 1
+        with tempfile.TemporaryDirectory() as d:
+            tifffile.imwrite(os.path.join(d, 'g.tif'), a)
+            cid, ids = mssClump(os.path.join(d, 'g.tif'), nSpheres=3)
+        self.assertGreaterEqual(len(ids), 1)
+
+
 class Packing(Base):
     def test_template_radii(self):
         t = mssTemplate(ELL, nSpheres=10, resolution=40, scale=2.0)

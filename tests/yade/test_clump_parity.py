@@ -12,9 +12,9 @@ import warnings
 import numpy as np
 
 sys.path.insert(0, os.path.join(os.environ.get('MSS_TEST_DATA', 'tests/data'), '..', 'yade'))
-from clumptools import ELL, FEMUR, ballSums, meshMass, readStlTriangles, relErr, tensor, vec  # noqa: E402
+from clumptools import ELL, FEMUR, ballSums, meshMass, readStlTriangles, vec  # noqa: E402
 
-from yade import utils, export  # noqa: E402
+from yade import utils  # noqa: E402
 from yade.wrapper import *  # noqa: F401,F403,E402
 import yade.minieigenHP as me  # noqa: E402
 
