@@ -154,6 +154,8 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
 
     :param templates: :class:`MssTemplate` objects, or sources to make them from with the generate options
     :param int num: number of clumps (-1: as many as fit; required with a size distribution)
+    :param bool periodic: place in a periodic cell of the box (minimum image: grains may cross its faces), as
+        ``makeClumpCloud(periodic=True)``; set ``O.periodic`` and ``O.cell`` to the box to simulate it
     :param int seed: random seed (-1: random)
     :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
     :return: list of (clumpId, [memberIds])
