@@ -13,10 +13,12 @@ At the end: ``assembly.txt`` (every sphere, ``x y z r clumpId``, with each clump
 import argparse
 import csv
 import hashlib
+import html
 import json
 import os
 import sys
 import time
+import urllib.parse
 
 import numpy as np
 
@@ -30,13 +32,54 @@ COLUMNS = ['label', 'file', 'status', 'voxels', 'spheres', 'dice', 'eta', 'protr
 
 
 class GrainTask(object):
-    """One grain to generate: a cropped sub-volume (with its world origin) or a file; small enough to send."""
+    """One grain to generate: a cropped sub-volume (with its world origin) or a file; small enough to send.
+    *digest*: of what it is made from (the crop's voxels, box and origin, or the file's bytes), so that a rerun
+    reuses a result only for the same input."""
 
     def __init__(self, key, options, label=None, path=None, crop=None, voxelSize=None, origin=None, voxels=0,
                  touchesBorder=False):
         self.key, self.options, self.label, self.path = key, options, label, path
         self.crop, self.voxelSize, self.origin = crop, voxelSize, origin
         self.voxels, self.touchesBorder = voxels, touchesBorder
+        self.digest = _cropDigest(crop, voxelSize, origin) if crop is not None else _fileDigest(path)
+
+
+def _cropDigest(crop, voxelSize, origin):
+    a = np.ascontiguousarray(crop)
+    h = hashlib.sha256()
+    h.update(json.dumps({'shape': list(a.shape), 'dtype': a.dtype.str, 'voxelSize': voxelSize,
+                         'origin': [float(x) for x in origin]}).encode())
+    h.update(a.tobytes())
+    return h.hexdigest()
+
+
+def _fileDigest(path):
+    h = hashlib.sha256()
+    with open(path, 'rb') as f:
+        for block in iter(lambda: f.read(1 << 20), b''):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _safe(text):
+    """A name for files and keys: letters, digits, '.', '-' and '_' only (any other character, or byte of a
+    name that is not UTF-8, becomes '_')."""
+    return ''.join(c if (c.isascii() and (c.isalnum() or c in '.-_')) else '_' for c in text) or '_'
+
+
+def fileKeys(files):
+    """One key per file, never shared: 'file_' and the file's name (extension included); names that would be
+    the same (the same name in two folders, or after making them safe) get a digest of their full path too."""
+    keys = ['file_' + _safe(os.path.basename(f)) for f in files]
+    seen = {}
+    for k in keys:
+        seen[k.lower()] = seen.get(k.lower(), 0) + 1
+    out = []
+    for f, k in zip(files, keys):
+        if seen[k.lower()] > 1:
+            k += '_' + hashlib.sha256(os.fsencode(os.path.abspath(f))).hexdigest()[:10]
+        out.append(k)
+    return out
 
 
 def runGrain(task):
@@ -148,15 +191,18 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
         return tasks, skipped, key
     if labels:
         raise ValueError('batch: --labels applies to one labelled volume')
-    for f in files:
-        stem = os.path.splitext(os.path.basename(f))[0]
-        if os.path.splitext(f)[1].lower() in _VOLUME_EXT:  # a grain's volume: all its voxels are the grain
-            vol = readVolume(f)
-            opts = {k: v for k, v in options.items() if k != 'resolution'}
-            tasks.append(GrainTask('file_' + stem, opts, path=f, crop=np.asarray(vol), voxelSize=h,
-                                   origin=org.tolist(), voxels=int(np.count_nonzero(vol))))
-        else:
-            tasks.append(GrainTask('file_' + stem, options, path=f))
+    for f, k in zip(files, fileKeys(files)):
+        try:
+            if os.path.splitext(f)[1].lower() in _VOLUME_EXT:  # a grain's volume: all its voxels are the grain
+                vol = readVolume(f)
+                opts = {o: v for o, v in options.items() if o != 'resolution'}
+                tasks.append(GrainTask(k, opts, path=f, crop=np.asarray(vol), voxelSize=h,
+                                       origin=org.tolist(), voxels=int(np.count_nonzero(vol))))
+            else:
+                tasks.append(GrainTask(k, options, path=f))
+        except (OSError, ValueError) as e:  # a bad file is recorded, the batch goes on
+            skipped[k] = {'label': '', 'file': f, 'voxels': 0, 'touches_border': 0, 'spheres': 0, 'dice': '',
+                          'eta': '', 'seconds': '', 'status': 'failed', 'message': '%s: %s' % (type(e).__name__, e)}
     return tasks, skipped, key
 
 
@@ -171,13 +217,13 @@ class Batch(object):
         return [k for k, r in self.rows.items() if r['status'] == 'failed']
 
 
-def _done(outdir, key, optionsKey):
-    """The row and result of a grain already done with these options, or None."""
+def _done(outdir, key, optionsKey, digest):
+    """The row and result of a grain already done from the same input (*digest*) with these options, or None."""
     path = os.path.join(outdir, 'grains', key + '.json')
     try:
         with open(path) as f:
             meta = json.load(f)
-        if meta.get('options') != optionsKey or meta['row']['status'] == 'failed':
+        if meta.get('options') != optionsKey or meta.get('input') != digest or meta['row']['status'] == 'failed':
             return None
         r = MssResult.load(os.path.join(outdir, 'grains', key + '.npz')) if meta['row']['status'] == 'ok' else None
         return meta['row'], r
@@ -185,7 +231,7 @@ def _done(outdir, key, optionsKey):
         return None
 
 
-def _store(outdir, key, row, result, optionsKey):
+def _store(outdir, key, row, result, optionsKey, digest=None):
     g = os.path.join(outdir, 'grains')
     png = getattr(result, 'png', None)
     if png is not None:
@@ -194,7 +240,8 @@ def _store(outdir, key, row, result, optionsKey):
     if result is not None:
         _atomic(os.path.join(g, key + '.npz'), lambda p: result.save(p, compress=False))
         _atomic(os.path.join(g, key + '.csv'), result.save)
-    _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({'options': optionsKey, 'row': row})))
+    _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({'options': optionsKey, 'input': digest,
+                                                                            'row': row})))
 
 
 def _executor(workers, scheduler):
@@ -260,7 +307,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     out.rows.update(skipped)
     todo = []
     for t in tasks:
-        prior = _done(outdir, t.key, key) if outdir is not None else None
+        prior = _done(outdir, t.key, key, t.digest) if outdir is not None else None
         if prior is None:
             todo.append(t)
         else:
@@ -277,10 +324,11 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
               flush=True)
     run, close = _executor(workers, scheduler)
     n = 0
+    digests = {t.key: t.digest for t in todo}
     try:
         for k, row, r in run(todo):
             if outdir is not None:
-                _store(outdir, k, row, r, key)
+                _store(outdir, k, row, r, key, digests[k])
             out.rows[k] = row
             if r is not None:
                 out.results[k] = r
@@ -316,8 +364,8 @@ def writeOutputs(outdir, b):
     """assembly.txt, grains.csv and report.html, each atomically."""
     rows = list(b.rows.values())
 
-    def table(p):
-        with open(p, 'w', newline='') as f:
+    def table(p):  # a file name's bytes that are not UTF-8 are written as their escapes, never lost
+        with open(p, 'w', newline='', encoding='utf-8', errors='backslashreplace') as f:
             w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction='ignore')
             w.writeheader()
             w.writerows(rows)
@@ -368,23 +416,26 @@ def _report(outdir, b):
     def thumb(k):
         if not os.path.exists(os.path.join(outdir, 'grains', k + '.png')):
             return ''
-        return '<td><a href="grains/%s.png"><img src="grains/%s.png" width="360"></a></td>' % (k, k)
+        url = html.escape('grains/' + urllib.parse.quote(k + '.png'), quote=True)
+        return '<td><a href="%s"><img src="%s" width="360" alt="%s"></a></td>' % (url, url, _html(k))
     cells = ''.join('<tr>%s%s</tr>' % (''.join('<td>%s</td>' % _html(r.get(c, '')) for c in COLUMNS), thumb(k))
                     for k, r in zip(keys, rows))
     counts = {s: sum(1 for r in rows if r['status'] == s) for s in ('ok', 'skipped', 'failed')}
-    html = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>td,th{padding:2px 8px;'
+    page = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>td,th{padding:2px 8px;'
             'font:12px sans-serif}tr:nth-child(even){background:#eee}</style></head><body><h1>mss batch</h1>'
             '<p>%d grains: %d ok, %d skipped, %d failed; %.2f s. Files: <a href="assembly.txt">assembly.txt</a>, '
             '<a href="grains.csv">grains.csv</a>.</p>%s<table><tr>%s</tr>%s</table></body></html>'
             % (len(rows), counts['ok'], counts['skipped'], counts['failed'], b.seconds, img,
                ''.join('<th>%s</th>' % c for c in COLUMNS), cells))
-    _atomic(os.path.join(outdir, 'report.html'), lambda p: _write(p, html))
+    _atomic(os.path.join(outdir, 'report.html'), lambda p: _write(p, page))
 
 
 def _html(v):
+    """Text for the report: escaped for content and attributes alike (quotes too); bytes of a file name that
+    are not UTF-8 shown as their escapes."""
     if isinstance(v, float):
         v = '%.4g' % v
-    return str(v).replace('&', '&amp;').replace('<', '&lt;').replace('>', '&gt;')
+    return html.escape(str(v).encode('utf-8', 'backslashreplace').decode('utf-8'), quote=True)
 
 
 def main(argv=None):

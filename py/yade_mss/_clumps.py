@@ -19,11 +19,10 @@ Why not an extra member: a correction body (tried first) breaks YADE's clump API
 Why not a C++ extension against YADE's headers: Debian ships none, and a fork's headers tie the package to
 Debian's binary layout.
 
-Each clump's exact properties (unit density, in the frame of its first member) are kept in ``O.tags`` (YADE saves
-them with the scene; :mod:`yade_mss._records`) with a fingerprint of its members: their ids, radii, positions
-relative to the first member and the first two members' relative orientation (which a clump made any other way
-does not share). A record is applied only to a clump that matches it, so neither ``O.bodies.clear()`` (which
-keeps ``O.tags`` while ids restart at 0) nor an erased clump's reused id can apply it to another clump.
+Each clump's exact properties (unit density, in the frame of its first member) are carried by the clump body
+itself, as the label of a material of its own (YADE's clumps have none; :mod:`yade_mss._records`): YADE saves
+them with the body, and they go with it. A fingerprint of the members (their ids, radii, positions relative to
+the first member and the first two members' relative orientation) is checked before they are applied.
 """
 
 import inspect
@@ -37,7 +36,7 @@ from ._args import integer, number, vector3
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._loads import memberLoads
-from ._records import Store, encodeMany
+from ._records import attach, encodeMany
 from ._results import MssResult
 
 _colours = random.Random()  # utils.randomColor's uniform colours, without reseeding the user's `random`
@@ -349,10 +348,9 @@ def _build(func, plans, members, warn=None):
                            np.array([p.inertia for p in plans]), [p.m for p in plans], np.array([p.V for p in plans]),
                            np.array([p.j for p in plans]),
                            np.array([np.eye(3) if len(p.radii) > 1 else p.V.T for p in plans]))
-        store = Store(O.tags)
+        from yade.wrapper import Material
         for (cid, ids), text in zip(made, texts):
-            store.put(cid, text)
-        store.flush()
+            attach(O.bodies[cid], text, Material)
     except Exception:
         for cid, ids in made:
             O.bodies.erase(cid, True)

@@ -1,13 +1,18 @@
 """The records that let :func:`restoreClumpProperties` give a clump its exact mass properties back, numpy only.
 
-A clump's record (in ``O.tags``, saved with the scene: see :class:`Store`) holds its plan at unit density in the frame
-of its first member (position x0, rotation R0; members turn with the clump, so the record holds wherever the
-clump goes) and a fingerprint of its members: ids, radii, positions, and the first two members' relative
-orientation Q01 = R0^T R1. Member 0 wears the orientation V* of its load tensor's axes V (so R0 = V^T) and the
-others YADE's identity, so Q01 = V R1: a clump made any other way (``appendClumped`` gives identities) does not
-match, even of the same spheres at the same places.
+A clump's record is carried by the clump body itself, as the label of a material of its own (a clump body of
+YADE has none, and nothing in YADE reads one: contacts are its members'). So YADE saves it with the body
+(``O.save``, ``saveTmp``), and it goes when the clump goes (``erase``, ``O.bodies.clear()``, ``O.reset()``): it
+can never be found by another clump that reuses the id. (``O.tags`` was the first home: YADE scans every tag's
+text at each access, so a record a clump made building n clumps cost O(n^2).)
 
-Layout: float64, little endian, base64: [2, n, volume, centroid (3), inertia (9), member 0's load
+It holds the clump's plan at unit density in the frame of its first member (position x0, rotation R0; members
+turn with the clump, so the record holds wherever the clump goes) and a fingerprint of its members: ids, radii,
+positions, and the first two members' relative orientation Q01 = R0^T R1. Member 0 wears the orientation V* of
+its load tensor's axes V (so R0 = V^T) and the others YADE's identity, so Q01 = V R1: a clump made any other way
+(``appendClumped`` gives identities) does not match, even of the same spheres at the same places.
+
+Layout: float64, little endian, base64 after ``mss2:``: [2, n, volume, centroid (3), inertia (9), member 0's load
 tensor (9), Q01 (9), ids (n), radii (n), positions (3n), masses for the sums (n)].
 """
 
@@ -15,9 +20,8 @@ import base64
 
 import numpy as np
 
-TAG = 'mss.clumps2.'
-OLD_TAG = 'mss.clump.'  # one tag a clump, JSON: yade-mss before records had fingerprints (not read)
-BLOCK = 64
+PREFIX = 'mss2:'
+OLD_TAG = 'mss.clump.'  # O.tags, one a clump, JSON: yade-mss before records had fingerprints (not read)
 _HEAD = 3 + 3 + 9 + 9 + 9
 
 
@@ -47,7 +51,7 @@ def encodeMany(ids, x, radii, volume, C, I, m, V, j, R1):
         rel = (x[i] - x0[i]).dot(Vt[i])
         a = np.concatenate([[2.0, len(ids[i]), volume[i]], crel[i], Irel[i].ravel(), Jrel[i].ravel(), Q[i].ravel(),
                             np.asarray(ids[i], dtype=float), radii[i], rel.ravel(), m[i]])
-        out.append(base64.b64encode(a.astype('<f8').tobytes()).decode('ascii'))
+        out.append(PREFIX + base64.b64encode(a.astype('<f8').tobytes()).decode('ascii'))
     return out
 
 
@@ -57,7 +61,7 @@ class Record(object):
 
     def __init__(self, text):
         try:
-            a = np.frombuffer(base64.b64decode(text, validate=True), dtype='<f8')
+            a = np.frombuffer(base64.b64decode(text[len(PREFIX):], validate=True), dtype='<f8')
         except (ValueError, TypeError):
             raise ValueError('not a record')
         n = int(a[1]) if a.size >= 2 and np.isfinite(a[1]) and 1 <= a[1] <= a.size else -1
@@ -73,64 +77,26 @@ class Record(object):
         self.m = a[k + 5 * n:k + 6 * n]
 
 
-class Store(object):
-    """The records of a scene's clumps, kept in *tags* (``O.tags``) 64 clumps a tag: ``mss.clumps2.<id // 64>``
-    holds ``id:record;id:record...``. YADE keeps its tags in a list that every look-up searches from the start,
-    so one tag a clump would make building n clumps cost O(n^2). Read blocks are cached; :meth:`flush` writes
-    the changed ones."""
+def recordOf(body):
+    """The record a clump body carries: a :class:`Record`, None (none: a clump made otherwise), or False (not
+    readable: damaged)."""
+    mat = body.material
+    text = mat.label if mat is not None else ''
+    if not text.startswith(PREFIX):
+        return None
+    try:
+        return Record(text)
+    except ValueError:
+        return False
 
-    def __init__(self, tags):
-        self.tags = tags
-        self.blocks = {}
-        self.changed = set()
 
-    def _block(self, cid):
-        b = cid // BLOCK
-        if b not in self.blocks:
-            try:
-                text = self.tags[TAG + str(b)]
-            except KeyError:
-                text = ''
-            d = {}
-            for entry in text.split(';') if text else ():
-                key, sep, value = entry.partition(':')
-                if sep and key.isdigit():
-                    d[int(key)] = value
-            self.blocks[b] = d
-        return b, self.blocks[b]
+def attach(body, text, Material):
+    """Gives the clump body its record (*Material*: YADE's base material class)."""
+    body.material = Material(label=text, density=0)
 
-    def get(self, cid):
-        """The record of clump *cid*: a :class:`Record`, None (none), or False (not readable: damaged)."""
-        text = self._block(cid)[1].get(cid)
-        if not text:
-            return None
-        try:
-            return Record(text)
-        except ValueError:
-            return False
 
-    def put(self, cid, text):
-        b, d = self._block(cid)
-        d[cid] = text
-        self.changed.add(b)
-
-    def drop(self, cid):
-        b, d = self._block(cid)
-        if d.pop(cid, None) is not None:
-            self.changed.add(b)
-
-    def ids(self):
-        """Every clump id with a record."""
-        out = []
-        for k in self.tags.keys():
-            if k.startswith(TAG) and k[len(TAG):].isdigit():
-                out.extend(self._block(int(k[len(TAG):]) * BLOCK)[1])
-        return sorted(out)
-
-    def flush(self):
-        for b in sorted(self.changed):
-            self.tags[TAG + str(b)] = ';'.join('%d:%s' % kv for kv in sorted(self.blocks[b].items()))
-        self.changed.clear()
+def drop(body):
+    body.material = None  # as YADE's own clumps: no material
 
 
 def matchMembers(rec, ids, radii, x, R0, R1):

@@ -6,12 +6,13 @@ import numpy as np
 
 from . import _mss
 from ._clumps import _Plan, _check, _clumpIds, _sphereMass, _withLoads, _yade
-from ._records import OLD_TAG, Store, encodeMany, matchMembers, quaternionMatrices
+from ._records import OLD_TAG, attach, drop, encodeMany, matchMembers, quaternionMatrices, recordOf
 
 
-def _ids(func, clumpIds, store):
+def _ids(func, clumpIds, O):
     if clumpIds is None:
-        return store.ids(), False
+        return [b.id for b in O.bodies if b is not None and b.isClump and b.material is not None
+                and recordOf(b) is not None], False
     if isinstance(clumpIds, (str, bytes)) or not hasattr(clumpIds, '__iter__'):
         raise TypeError('%s: clumpIds must be a list of clump ids, got %r' % (func, clumpIds))
     ids = list(clumpIds)
@@ -42,15 +43,11 @@ def restoreClumpProperties(clumpIds=None, resolution=200):
     utils, O, me = _yade()
     if isinstance(resolution, (bool, np.bool_)) or not isinstance(resolution, (int, np.integer)) or resolution < 2:
         raise ValueError('%s: resolution must be an integer >= 2, got %r' % (func, resolution))
-    store = Store(O.tags)
-    try:
-        ids, explicit = _ids(func, clumpIds, store)
-        return _restore(func, O, me, store, ids, explicit, resolution)
-    finally:
-        store.flush()
+    ids, explicit = _ids(func, clumpIds, O)
+    return _restore(func, O, me, ids, explicit, resolution)
 
 
-def _restore(func, O, me, store, ids, explicit, resolution):
+def _restore(func, O, me, ids, explicit, resolution):
     if any(k.startswith(OLD_TAG) for k in O.tags.keys()):
         warnings.warn('%s: this scene holds records of an older yade-mss (O.tags mss.clump.*), which had no '
                       'fingerprint of their clumps: not read' % func, stacklevel=3)
@@ -61,10 +58,7 @@ def _restore(func, O, me, store, ids, explicit, resolution):
     for cid in ids:
         body = O.bodies[cid] if 0 <= cid < len(O.bodies) else None
         if body is None or not body.isClump:
-            if explicit:
-                raise ValueError('%s: body %d is not a clump' % (func, cid))
-            store.drop(cid)  # the clump was erased
-            continue
+            raise ValueError('%s: body %d is not a clump' % (func, cid))
         mids = sorted(body.shape.members)
         members = [O.bodies[i] for i in mids]
         radii, x, rho = [], [], []
@@ -81,7 +75,7 @@ def _restore(func, O, me, store, ids, explicit, resolution):
         for b in (members[0], members[-1] if len(members) == 1 else members[1]):
             o = b.state.ori
             quats.append((o[0], o[1], o[2], o[3]))
-        found.append((cid, body, mids, members, radii, x, rho, store.get(cid)))
+        found.append((cid, body, mids, members, radii, x, rho, recordOf(body)))
     if not found:
         return []
     R = quaternionMatrices(quats).reshape(-1, 2, 3, 3)
@@ -95,7 +89,7 @@ def _restore(func, O, me, store, ids, explicit, resolution):
             warnings.warn('%s: the record of clump %d %s: dropped, not applied' % (
                 func, cid, 'is not readable' if rec is False else
                 'was made for another clump (the ids, radii or positions of its members differ)'), stacklevel=3)
-            store.drop(cid)
+            drop(body)
             if not explicit:
                 continue
         jobs.append((k, how == 'same'))
@@ -140,8 +134,9 @@ def _restore(func, O, me, store, ids, explicit, resolution):
                        [np.asarray(found[idx[w[0]]][4]) for w in work], np.array([w[2].volume for w in work]),
                        np.array([w[2].centroid for w in work]), np.array([w[2].inertia for w in work]),
                        [w[2].m for w in work], np.array([w[2].V for w in work]), np.array([w[2].j for w in work]), R1s)
+    from yade.wrapper import Material
     for w, text in zip(work, texts):
-        store.put(w[0], text)
+        attach(O.bodies[w[0]], text, Material)
     return done
 
 

@@ -105,15 +105,9 @@ class MssResult(object):
                              % (path, ext))
         meta = {'metrics': self.metrics, 'grid': self.grid, 'source': self.source,
                 'targetMass': self.targetMass._toDict() if self.targetMass is not None else None, 'version': 1}
-        tmp = path + '.tmp%d.npz' % os.getpid()
-        try:
-            (np.savez_compressed if compress else np.savez)(tmp, centers=self.centers, radii=self.radii,
-                                                            meta=np.array(json.dumps(meta)))
-            os.replace(tmp, path)
-        except OSError as e:
-            if os.path.exists(tmp):
-                os.remove(tmp)
-            raise RuntimeError('MssResult.save: %s: cannot write (%s)' % (path, e))
+        from ._files import atomicWrite
+        atomicWrite(path, lambda tmp: (np.savez_compressed if compress else np.savez)(
+            tmp, centers=self.centers, radii=self.radii, meta=np.array(json.dumps(meta))), 'MssResult.save')
 
     @staticmethod
     def load(path):

@@ -6,6 +6,7 @@ import os
 import numpy as np
 
 from . import _mss
+from ._files import cppPath
 from ._results import MassProperties
 
 _MESH_EXT = ('.stl', '.obj', '.off', '.ply')
@@ -74,10 +75,12 @@ def _source(source, voxelSize=None, origin=None, label=None):
         path = os.fspath(source)
         ext = os.path.splitext(path)[1].lower()
         if ext in _MESH_EXT:
-            v, t = _mss.readMesh(path)
+            with cppPath(path) as p:
+                v, t = _mss.readMesh(p)
             return _Mesh(v, t, os.path.basename(path))
         if ext == '.npy':  # the C++ reader: its checks and messages, as in the mss command
-            data, shape = _mss.readNpy(path, -1 if label is None else int(label))
+            with cppPath(path) as p:
+                data, shape = _mss.readNpy(p, -1 if label is None else int(label))
             a = np.frombuffer(data, dtype=np.uint8).reshape(shape, order='F')
             return _Voxels(a, voxelSize, origin, os.path.basename(path))
         if ext in ('.tif', '.tiff'):  # a TIFF stack, as mssAssembly and mss batch read it

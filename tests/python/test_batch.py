@@ -66,6 +66,86 @@ class Cluster(object):
         shutil.rmtree(self.dir, ignore_errors=True)
 
 
+class Integrity(unittest.TestCase):
+    """Nothing of one input is ever taken for another's."""
+
+    def test_a_rerun_on_another_input_does_not_reuse_results(self):
+        # the bug: specB after specA into the same folder: "2 done before", B's assembly byte-identical to A's
+        A = syntheticSpecimen((40, 40, 40), 2, size=(5, 9), seed=2)
+        B = syntheticSpecimen((40, 40, 40), 2, size=(5, 9), seed=5)
+        with tempfile.TemporaryDirectory() as d:
+            for name, L in (('A', A), ('B', B)):
+                np.save(os.path.join(d, 'spec%s.npy' % name), L)
+            out = os.path.join(d, 'out')
+            batch([os.path.join(d, 'specA.npy')], out, workers=1, nSpheres=5, progress=False)
+            a = open(os.path.join(out, 'assembly.txt')).read()
+            batch([os.path.join(d, 'specB.npy')], out, workers=1, nSpheres=5, progress=False)
+            b = open(os.path.join(out, 'assembly.txt')).read()
+            batch([os.path.join(d, 'specB.npy')], os.path.join(d, 'fresh'), workers=1, nSpheres=5, progress=False)
+            self.assertNotEqual(a, b)
+            self.assertEqual(b, open(os.path.join(d, 'fresh', 'assembly.txt')).read())
+            # the same input again is reused (nothing rewritten)
+            g = os.path.join(out, 'grains')
+            before = {f: os.path.getmtime(os.path.join(g, f)) for f in os.listdir(g) if f.endswith('.npz')}
+            time.sleep(0.05)
+            batch([os.path.join(d, 'specB.npy')], out, workers=1, nSpheres=5, progress=False)
+            self.assertEqual(before, {f: os.path.getmtime(os.path.join(g, f)) for f in before})
+
+    def test_files_sharing_a_name_get_keys_of_their_own(self):
+        # the bug: col/a/grain.stl, col/b/grain.stl, col/grain.stl and col/grain.npy shared one key: 1 grain of 4
+        with tempfile.TemporaryDirectory() as d:
+            col = os.path.join(d, 'col')
+            for sub in ('a', 'b'):
+                os.makedirs(os.path.join(col, sub))
+            shutil.copy(os.path.join(DATA, 'ellipsoid_2_1_1.stl'), os.path.join(col, 'a', 'grain.stl'))
+            shutil.copy(os.path.join(DATA, 'cube.stl'), os.path.join(col, 'b', 'grain.stl'))
+            shutil.copy(os.path.join(DATA, 'octahedron.stl'), os.path.join(col, 'grain.stl'))
+            v = np.zeros((12, 12, 12), dtype=np.uint8)
+            v[2:10, 3:9, 2:10] = 1
+            np.save(os.path.join(col, 'grain.npy'), v)
+            files = [os.path.join(col, 'a', 'grain.stl'), os.path.join(col, 'b', 'grain.stl'),
+                     os.path.join(col, 'grain.stl'), os.path.join(col, 'grain.npy')]
+            out = os.path.join(d, 'out')
+            b = batch(files, out, workers=1, nSpheres=4, resolution=20, progress=False)
+            self.assertEqual(len(b.results), 4)
+            self.assertEqual(len(set(b.results)), 4)
+            self.assertEqual(open(os.path.join(out, 'assembly.txt')).read().count('#mss clump'), 4)
+
+    def test_a_bad_file_in_a_folder_is_recorded_and_the_batch_goes_on(self):
+        # the bug: one bad volume in a folder aborted the whole batch
+        with tempfile.TemporaryDirectory() as d:
+            col = os.path.join(d, 'col')
+            os.makedirs(col)
+            shutil.copy(os.path.join(DATA, 'cube.stl'), col)
+            with open(os.path.join(col, 'broken.npy'), 'wb') as f:
+                f.write(b'\x93NUMPY garbage')
+            out = os.path.join(d, 'out')
+            code = batchMain([col, '-o', out, '--spheres', '4', '--resolution', '20', '--workers', '1'])
+            got = {r['file'].split(os.sep)[-1] or r['label']: r for r in rows(out)}
+            self.assertEqual(code, 1)
+            self.assertEqual(got['broken.npy']['status'], 'failed')
+            self.assertIn('broken.npy', got['broken.npy']['message'])
+            self.assertEqual(sum(1 for r in got.values() if r['status'] == 'ok'), 1)
+
+    def test_hostile_and_non_utf8_names_survive_escaped(self):
+        # the bugs: a raw file name in the thumbnail's src ran script; a non-UTF-8 name lost grains.csv
+        with tempfile.TemporaryDirectory() as d:
+            col = os.path.join(d, 'col')
+            os.makedirs(col)
+            hostile = 'x" onerror="alert(document.domain).stl'
+            shutil.copy(os.path.join(DATA, 'cube.stl'), os.path.join(col, hostile))
+            shutil.copy(os.path.join(DATA, 'octahedron.stl'), os.path.join(os.fsencode(col), b'gr\xffain.stl'))
+            out = os.path.join(d, 'out')
+            b = batch([col], out, workers=1, nSpheres=4, resolution=20, progress=False, previews=True)
+            self.assertEqual(len(b.results), 2)
+            report = open(os.path.join(out, 'report.html'), encoding='utf-8').read()
+            self.assertNotIn('onerror="', report)
+            self.assertIn('x&quot; onerror=&quot;alert(document.domain).stl', report)
+            table = open(os.path.join(out, 'grains.csv'), encoding='utf-8').read()
+            self.assertIn('gr\\udcffain.stl', table)
+            self.assertEqual(len(rows(out)), 2)
+
+
 class Specimen(unittest.TestCase):
     def test_synthetic_specimen(self):
         L = specimen()
@@ -181,7 +261,7 @@ class Specimen(unittest.TestCase):
                 shutil.copy(os.path.join(DATA, f), grains)
             out = os.path.join(d, 'out')
             b = batch([grains], out, workers=1, nSpheres=6, resolution=30, progress=False)
-            self.assertEqual(sorted(b.results), ['file_cube', 'file_ellipsoid_2_1_1'])
+            self.assertEqual(sorted(b.results), ['file_cube.stl', 'file_ellipsoid_2_1_1.stl'])
             self.assertEqual(open(os.path.join(out, 'assembly.txt')).read().count('#mss clump'), 2)
             L = syntheticSpecimen((60, 60, 60), 5, size=(5, 9), seed=2)
             tifffile.imwrite(os.path.join(d, 'spec.tif'), L.astype(np.uint16))

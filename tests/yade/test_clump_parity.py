@@ -346,10 +346,35 @@ class Records(unittest.TestCase):
         before = self.state(pc)
         with warnings.catch_warnings(record=True) as w:
             warnings.simplefilter('always')
-            self.assertEqual(restoreClumpProperties(), [])
+            self.assertEqual(restoreClumpProperties(), [])  # the record went with its clump
+        self.assertEqual(w, [])
+        self.assertUntouched(pc, before)
+        self.assertIsNone(O.bodies[pc].material)  # as YADE's clumps
+
+    def test_a_record_moved_to_another_clump_is_dropped(self):
+        # the fingerprint: even the same spheres at the same places, clumped by YADE, do not match
+        r = ellipsoid10()
+        cid, ids = mssClump(r)
+        pc, pids = plainClump(r, np.zeros(3))
+        O.bodies[pc].material = O.bodies[cid].material
+        before = self.state(pc)
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter('always')
+            O.bodies.updateClumpProperties(discretization=0)
+            done = restoreClumpProperties()
+        self.assertEqual(done, [(cid, 'grain')])
         self.assertTrue(any('another clump' in str(x.message) for x in w), [str(x.message) for x in w])
         self.assertUntouched(pc, before)
-        self.assertEqual(restoreClumpProperties(), [])  # dropped: no second warning, nothing applied
+        self.assertIsNone(O.bodies[pc].material)  # dropped
+        self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])  # no second warning for it
+
+    def test_a_damaged_record_is_dropped(self):
+        cid, ids = mssClump(ellipsoid10())
+        O.bodies[cid].material = Material(label='mss2:not base64!', density=0)
+        with warnings.catch_warnings(record=True) as w:
+            warnings.simplefilter('always')
+            self.assertEqual(restoreClumpProperties(), [])
+        self.assertTrue(any('not readable' in str(x.message) for x in w))
 
     def test_clear_then_other_spheres(self):
         cid, ids = mssClump(ellipsoid10())
