@@ -251,6 +251,22 @@ class _Plan(object):
         q.m, q.j, q.V, q.offset = s ** 3 * self.m, s ** 5 * self.j, R.dot(self.V), s * self.offset
         return q
 
+    def placedMany(self, c0, s, R, C):
+        """:meth:`placed` for k placements at once: rotations *R* (k, 3, 3), centres *C* (k, 3), one scale."""
+        centers = C[:, None, :] + s * np.einsum('kij,nj->kni', R, self.centers - c0)
+        centroid = C + s * np.einsum('kij,j->ki', R, self.centroid - c0)
+        inertia = s ** 5 * np.einsum('kij,jl,kml->kim', R, self.inertia, R)
+        V = np.einsum('kij,jl->kil', R, self.V)
+        out = []
+        for k in range(len(R)):
+            q = _Plan()
+            q.centers, q.radii, q.volume, q.centroid, q.inertia = centers[k], s * self.radii, s ** 3 * self.volume, \
+                centroid[k], inertia[k]
+            q.moments, q.m, q.j, q.V, q.offset = s ** 5 * self.moments, s ** 3 * self.m, s ** 5 * self.j, V[k], \
+                s * self.offset
+            out.append(q)
+        return out
+
 
 def _basePlan(r, mass):
     """The plan of result *r* in its own frame for *mass* ('target' or 'union'), kept with the result (so a

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from ._clumps import _Members, _scale, _vector3, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
+from ._clumps import _Members, _basePlan, _scale, _vector3, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._results import MssResult
@@ -59,6 +59,19 @@ class MssTemplate(object):
         c = np.asarray(center, dtype=float) + s * rotation.dot(props.centroid - self.unionCentroid)
         return _plans('MssTemplate.place', t, mass, [(c, rotation, s)])[0]
 
+    def plans(self, centers, rotations, mass='target'):
+        """:meth:`plan` for k placements at once, at the template's scale: *centers* (k, 3), *rotations*
+        (k, 3, 3)."""
+        t = self.result
+        mass = mass if t.targetMass is not None else 'union'
+        props = t.targetMass if mass == 'target' else t.unionMass()
+        s = self.scale
+        C = np.asarray(centers, dtype=float) + s * np.einsum('kij,j->ki', rotations, props.centroid - self.unionCentroid)
+        if mass == 'target' and t.targetMass is None:
+            raise ValueError("MssTemplate.plans: this result has no target solid; use mass='union'")
+        base, c0 = _basePlan(t, mass)
+        return base.placedMany(c0, s, np.asarray(rotations, dtype=float), C)
+
     def place(self, center, rotation, scale=1.0, mass='target', **body):
         """Builds this grain as a clump (see :meth:`plan`); *body*: ``utils.sphere`` keywords.
         :return: (clumpId, [memberIds])"""
@@ -86,13 +99,18 @@ def _templates(func, templates, gen):
 
 
 def _kabsch(Q, P):
-    """Rotation R and translation t with P ~ t + R Q (least squares; Kabsch 1976)."""
-    qc, pc = Q.mean(axis=0), P.mean(axis=0)
-    H = (Q - qc).T.dot(P - pc)
+    """Rotations R (k, 3, 3) and translations t (k, 3) with P[k] ~ t[k] + R[k] Q, for point sets P (k, n, 3)
+    (least squares; Kabsch 1976), all k at once."""
+    qc, pc = Q.mean(axis=0), P.mean(axis=1)
+    H = np.einsum('ni,knj->kij', Q - qc, P - pc[:, None, :])
     U, _, Vt = np.linalg.svd(H)
-    d = np.sign(np.linalg.det(Vt.T.dot(U.T))) or 1.0
-    R = Vt.T.dot(np.diag([1.0, 1.0, d])).dot(U.T)
-    return R, pc - R.dot(qc)
+    d = np.sign(np.linalg.det(np.einsum('kji,klj->kil', Vt, U)))
+    d[d == 0] = 1.0
+    D = np.zeros((len(d), 3, 3))
+    D[:, 0, 0] = D[:, 1, 1] = 1.0
+    D[:, 2, 2] = d
+    R = np.einsum('kji,kjl,kml->kim', Vt, D, U)
+    return R, pc - np.einsum('kij,j->ki', R, qc)
 
 
 def _psdSampler(psdSizes, psdCumm, distributeMass):
@@ -199,18 +217,23 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
     sp.makeClumpCloud(me.Vector3(*lo), me.Vector3(*hi), [t.spherePack for t in templates],
                       periodic=bool(periodic), num=int(num), seed=-1 if seed is None else seed)
     rows = np.array([(c[0], c[1], c[2], r, k) for c, r, k in sp.toList()]).reshape(-1, 5)
-    order = np.argsort(rows[:, 4], kind='stable')
-    rows = rows[order]
-    cuts = np.flatnonzero(np.diff(rows[:, 4])) + 1
-    plans = []
-    for g in np.split(rows, cuts) if len(rows) else []:
-        P, radii = g[:, :3], g[:, 3]
-        t = next((t for t in templates if len(t.spherePackRadii) == len(radii)
+    rows = rows[np.argsort(rows[:, 4], kind='stable')]
+    groups = np.split(rows, np.flatnonzero(np.diff(rows[:, 4])) + 1) if len(rows) else []
+    which = []
+    for g in groups:
+        radii = g[:, 3]
+        k = next((i for i, t in enumerate(templates) if len(t.spherePackRadii) == len(radii)
                   and np.allclose(t.spherePackRadii, radii, rtol=1e-12)), None)
-        if t is None:
+        if k is None:
             raise RuntimeError('%s: a clump of the cloud matches no template' % func)
-        R, tr = _kabsch(t.spherePackCenters, P)
-        plans.append(t.plan(tr, R, 1.0, mass))
+        which.append(k)
+    plans = [None] * len(groups)
+    for k, t in enumerate(templates):  # every clump of a template at once
+        mine = [i for i, w in enumerate(which) if w == k]
+        if mine:
+            R, tr = _kabsch(t.spherePackCenters, np.array([groups[i][:, :3] for i in mine]))
+            for i, p in zip(mine, t.plans(tr, R, mass)):
+                plans[i] = p
     return _build(func, plans, members, _offsetWarning)
 
 
