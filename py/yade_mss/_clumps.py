@@ -288,28 +288,29 @@ def _sphereMass(radius, density, V3):
     return V * density, V3(g, g, g)
 
 
-def _withLoads(groups, action, me, setInertia):
+def _withLoads(groups, action, me):
     """Runs *action* (a YADE call that sums clump members) while the members of every group carry the loads
     that make the sums exact; then every member is YADE's sphere again.
 
-    A group: (bodies, masses for the sums, final masses, final inertias (Vector3), member 0's moments *j* and
-    axes *V*). Through the sums every member keeps its final sphere inertia (isotropic: its orientation does not
-    matter), so member 0's tensor is *j* less the others' (*setInertia*: set the final inertias first, as after a
-    density change; else they are already there)."""
+    A group: (bodies, masses for the sums, final masses, final inertias (Vector3), which members' inertias to
+    set (None: none), member 0's moments *j* and axes *V*). Through the sums every member keeps its final
+    sphere inertia (isotropic: its orientation does not matter), so member 0's tensor is *j* less the others';
+    inertias are set first only where they are not the final ones already (after a density change)."""
     from yade.wrapper import Box
     tmp = Box(extents=me.Vector3(0, 0, 0))
     done = []
     try:
-        for bodies, m, final, inertia, j, V in groups:
+        for bodies, m, final, inertia, fix, j, V in groups:
             shapes = []
             done.append((bodies, shapes, final, inertia))
-            for b, mi, Ii in zip(bodies, m, inertia):
+            for b, mi in zip(bodies, m):
                 shapes.append(b.shape)
                 b.shape = tmp
-                st = b.state
-                st.mass = mi
-                if setInertia:
-                    st.inertia = Ii
+                b.state.mass = mi
+            if fix is not None:
+                for b, Ii, f in zip(bodies, inertia, fix):
+                    if f:
+                        b.state.inertia = Ii
             rest = sum(Ii[0] for Ii in inertia[1:])
             b0 = bodies[0].state
             b0.inertia = me.Vector3(*(j - rest).tolist())
@@ -349,8 +350,8 @@ def _build(func, plans, members, warn=None):
         for p in plans:
             bodies, final, inertia = members.make(p.centers, p.radii)
             rho = members.density(bodies[0].mat)
-            cid, ids = _withLoads([(bodies, (rho * p.m).tolist(), final, inertia, rho * p.j, p.V)],
-                                  lambda: O.bodies.appendClumped(bodies, discretization=0), me, False)
+            cid, ids = _withLoads([(bodies, (rho * p.m).tolist(), final, inertia, None, rho * p.j, p.V)],
+                                  lambda: O.bodies.appendClumped(bodies, discretization=0), me)
             ids = list(ids)
             made.append((cid, ids))
             _check(func, O, cid, rho * p.volume, p.centroid, (rho * p.moments).tolist())

@@ -67,7 +67,8 @@ def _restore(func, O, me, ids, explicit, resolution):
             if not isinstance(sh, Sphere):
                 raise ValueError('%s: member %d of clump %d is a %s, not a Sphere' % (func, b.id, cid, type(sh).__name__))
             radii.append(sh.radius)
-            p = b.state.pos
+            st = b.state
+            p = st.pos
             x.append((p[0], p[1], p[2]))
             rho.append(b.mat.density)
         if not rho[0] > 0:
@@ -97,7 +98,7 @@ def _restore(func, O, me, ids, explicit, resolution):
         return []
     plans = _plans([found[k] for k, s in jobs if s], R[[k for k, s in jobs if s]])
     grains = iter(plans)
-    work = []
+    work, spheres = [], {}
     for k, s in jobs:
         cid, body, mids, members, radii, x, rho, rec = found[k]
         if s:
@@ -109,15 +110,17 @@ def _restore(func, O, me, ids, explicit, resolution):
         st = body.state
         p, v, w = st.pos, st.vel, st.angVel
         before = ((p[0], p[1], p[2]), (v[0], v[1], v[2]), (w[0], w[1], w[2]))
-        final = [_sphereMass(r, d, V3) for r, d in zip(radii, rho)]
-        work.append((cid, members, plan, rho[0], before, kind, final))
+        final = [spheres[rd] if rd in spheres else spheres.setdefault(rd, _sphereMass(rd[0], rd[1], V3))
+                 for rd in zip(radii, rho)]
+        fix = [True] * len(final)  # the density may have changed: inertias too, whatever the masses say
+        work.append((cid, members, plan, rho[0], before, kind, final, fix))
     wanted = set(w[0] for w in work)
     others = [i for i in _clumpIds(O) if i not in wanted]
-    _withLoads([(members, (rho * p.m).tolist(), [f[0] for f in final], [f[1] for f in final], rho * p.j, p.V)
-                for cid, members, p, rho, before, kind, final in work],
-               lambda: O.bodies.updateClumpProperties(excludeList=others, discretization=0), me, True)
+    _withLoads([(members, (rho * p.m).tolist(), [f[0] for f in final], [f[1] for f in final], fix, rho * p.j, p.V)
+                for cid, members, p, rho, before, kind, final, fix in work],
+               lambda: O.bodies.updateClumpProperties(excludeList=others, discretization=0), me)
     done = []
-    for cid, members, p, rho, (pos0, vel0, w), kind, final in work:
+    for cid, members, p, rho, (pos0, vel0, w), kind, final, fix in work:
         _check(func, O, cid, rho * p.volume, p.centroid, (rho * p.moments).tolist())
         st = O.bodies[cid].state
         # YADE's update zeroes the velocities: keep the motion (the centre of mass may have moved)
