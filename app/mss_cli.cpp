@@ -1,5 +1,6 @@
 // mss: command-line front end of the yade-mss core.
 #include "mss.hpp"
+#include "mss/atomic_file.hpp"
 #include "mss/cores.hpp"
 
 #include <CLI/CLI.hpp>
@@ -119,18 +120,10 @@ int runPython(const std::vector<std::string>& args) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
-/// Writes @p text to @p path through a temporary file and a rename.
+/// Writes @p text to @p path whole or not at all (an exclusive temporary file, then a rename; only a regular
+/// file or a new path is replaced).
 void writeTextAtomically(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    {
-        std::ofstream f(tmp);
-        f << text;
-        if (!f.flush()) throw std::invalid_argument(path + ": cannot write");
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw std::invalid_argument(path + ": cannot write");
-    }
+    mss::detail::writeFileAtomically("mss", path, text);
 }
 
 bool isVoxelFile(const std::string& path) {

@@ -30,7 +30,7 @@ for t in stl obj off ply npy spheres generate; do
   mkdir -p "$work/$t"
   cp fuzz/corpus/$t/* "$work/$t/"
   (cd "$work" && "$ROOT/build-fuzz/fuzz_$t" -max_total_time="${MSS_FUZZ_SECONDS:-45}" -rss_limit_mb=2048 \
-    -timeout=10 -print_final_stats=1 "$work/$t" > "$work/$t.log" 2>&1) || {
+    -max_len=1048576 -timeout=10 -print_final_stats=1 "$work/$t" > "$work/$t.log" 2>&1) || {
     echo "fuzz_$t found a problem:"; grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$work/$t.log" | head
     mkdir -p fuzz/found && cp "$work"/crash-* "$work"/oom-* "$work"/timeout-* fuzz/found/ 2>/dev/null || true
     echo "the inputs are in fuzz/found: add them to fuzz/regressions/$t and fix"; exit 1; }

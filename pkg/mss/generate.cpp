@@ -414,7 +414,9 @@ void validateOptions(const GenerateOptions& o) {
     if (!(o.rMin >= 0.0) || !std::isfinite(o.rMin)) bad("rMin must be >= 0", o.rMin);
     if (o.maxIterations < 1) bad("maxIterations must be >= 1", o.maxIterations);
     if (!(o.deltaMin >= 0.0) || !std::isfinite(o.deltaMin)) bad("deltaMin must be >= 0", o.deltaMin);
-    if (o.threads < 0) bad("threads must be >= 0", o.threads);
+    // more threads than libgomp can start end in "Thread creation failed" (2000) or overflow its stacks (65536)
+    if (o.threads < 0 || o.threads > kMaxThreads)
+        bad("threads must be in [0, " + std::to_string(kMaxThreads) + "]", o.threads);
     if (o.maxProtrusion && !(*o.maxProtrusion >= 0.0))
         bad("maxProtrusion must be >= 0 (world units; inf: unbounded)", *o.maxProtrusion);
     if (o.clip && o.maxProtrusion && *o.maxProtrusion != 0.0)

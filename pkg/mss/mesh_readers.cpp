@@ -1,6 +1,7 @@
 // Mesh files: STL (ASCII, binary: stl_reader.cpp), OBJ, OFF, PLY (ASCII, binary); our own readers (CGAL's
 // gave OOM and UB under fuzzing), with a clear error naming the file and the problem for every bad input.
 #include "mss/mesh_readers.hpp"
+#include "mss/input_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -385,6 +386,7 @@ TriangleMesh readMesh(const std::string& path) {
         fail(path, "unknown mesh extension '" + ext + "' (expected .stl, .obj, .off or .ply)");
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a mesh file");
+    detail::requireRegularFile("readMesh", path);
     std::ifstream probe(path, std::ios::binary | std::ios::ate);
     if (!probe) fail(path, "cannot open file");
     const auto end = probe.tellg();

@@ -13,12 +13,6 @@
 #include <string>
 #include <vector>
 
-#if defined(__linux__)
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-#endif
 
 namespace mss::detail {
 
@@ -27,30 +21,14 @@ namespace mss::detail {
     throw std::invalid_argument("readMesh: " + path + ": " + what);
 }
 
-/// A whole file in memory, read-only: mapped (the femur's 2.7 MB ASCII STL in 0.16 ms; read into fresh memory
-/// it took 1.2 ms, most of it first touches of the new pages), or where mapping fails read in one piece (a
-/// byte-by-byte stream iterator took a third of reading an ASCII STL). Empty for a file that is not a
-/// regular file or cannot be read.
+/// A whole file in memory, read-only, read in one piece (a byte-by-byte stream iterator took a third of reading
+/// an ASCII STL). Not mapped: a file that shrinks while mapped kills the reader with SIGBUS; a read just stops
+/// short. Empty for a file that is not a regular file or cannot be read.
 class FileBytes {
 public:
     explicit FileBytes(const std::string& path) {
         std::error_code ec;
         if (!std::filesystem::is_regular_file(path, ec)) return; // (a directory's size is no size)
-#if defined(__linux__)
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd < 0) return;
-        struct stat st {};
-        if (::fstat(fd, &st) == 0 && st.st_size > 0) {
-            void* m = ::mmap(nullptr, std::size_t(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
-            if (m != MAP_FAILED) {
-                map_ = m;
-                data_ = static_cast<const char*>(m);
-                size_ = std::size_t(st.st_size);
-            }
-        }
-        ::close(fd);
-        if (map_) return;
-#endif
         const std::uintmax_t size = std::filesystem::file_size(path, ec);
         std::ifstream in(path, std::ios::binary);
         if (ec || !in || size == 0) return;
@@ -59,11 +37,6 @@ public:
         copy_.resize(static_cast<std::size_t>(in.gcount()));
         data_ = copy_.data();
         size_ = copy_.size();
-    }
-    ~FileBytes() {
-#if defined(__linux__)
-        if (map_) ::munmap(map_, size_);
-#endif
     }
     FileBytes(const FileBytes&) = delete;
     FileBytes& operator=(const FileBytes&) = delete;
@@ -81,7 +54,6 @@ public:
 private:
     const char* data_ = nullptr;
     std::size_t size_ = 0;
-    void* map_ = nullptr;
     std::vector<char> copy_;
 };
 

@@ -1,9 +1,10 @@
 #include "mss/npy.hpp"
+#include "mss/input_file.hpp"
 
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <regex>
+#include <cctype>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -17,6 +18,44 @@ namespace {
 } // namespace
 
 namespace {
+
+/// NumPy writes headers of a few hundred bytes (padded to 64); a longer one is refused before it is read.
+constexpr std::size_t kMaxNpyHeader = 1 << 16;
+
+/// The position just after key @p key's ':' in a Python dict literal, or npos.
+std::size_t afterKey(const std::string& h, const std::string& key) {
+    for (const char q : {'\'', '"'}) {
+        const std::string quoted = std::string(1, q) + key + q;
+        std::size_t at = h.find(quoted);
+        if (at == std::string::npos) continue;
+        at = h.find_first_not_of(" \t", at + quoted.size());
+        if (at == std::string::npos || h[at] != ':') return std::string::npos;
+        return h.find_first_not_of(" \t", at + 1);
+    }
+    return std::string::npos;
+}
+
+/// The text between @p open and @p close after key @p key (a quoted string: either quote), or false.
+bool headerValue(const std::string& h, const std::string& key, char open, char close, std::string& out) {
+    std::size_t at = afterKey(h, key);
+    if (at == std::string::npos) return false;
+    if (open == '\'' && h[at] == '"') open = close = '"';
+    if (h[at] != open) return false;
+    const std::size_t end = h.find(close, at + 1);
+    if (end == std::string::npos) return false;
+    out = h.substr(at + 1, end - at - 1);
+    return true;
+}
+
+/// The word (letters) after key @p key, or false.
+bool headerWord(const std::string& h, const std::string& key, std::string& out) {
+    const std::size_t at = afterKey(h, key);
+    if (at == std::string::npos) return false;
+    std::size_t end = at;
+    while (end < h.size() && std::isalpha(static_cast<unsigned char>(h[end]))) ++end;
+    out = h.substr(at, end - at);
+    return !out.empty();
+}
 
 /// What a .npy header says (NumPy format versions 1-3), checked: a 3-D boolean or integer array.
 struct NpyHeader {
@@ -47,25 +86,33 @@ NpyHeader readNpyHeader(const std::string& path, std::ifstream& in, std::streamo
         fail(path, "unsupported .npy version " + std::to_string(major));
     }
     if (static_cast<std::streamoff>(pre + headerLen) > size) fail(path, "truncated header");
+    if (headerLen > kMaxNpyHeader)
+        fail(path, "header of " + std::to_string(headerLen) + " bytes (at most " + std::to_string(kMaxNpyHeader) +
+                       ": not a volume's)");
     std::string header(headerLen, '\0');
     in.read(header.data(), static_cast<std::streamsize>(headerLen));
-    std::smatch mDescr, mOrder, mShape;
-    if (!std::regex_search(header, mDescr, std::regex("'descr'\\s*:\\s*'([^']*)'")) ||
-        !std::regex_search(header, mOrder, std::regex("'fortran_order'\\s*:\\s*(True|False)")) ||
-        !std::regex_search(header, mShape, std::regex("'shape'\\s*:\\s*\\(([^)]*)\\)")))
+    if (in.gcount() != static_cast<std::streamsize>(headerLen)) fail(path, "truncated header");
+    // the header is a Python dict literal; its three keys are found by plain scans (no regex, no recursion:
+    // std::regex recursed once per character and overflowed the stack on long headers)
+    std::string descr, order, shapeText;
+    if (!headerValue(header, "descr", '\'', '\'', descr) || !headerWord(header, "fortran_order", order) ||
+        !headerValue(header, "shape", '(', ')', shapeText) || !(order == "True" || order == "False"))
         fail(path, "malformed header");
-    const std::string descr = mDescr[1];
-    const bool fortran = mOrder[1] == "True";
+    const bool fortran = order == "True";
     std::vector<long long> shape;
     {
-        std::string s = mShape[1];
-        std::stringstream ss(s);
+        std::stringstream ss(shapeText);
         std::string tok;
         while (std::getline(ss, tok, ',')) {
             if (tok.find_first_not_of(" \t") == std::string::npos) continue;
+            if (shape.size() == 3) fail(path, "array must be 3-D, got more dimensions");
             try {
-                shape.push_back(std::stoll(tok));
-            } catch (...) {
+                std::size_t used = 0;
+                shape.push_back(std::stoll(tok, &used));
+                if (tok.find_first_not_of(" \tL", used) != std::string::npos) fail(path, "malformed shape");
+            } catch (const std::invalid_argument&) {
+                fail(path, "malformed shape");
+            } catch (const std::out_of_range&) {
                 fail(path, "malformed shape");
             }
         }
@@ -122,6 +169,7 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
         fail(path, os.str());
     }
     if (!origin.allFinite()) fail(path, "origin is not finite");
+    detail::requireRegularFile("readNpy", path);
     std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) fail(path, "cannot open file");
     const std::streamoff size = in.tellg();

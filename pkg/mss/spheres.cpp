@@ -1,4 +1,6 @@
 #include "mss/spheres.hpp"
+#include "mss/atomic_file.hpp"
+#include "mss/input_file.hpp"
 #include "mss/mesh.hpp"
 
 #include <cmath>
@@ -33,43 +35,29 @@ void writeSpheres(const SphereSet& s, const std::string& path) {
     if (ext != ".csv" && ext != ".txt" && ext != ".vtk")
         throw std::invalid_argument("writeSpheres: " + path + ": unknown extension '" + ext +
                                     "' (expected .csv, .txt or .vtk)");
-    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp);
-        if (!out)
-            throw std::invalid_argument("writeSpheres: " + path +
-                                        ": cannot write (directory missing or not writable)");
-        out << std::setprecision(17);
-        if (ext == ".csv") {
-            out << "x,y,z,r\n";
-            for (std::size_t i = 0; i < s.size(); ++i)
-                out << s.centers[i].x() << ',' << s.centers[i].y() << ',' << s.centers[i].z() << ','
-                    << s.radii[i] << '\n';
-        } else if (ext == ".txt") {
-            out << "# x y z r clumpId (yade-mss; read with ymport.textClumps)\n";
-            for (std::size_t i = 0; i < s.size(); ++i)
-                out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << ' '
-                    << s.radii[i] << " 0\n";
-        } else {
-            out << "# vtk DataFile Version 3.0\nyade-mss spheres\nASCII\nDATASET POLYDATA\nPOINTS "
-                << s.size() << " double\n";
-            for (std::size_t i = 0; i < s.size(); ++i)
-                out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << '\n';
-            out << "VERTICES " << s.size() << ' ' << 2 * s.size() << '\n';
-            for (std::size_t i = 0; i < s.size(); ++i) out << "1 " << i << '\n';
-            out << "POINT_DATA " << s.size() << "\nSCALARS radius double 1\nLOOKUP_TABLE default\n";
-            for (std::size_t i = 0; i < s.size(); ++i) out << s.radii[i] << '\n';
-        }
-        out.flush();
-        if (!out) {
-            std::remove(tmp.c_str());
-            throw std::invalid_argument("writeSpheres: " + path + ": write failed");
-        }
+    std::ostringstream out;
+    out << std::setprecision(17);
+    if (ext == ".csv") {
+        out << "x,y,z,r\n";
+        for (std::size_t i = 0; i < s.size(); ++i)
+            out << s.centers[i].x() << ',' << s.centers[i].y() << ',' << s.centers[i].z() << ',' << s.radii[i]
+                << '\n';
+    } else if (ext == ".txt") {
+        out << "# x y z r clumpId (yade-mss; read with ymport.textClumps)\n";
+        for (std::size_t i = 0; i < s.size(); ++i)
+            out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << ' ' << s.radii[i]
+                << " 0\n";
+    } else {
+        out << "# vtk DataFile Version 3.0\nyade-mss spheres\nASCII\nDATASET POLYDATA\nPOINTS " << s.size()
+            << " double\n";
+        for (std::size_t i = 0; i < s.size(); ++i)
+            out << s.centers[i].x() << ' ' << s.centers[i].y() << ' ' << s.centers[i].z() << '\n';
+        out << "VERTICES " << s.size() << ' ' << 2 * s.size() << '\n';
+        for (std::size_t i = 0; i < s.size(); ++i) out << "1 " << i << '\n';
+        out << "POINT_DATA " << s.size() << "\nSCALARS radius double 1\nLOOKUP_TABLE default\n";
+        for (std::size_t i = 0; i < s.size(); ++i) out << s.radii[i] << '\n';
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw std::invalid_argument("writeSpheres: " + path + ": cannot write (rename failed)");
-    }
+    detail::writeFileAtomically("writeSpheres", path, out.str());
 }
 
 namespace {
@@ -83,6 +71,7 @@ long long clumpIdOf(const std::string& tok) {
 } // namespace
 
 SphereSet readSpheres(const std::string& path, long long clumpId) {
+    detail::requireRegularFile("readSpheres", path);
     std::ifstream in(path);
     if (!in) throw std::invalid_argument("readSpheres: " + path + ": cannot open file");
     {

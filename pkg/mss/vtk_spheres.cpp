@@ -1,6 +1,7 @@
 // Sphere sets in legacy VTK files (what CLUMP's outputVTK= and our own .vtk write): POLYDATA points with a
 // radius array, ASCII or BINARY (big-endian, as the legacy format prescribes).
 #include "mss/spheres.hpp"
+#include "mss/input_file.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -130,6 +131,7 @@ bool isRadiusName(const std::string& name) {
 } // namespace
 
 SphereSet readVtkSpheres(const std::string& path) {
+    detail::requireRegularFile("readSpheres", path);
     std::ifstream in(path, std::ios::binary);
     if (!in) throw std::invalid_argument("readSpheres: " + path + ": cannot open file");
     VtkCursor c(path,

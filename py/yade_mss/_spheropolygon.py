@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from . import _mss
-from ._files import parseOrigin
+from ._files import atomicWrite, parseOrigin
 
 _DEFAULT_RADII = (0.0025, 0.004, 0.006, 0.01, 0.02)  # fractions of the particle's size
 
@@ -170,10 +170,12 @@ def ochart(image, outdir, vertices=(4, 6, 10, 15, 20, 30), radii=(0.005, 0.01, 0
         x['T'] /= tmax
         x['O'] = x['T'] * x['error']
     os.makedirs(outdir, exist_ok=True)
-    with open(os.path.join(outdir, 'ochart.csv'), 'w', newline='') as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+    def table(tmp):
+        with open(tmp, 'w', newline='') as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+    atomicWrite(os.path.join(outdir, 'ochart.csv'), table, 'ochart')
     _ochartFigure(rows, vertices, radii, os.path.join(outdir, 'ochart.png'))
     return rows
 
@@ -331,10 +333,10 @@ def main(argv=None):
                 previewSpheropolygon(img != 0 if l is None else img == l, r, a.preview if l is None else
                                      '%s_%d%s' % (base, l, ext), a.pixel_size, origin)
         result = out['particle'] if labels == [None] else out
-        tmp = a.output + '.tmp%d' % os.getpid()
-        with open(tmp, 'w') as f:
-            json.dump(result, f, indent=1)
-        os.replace(tmp, a.output)
+        def dump(tmp):
+            with open(tmp, 'w') as f:
+                json.dump(result, f, indent=1)
+        atomicWrite(a.output, dump, 'spheropolygon')
         if a.ochart:
             rows = ochart(img, a.ochart, pixelSize=a.pixel_size, origin=origin,
                           label=None if labels == [None] else labels[0])

@@ -128,5 +128,29 @@ check "compare --help lists --clump, not generate's --spheres" bash -c "\"$MSS\"
 expect_error "bad number" "not an integer" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres abc -o "$TMP/x.csv"
 check "no file left by failed runs" [ ! -e "$TMP/x.csv" ]
 
+# safe writes (the bugs: compare --csv wrote a fixed OUT.tmp and followed a symlink planted there; generate -o used
+# OUT.tmp<PID>; --csv renamed over a device node)
+echo "precious" > "$TMP/victim"
+ln -s "$TMP/victim" "$TMP/table.csv.tmp"
+for pid in $(seq $$ $(($$ + 40))); do ln -sf "$TMP/victim" "$TMP/sp.csv.tmp$pid"; done
+"$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" --csv "$TMP/table.csv" > /dev/null
+"$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 -o "$TMP/sp.csv" > /dev/null
+check "planted symlinks are not followed" [ "$(cat "$TMP/victim")" = "precious" ]
+check "the table was written" grep -q dice "$TMP/table.csv"
+check "the spheres were written" [ "$(wc -l < "$TMP/sp.csv")" -eq 4 ]
+ln -s "$TMP/victim" "$TMP/link.csv"
+expect_error "a symlink as output is refused" "not a regular file" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 -o "$TMP/link.csv"
+expect_error "a device as --csv is refused" "not a regular file" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" --csv /dev/null
+check "the victim is still the victim" [ "$(cat "$TMP/victim")" = "precious" ]
+check "no temporary file left" [ -z "$(find "$TMP" -maxdepth 1 -name '.*.??????' -print -quit)" ]
+
+# inputs that are not regular files are refused by name, at once (the bug: a FIFO hung generate, info, compare)
+mkfifo "$TMP/pipe.stl"
+expect_error "a FIFO as input" "not a regular file (a FIFO)" timeout 20 "$MSS" info "$TMP/pipe.stl"
+expect_error "a FIFO to generate" "not a regular file (a FIFO)" timeout 20 "$MSS" generate "$TMP/pipe.stl" --spheres 3 -o "$TMP/x.csv"
+expect_error "a huge thread count (the bug: a segfault)" "threads must be in .0, 1024., got 65536" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 --threads 65536 -o "$TMP/x.csv"
+expect_error "2000 threads (the bug: libgomp's Thread creation failed)" "threads must be in .0, 1024., got 2000" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 --threads 2000 -o "$TMP/x.csv"
+expect_error "/dev/zero as a sphere file" "not a regular file (a character device)" timeout 20 "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" /dev/zero
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -17,6 +17,7 @@
 #include <iomanip>
 #include <map>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace mss;
@@ -428,6 +429,73 @@ TEST(Npy, BadArraysGetClearErrors) {
     writeText(p, "not numpy at all");
     expectError([&] { readNpy(p); }, "magic");
     std::remove(p.c_str());
+}
+
+// The bug: a header of ~26 KB overflowed the stack in std::regex (exit 139). Headers are scanned now, and one
+// longer than NumPy ever writes is refused before it is read.
+TEST(Npy, test_long_header_overflowed_the_stack) {
+    const std::string p = tempPath("long.npy");
+    for (std::size_t pad : {30000u, 60000u}) {
+        std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (2, 2, 2), }" + std::string(pad, ' ');
+        header += '\n';
+        std::ofstream out(p, std::ios::binary);
+        out.write("\x93NUMPY\x01\x00", 8);
+        out.put(char(header.size() & 0xff));
+        out.put(char((header.size() >> 8) & 0xff));
+        out << header << std::string(8, '\1');
+        out.close();
+        EXPECT_EQ(readNpy(p)(1, 1, 1), 1); // long, but a header: read
+    }
+    {   // version 2: a length of 16 MB, refused by its size
+        std::ofstream out(p, std::ios::binary);
+        out.write("\x93NUMPY\x02\x00", 8);
+        const std::uint32_t len = 1u << 24;
+        out.write(reinterpret_cast<const char*>(&len), 4);
+        out << std::string(len, ' ');
+    }
+    expectError([&] { readNpy(p); }, "at most 65536");
+    std::remove(p.c_str());
+}
+
+TEST(Npy, HeadersOfEitherQuoteAndMalformedOnes) {
+    const std::string p = tempPath("quotes.npy");
+    writeNpy(p, "|b1", "2, 2, 2", std::vector<char>(8, 1));
+    std::string text;
+    {
+        std::ifstream in(p, std::ios::binary);
+        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    std::string dq = text;
+    for (char& c : dq)
+        if (c == '\'') c = '"';
+    writeText(p, dq);
+    EXPECT_EQ(readNpy(p)(0, 0, 0), 1);
+    for (const char* bad : {"'shape': 2, 2, 2", "'shape': (2, 2, x)", "'shape': (2, 2, 2, 2)"}) {
+        std::string t = text;
+        const std::size_t a = t.find("'shape'"), b = t.find(')', a);
+        t.replace(a, b - a + 1, bad);
+        writeText(p, t);
+        expectError([&] { readNpy(p); }, "readNpy: " + p);
+    }
+    std::remove(p.c_str());
+}
+
+// The bug: a FIFO as input hung generate, info and compare; /dev/zero as a sphere file read until memory ran out.
+TEST(Files, test_fifo_and_devices_hung_the_readers) {
+    const std::string fifo = tempPath("pipe.stl");
+    std::remove(fifo.c_str());
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    expectError([&] { readMesh(fifo); }, "not a regular file (a FIFO)");
+    const std::string fifoNpy = tempPath("pipe.npy");
+    std::remove(fifoNpy.c_str());
+    ASSERT_EQ(::mkfifo(fifoNpy.c_str(), 0600), 0);
+    expectError([&] { readNpy(fifoNpy); }, "not a regular file (a FIFO)");
+    const std::string fifoCsv = tempPath("pipe.csv");
+    std::remove(fifoCsv.c_str());
+    ASSERT_EQ(::mkfifo(fifoCsv.c_str(), 0600), 0);
+    expectError([&] { readSpheres(fifoCsv); }, "not a regular file (a FIFO)");
+    expectError([&] { readSpheres("/dev/zero"); }, "not a regular file (a character device)");
+    for (const std::string& f : {fifo, fifoNpy, fifoCsv}) std::remove(f.c_str());
 }
 
 TEST(SpheresIo, LegacyVtkAsciiBinaryAndWhatItCannotRead) {
