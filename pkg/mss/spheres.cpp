@@ -88,6 +88,7 @@ SphereSet readSpheres(const std::string& path, long long clumpId) {
     std::size_t lineNo = 0;
     while (std::getline(in, line)) {
         ++lineNo;
+        if (lineNo == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3); // a UTF-8 byte order mark
         const auto hash = line.find('#');
         if (hash != std::string::npos) line.resize(hash);
         for (char& c : line)
@@ -95,10 +96,13 @@ SphereSet readSpheres(const std::string& path, long long clumpId) {
         std::istringstream ls(line);
         std::string first;
         if (!(ls >> first)) continue;
-        // a header line (x,y,z,r) is allowed before any data
-        if (s.size() == 0 && !(std::isdigit(static_cast<unsigned char>(first[0])) || first[0] == '-' ||
-                               first[0] == '+' || first[0] == '.'))
-            continue;
+        // a header line (x,y,z,r) is allowed before any data: one whose first word is not a number ('nan' and
+        // 'inf' are numbers, refused below, never a header)
+        if (s.size() == 0) {
+            char* end = nullptr;
+            std::strtod(first.c_str(), &end);
+            if (end == first.c_str() || *end != '\0') continue;
+        }
         std::istringstream all(line);
         double v[4];
         for (double& x : v) {
@@ -111,10 +115,20 @@ SphereSet readSpheres(const std::string& path, long long clumpId) {
             if (end == tok.c_str() || *end != '\0')
                 throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
                                             ": '" + tok + "' is not a number");
+            if (!std::isfinite(x))
+                throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
+                                            ": '" + tok + "' is not a finite number");
         }
         std::string fifth;
-        const long long id = (all >> fifth) ? clumpIdOf(fifth) : -1;
-        if (id >= 0) distinct.insert(id);
+        long long id = -1;
+        if (all >> fifth) { // a clump id: never merged with another by rounding or by being dropped
+            id = clumpIdOf(fifth);
+            if (id < 0)
+                throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
+                                            ": clump id '" + fifth +
+                                            "' is not an integer in [0, 9e15] (ids are never rounded)");
+            distinct.insert(id);
+        }
         s.add(Vec3(v[0], v[1], v[2]), v[3]);
         ids.push_back(id);
     }

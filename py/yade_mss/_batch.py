@@ -114,6 +114,17 @@ def runGrain(task):
         return task.key, row, None
 
 
+def _freeCores():
+    """The cores not busy with other processes now (the load over the last minute; at least one): on a loaded
+    machine one worker beat two."""
+    n = os.cpu_count() or 1
+    try:
+        busy = int(os.getloadavg()[0] + 0.5)
+    except OSError:
+        busy = 0
+    return max(1, n - busy)
+
+
 def _oneThread():
     from . import _mss
     _mss.setOmpThreads(1)
@@ -291,10 +302,9 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
                                                                              'threads')])
     if workers is None:  # inside YADE one process: spawning children of the yade launcher does not work
-        workers = 1 if 'yade' in sys.modules else (os.cpu_count() or 1)
-    workers = int(workers)
-    if workers < 1:
-        raise ValueError('batch: workers must be >= 1, got %d' % workers)
+        workers = 1 if 'yade' in sys.modules else _freeCores()
+    from ._args import integer
+    workers = integer('batch', 'workers', workers, 1, 1024)
     tasks, skipped, key = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
     for t in tasks:
         t.preview = bool(previews) and outdir is not None
@@ -322,7 +332,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     elif progress:
         print('batch: %d grains, %d done before, %d skipped, %d to generate' % (total, already, len(skipped), len(todo)),
               flush=True)
-    run, close = _executor(workers, scheduler)
+    run, close = _executor(min(workers, max(1, len(todo))), scheduler)  # no idle processes for few grains
     n = 0
     digests = {t.key: t.digest for t in todo}
     try:
@@ -455,7 +465,8 @@ def main(argv=None):
                    'inf: unbounded)')
     p.add_argument('--voxel-size', type=float, default=None, help='voxel edge of the volumes (default 1)')
     p.add_argument('--origin', default=None, help='X,Y,Z: centre of voxel (0, 0, 0)')
-    p.add_argument('--workers', type=int, default=None, help='processes side by side (default: the cores)')
+    p.add_argument('--workers', type=int, default=None, help='processes side by side (default: the cores other '
+                   'processes leave free, at least 1; never more than the grains)')
     p.add_argument('--scheduler', default=None, help='tcp://HOST:PORT of a Dask scheduler: grains as its tasks')
     p.add_argument('--min-voxels', type=int, default=0, help='skip grains with fewer voxels')
     p.add_argument('--exclude-border', action='store_true', help='skip grains cut by the volume\'s border')

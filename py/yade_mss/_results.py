@@ -1,6 +1,7 @@
 """Results and sphere files: :class:`MassProperties`, :class:`MssResult`, :func:`readSpheres`."""
 
 import json
+import zipfile
 import os
 
 import numpy as np
@@ -117,14 +118,35 @@ class MssResult(object):
             raise ValueError('MssResult.load: %s: a sphere file, not a saved result (.npz): read it with '
                              'readSpheres' % (path,))
         try:
+            _checkArchive(os.fspath(path))
             with np.load(str(path), allow_pickle=False) as z:
                 meta = json.loads(str(z['meta']))
                 r = MssResult(z['centers'], z['radii'], meta.get('metrics'), meta.get('grid'), None, meta.get('source', ''))
-        except (OSError, KeyError, ValueError) as e:
+        except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile) as e:
             raise ValueError('MssResult.load: %s: not a saved result (%s)' % (path, e))
+        if (r.centers.ndim != 2 or r.centers.shape[1:] != (3,) or r.radii.shape != (len(r.centers),)
+                or not np.all(np.isfinite(r.centers)) or not np.all(np.isfinite(r.radii)) or not np.all(r.radii > 0)):
+            raise ValueError('MssResult.load: %s: not a saved result (centres must be (n, 3) finite numbers and '
+                             'radii n positive ones)' % (path,))
         if meta.get('targetMass'):
             r.targetMass = MassProperties._fromDict(meta['targetMass'])
         return r
+
+
+MAX_ARCHIVE_BYTES = 1 << 30  # a result of a million spheres takes 32 MB
+
+
+def _checkArchive(path):
+    """A saved result's .npz, checked before anything is expanded: a zip of the arrays a result has, whose
+    sizes once expanded stay under MAX_ARCHIVE_BYTES (a 3 MB archive expanded to 2.8 GB)."""
+    with zipfile.ZipFile(path) as z:
+        total = 0
+        for info in z.infolist():
+            if info.filename not in ('centers.npy', 'radii.npy', 'meta.npy'):
+                raise ValueError("unexpected member '%s'" % info.filename)
+            total += info.file_size
+        if total > MAX_ARCHIVE_BYTES:
+            raise ValueError('its arrays would take %d bytes expanded (at most %d)' % (total, MAX_ARCHIVE_BYTES))
 
 
 def readSpheres(path, clumpId=None):

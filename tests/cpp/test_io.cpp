@@ -549,3 +549,27 @@ TEST(SpheresIo, ClumpMatlabFormatWithCrlf) {
     EXPECT_EQ(s.radii[1], 0.824924);
     std::remove(p.c_str());
 }
+
+// The bugs: the first sphere row was dropped when it began with a UTF-8 BOM, nan, inf or Infinity (taken for a
+// header); clump ids 1.5 / 2.5, -1 / -2 and 1e16 were merged with the spheres without an id.
+TEST(SphereIo, test_first_row_dropped_and_ids_merged) {
+    const std::string p = tempPath("rows.txt");
+    writeText(p, "\xEF\xBB\xBF" "1 2 3 0.5\n4 5 6 0.25\n");
+    EXPECT_EQ(readSpheres(p).size(), 2u);
+    writeText(p, "\xEF\xBB\xBF" "x,y,z,r\n1,2,3,0.5\n");
+    EXPECT_EQ(readSpheres(p).size(), 1u); // a header after the mark is still a header
+    for (const char* first : {"nan", "inf", "Infinity", "-inf"}) {
+        writeText(p, std::string(first) + " 2 3 0.5\n4 5 6 0.25\n");
+        expectError([&] { readSpheres(p); }, "line 1: '" + std::string(first) + "' is not a finite number");
+    }
+    writeText(p, "1 2 3 nan\n");
+    expectError([&] { readSpheres(p); }, "is not a finite number");
+    for (const char* id : {"1.5", "-1", "1e16", "abc"}) {
+        writeText(p, "1 2 3 0.5 " + std::string(id) + "\n4 5 6 0.25 " + std::string(id) + "\n");
+        expectError([&] { readSpheres(p); }, "line 1: clump id '" + std::string(id) + "' is not an integer");
+    }
+    writeText(p, "1 2 3 0.5 1\n4 5 6 0.25 2.0\n");
+    EXPECT_EQ(readSpheres(p, 2).size(), 1u); // 2.0 is the integer 2
+    std::remove(p.c_str());
+}
+

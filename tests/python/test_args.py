@@ -98,6 +98,41 @@ class Results(unittest.TestCase):
         self.assertIn('readSpheres', str(ctx.exception))
 
 
+class Archives(unittest.TestCase):
+    def test_a_small_archive_that_expands_hugely_is_refused(self):
+        # the bug: a 3 MB .npz expanded to 2.8 GB in MssResult.load
+        import zipfile
+        with tempfile.TemporaryDirectory() as d:
+            f = os.path.join(d, 'bomb.npz')
+            with zipfile.ZipFile(f, 'w', zipfile.ZIP_DEFLATED) as z:
+                with z.open('centers.npy', 'w', force_zip64=True) as m:
+                    block = bytes(1 << 20)
+                    for _ in range(1100):
+                        m.write(block)
+            self.assertLess(os.path.getsize(f), 4 << 20)
+            with self.assertRaises(ValueError) as ctx:
+                MssResult.load(f)
+            self.assertIn('would take', str(ctx.exception))
+
+    def test_nan_centres_and_negative_radii_are_not_a_result(self):
+        # the bug: such a result saved and loaded
+        with tempfile.TemporaryDirectory() as d:
+            f = os.path.join(d, 'r.npz')
+            r = generate(ELL, nSpheres=3, resolution=20)
+            r.save(f)
+            with np.load(f) as z:
+                c, meta = z['centers'].copy(), z['meta']
+            c[0, 0] = np.nan
+            np.savez(f, centers=c, radii=-np.ones(len(c)), meta=meta)
+            with self.assertRaises(ValueError) as ctx:
+                MssResult.load(f)
+            self.assertIn('finite', str(ctx.exception))
+            with open(f, 'wb') as g:
+                g.write(b'PK not a zip')
+            with self.assertRaises(ValueError):
+                MssResult.load(f)
+
+
 class Checks(unittest.TestCase):
     def test_integer(self):
         self.assertEqual(integer('f', 'n', 3.0), 3)

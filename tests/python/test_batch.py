@@ -127,6 +127,26 @@ class Integrity(unittest.TestCase):
             self.assertIn('broken.npy', got['broken.npy']['message'])
             self.assertEqual(sum(1 for r in got.values() if r['status'] == 'ok'), 1)
 
+    def test_no_more_workers_than_grains(self):
+        # the bug: --workers 24 forked 24 processes for 2 grains
+        import yade_mss._batch as B
+        asked = []
+        real = B._executor
+
+        def spy(workers, scheduler):
+            asked.append(workers)
+            return real(workers, scheduler)
+        B._executor = spy
+        try:
+            with tempfile.TemporaryDirectory() as d:
+                L = syntheticSpecimen((40, 40, 40), 2, size=(5, 9), seed=2)
+                b = batch(L, os.path.join(d, 'o'), workers=24, nSpheres=3, progress=False)
+        finally:
+            B._executor = real
+        self.assertEqual(asked, [len(b.rows)])
+        with self.assertRaises(ValueError):
+            batch(L, None, workers=0, nSpheres=3, progress=False)
+
     def test_hostile_and_non_utf8_names_survive_escaped(self):
         # the bugs: a raw file name in the thumbnail's src ran script; a non-UTF-8 name lost grains.csv
         with tempfile.TemporaryDirectory() as d:
