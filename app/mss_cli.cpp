@@ -19,10 +19,12 @@
 #include <malloc.h>
 #include <map>
 #include <sched.h>
+#include <csignal>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -94,18 +96,40 @@ Unpinned& unpinned() {
     return u;
 }
 
+/// Whether this is the build tree's command (not the installed one): then its Python package is the build tree's.
+bool runFromBuildTree() {
+    char exe[4096];
+    const ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
+    if (n <= 0) return false;
+    exe[n] = '\0';
+    char* build = realpath(MSS_BUILD_DIR, nullptr);
+    if (!build) return false;
+    const std::string dir = std::string(build) + "/";
+    std::free(build);
+    return std::string(exe).compare(0, dir.size(), dir) == 0;
+}
+
 /// Runs `python3 -m yade_mss COMMAND ...` (Debian's python3): the commands drawn with matplotlib (`mss
-/// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's package
-/// comes first, so an uninstalled build draws with its own code. @return the exit status.
+/// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's command puts
+/// the build tree's package first, so an uninstalled build draws with its own code; the installed command runs
+/// the installed package. The child dies with this process (a killed `mss batch` leaves no batch running).
+/// @return the exit status.
 int runPython(const std::vector<std::string>& args) {
-    std::string path = MSS_PY_BUILD_DIR;
-    if (const char* old = std::getenv("PYTHONPATH")) path += std::string(":") + old;
+    std::string path;
+    if (runFromBuildTree()) path = MSS_PY_BUILD_DIR;
+    if (const char* old = std::getenv("PYTHONPATH")) path += (path.empty() ? "" : ":") + std::string(old);
+    const pid_t parent = getpid();
     const pid_t pid = fork();
     if (pid < 0) throw std::runtime_error("cannot start python3 for the pictures");
     if (pid == 0) {
+        prctl(PR_SET_PDEATHSIG, SIGTERM);
+        if (getppid() != parent) _exit(1); // the parent died before the line above
         // a child inherits its parent thread's cores: python (and a batch's Dask workers) gets them all back
         if (unpinned().pinned) sched_setaffinity(0, sizeof(cpu_set_t), &unpinned().mask);
-        setenv("PYTHONPATH", path.c_str(), 1);
+        if (path.empty())
+            unsetenv("PYTHONPATH");
+        else
+            setenv("PYTHONPATH", path.c_str(), 1);
         std::vector<std::string> all{MSS_PYTHON, "-m", "yade_mss"};
         all.insert(all.end(), args.begin(), args.end());
         std::vector<char*> argv;

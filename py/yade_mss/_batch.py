@@ -126,8 +126,23 @@ def _freeCores():
 
 
 def _oneThread():
+    """A local worker's start: one OpenMP thread, and death with the batch (Linux's PR_SET_PDEATHSIG), so that a
+    killed batch leaves no worker computing."""
+    import signal
+    try:
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGTERM))  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        pass
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it stops the workers
     from . import _mss
     _mss.setOmpThreads(1)
+
+
+def _failedRow(task, message):
+    return task.key, {'label': task.label if task.label is not None else '', 'file': task.path or '',
+                      'voxels': task.voxels, 'touches_border': int(bool(task.touchesBorder)), 'spheres': 0,
+                      'dice': '', 'eta': '', 'seconds': '', 'status': 'failed', 'message': message}, None
 
 
 def runGrains(tasks):
@@ -255,14 +270,35 @@ def _store(outdir, key, row, result, optionsKey, digest=None):
                                                                             'row': row})))
 
 
-def _executor(workers, scheduler):
+def clusterSecurity(security=None, caFile=None, cert=None, key=None):
+    """Dask's TLS settings for a scheduler: a ``distributed.Security`` as given, or one from the CA, certificate
+    and key files, or None (then Dask's configuration decides, ``distributed.comm.tls.*``)."""
+    if security is not None:
+        if caFile or cert or key:
+            raise ValueError('batch: give security or the TLS files, not both')
+        return security
+    if not (caFile or cert or key):
+        return None
+    if not (caFile and cert and key):
+        raise ValueError('batch: TLS needs the CA file, the certificate and the key (--tls-ca-file, --tls-cert, '
+                         '--tls-key)')
+    for f in (caFile, cert, key):
+        if not os.path.isfile(f):
+            raise ValueError('batch: %s: no such file (TLS)' % f)
+    from distributed.security import Security
+    return Security(tls_ca_file=caFile, tls_client_cert=cert, tls_client_key=key, require_encryption=True)
+
+
+def _executor(workers, scheduler, security=None):
     """(submit-all function yielding results as they finish, closer)."""
     if scheduler:
         try:
             from distributed import Client, as_completed
         except ImportError:
             raise RuntimeError('batch: --scheduler needs Dask (Debian: python3-distributed)')
-        client = Client(scheduler, timeout=30)
+        if security is not None and not str(scheduler).startswith('tls://'):
+            raise ValueError('batch: with TLS the scheduler address is tls://HOST:PORT, got %s' % scheduler)
+        client = Client(scheduler, timeout=30, security=security)
 
         def run(tasks):
             # a few grains per task: Dask's per-task cost (~ms) stays small against the grains' own; still
@@ -285,19 +321,33 @@ def _executor(workers, scheduler):
     pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context('fork'),
                                initializer=_oneThread)
 
+    from concurrent.futures.process import BrokenProcessPool
+
     def run(tasks):
-        futures = [pool.submit(runGrain, t) for t in tasks]
+        futures = {pool.submit(runGrain, t): t for t in tasks}
         for fut in as_completed(futures):
-            yield fut.result()
-    return run, lambda: pool.shutdown(wait=False, cancel_futures=True)
+            try:
+                yield fut.result()
+            except BrokenProcessPool:  # a worker was killed (or ran out of memory): its grains fail, the batch ends
+                yield _failedRow(futures[fut], 'a worker process died (killed, or out of memory) before this grain '
+                                 'was done; run the batch again to retry it')
+
+    def close():  # at once: a grain being computed is lost, every finished one is already written
+        for proc in list(getattr(pool, '_processes', {}).values()):
+            if proc.is_alive():
+                proc.terminate()
+        pool.shutdown(wait=False, cancel_futures=True)
+    return run, close
 
 
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
-          voxelSize=None, origin=None, progress=True, previews=False, **options):
+          voxelSize=None, origin=None, progress=True, previews=False, security=None, **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
     assembly; see the module. *options*: :func:`generate`'s keywords (nSpheres, dice, eta, rMin, resolution for
     meshes, clip, ...). With *previews*, each grain's preview (mss preview) is drawn where it is generated and
-    shown in report.html (about a second a grain). :return: :class:`Batch`"""
+    shown in report.html (about a second a grain). *security*: a ``distributed.Security`` for a TLS scheduler
+    (``tls://``); anyone who can reach a scheduler without it runs code as its workers (Dask moves pickles).
+    :return: :class:`Batch`"""
     from ._keywords import split
     gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
                                                                              'threads')])
@@ -332,7 +382,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     elif progress:
         print('batch: %d grains, %d done before, %d skipped, %d to generate' % (total, already, len(skipped), len(todo)),
               flush=True)
-    run, close = _executor(min(workers, max(1, len(todo))), scheduler)  # no idle processes for few grains
+    run, close = _executor(min(workers, max(1, len(todo))), scheduler, security)  # no idle processes for few grains
     n = 0
     digests = {t.key: t.digest for t in todo}
     try:
@@ -448,6 +498,17 @@ def _html(v):
     return html.escape(str(v).encode('utf-8', 'backslashreplace').decode('utf-8'), quote=True)
 
 
+def _stopOnTerm():
+    """SIGTERM (a `kill` of the batch) stops it as Ctrl-C does: the workers end, what is finished is kept."""
+    import signal
+    import threading
+
+    def stop(signum, frame):
+        raise KeyboardInterrupt
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, stop)
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(prog='mss batch', description='a CT specimen or a folder of grains to a DEM '
                                 'assembly (yade-mss)')
@@ -467,12 +528,17 @@ def main(argv=None):
     p.add_argument('--origin', default=None, help='X,Y,Z: centre of voxel (0, 0, 0)')
     p.add_argument('--workers', type=int, default=None, help='processes side by side (default: the cores other '
                    'processes leave free, at least 1; never more than the grains)')
-    p.add_argument('--scheduler', default=None, help='tcp://HOST:PORT of a Dask scheduler: grains as its tasks')
+    p.add_argument('--scheduler', default=None, help='tls://HOST:PORT (or tcp://) of a Dask scheduler: grains as its '
+                   'tasks. Without TLS anyone who reaches the port runs code as the workers\' user')
+    p.add_argument('--tls-ca-file', default=None, help='TLS: the CA certificate the cluster trusts (PEM)')
+    p.add_argument('--tls-cert', default=None, help='TLS: this client\'s certificate (PEM)')
+    p.add_argument('--tls-key', default=None, help='TLS: this client\'s private key (PEM)')
     p.add_argument('--min-voxels', type=int, default=0, help='skip grains with fewer voxels')
     p.add_argument('--exclude-border', action='store_true', help='skip grains cut by the volume\'s border')
     p.add_argument('--labels', default=None, help='L1,L2,...: only these labels')
     p.add_argument('--previews', action='store_true', help='draw each grain (mss preview) into report.html')
     a = p.parse_args(argv)
+    _stopOnTerm()
     gen = {k: v for k, v in (('nSpheres', a.spheres), ('dice', a.dice), ('eta', a.eta), ('rMin', a.rmin),
                              ('resolution', a.resolution)) if v is not None}
     if a.clip:
@@ -483,6 +549,7 @@ def main(argv=None):
         origin = parseOrigin(a.origin, 3)
         labels = [int(x) for x in a.labels.split(',')] if a.labels else None
         b = batch(a.inputs, a.output, workers=a.workers, scheduler=a.scheduler, minVoxels=a.min_voxels,
+                  security=clusterSecurity(None, a.tls_ca_file, a.tls_cert, a.tls_key),
                   excludeBorder=a.exclude_border, labels=labels, voxelSize=a.voxel_size, origin=origin,
                   previews=a.previews, **gen)
     except KeyboardInterrupt:

@@ -33,14 +33,31 @@ def rows(outdir):
 
 
 class Cluster(object):
-    """A Dask scheduler and two workers (no nanny: a killed worker stays dead) on localhost."""
+    """A Dask scheduler and two workers (no nanny: a killed worker stays dead) on localhost; with *tls*, every
+    connection encrypted and authenticated by a self-signed certificate (Dask's Security.temporary), whose files
+    are ``self.tls`` (ca, cert, key)."""
+
+    def __init__(self, tls=False):
+        self.useTls = tls
 
     def __enter__(self):
         self.dir = tempfile.mkdtemp()
         self.file = os.path.join(self.dir, 'scheduler.json')
         env = dict(os.environ)
+        tlsArgs = []
+        if self.useTls:
+            from distributed.security import Security
+            sec = Security.temporary()
+            cert, key = os.path.join(self.dir, 'cert.pem'), os.path.join(self.dir, 'key.pem')
+            with open(cert, 'w') as f:
+                f.write(sec.tls_client_cert)
+            with open(key, 'w') as f:
+                f.write(sec.tls_client_key)
+            self.tls = (cert, cert, key)
+            tlsArgs = ['--tls-ca-file', cert, '--tls-cert', cert, '--tls-key', key]
         self.procs = [subprocess.Popen(['dask-scheduler', '--host', '127.0.0.1', '--port', '0', '--no-dashboard',
-                                        '--scheduler-file', self.file], stdout=subprocess.DEVNULL,
+                                        '--scheduler-file', self.file] + tlsArgs
+                                       + (['--protocol', 'tls'] if self.useTls else []), stdout=subprocess.DEVNULL,
                                        stderr=subprocess.DEVNULL, env=env)]
         for _ in range(100):
             if os.path.exists(self.file):
@@ -51,10 +68,12 @@ class Cluster(object):
             self.address = json.load(f)['address']
         for _ in range(2):
             self.procs.append(subprocess.Popen(['dask-worker', '--scheduler-file', self.file, '--nthreads', '1',
-                                                '--no-nanny', '--no-dashboard'], stdout=subprocess.DEVNULL,
+                                                '--no-nanny', '--no-dashboard'] + tlsArgs, stdout=subprocess.DEVNULL,
                                                stderr=subprocess.DEVNULL, env=env))
         from distributed import Client
-        with Client(self.address, timeout=30) as c:
+        from yade_mss._batch import clusterSecurity
+        sec = clusterSecurity(None, *self.tls) if self.useTls else None
+        with Client(self.address, timeout=30, security=sec) as c:
             c.wait_for_workers(2, timeout=60)
         return self
 
@@ -164,6 +183,140 @@ class Integrity(unittest.TestCase):
             table = open(os.path.join(out, 'grains.csv'), encoding='utf-8').read()
             self.assertIn('gr\\udcffain.stl', table)
             self.assertEqual(len(rows(out)), 2)
+
+
+def processesMentioning(text):
+    """Pids of the processes whose command line mentions *text* (a batch's unique output folder)."""
+    out = []
+    for pid in os.listdir('/proc'):
+        if pid.isdigit():
+            try:
+                with open('/proc/%s/cmdline' % pid, 'rb') as f:
+                    if text.encode() in f.read():
+                        out.append(int(pid))
+            except OSError:
+                pass
+    return out
+
+
+def childrenOf(pid):
+    try:
+        with open('/proc/%d/task/%d/children' % (pid, pid)) as f:
+            return [int(x) for x in f.read().split()]
+    except OSError:
+        return []
+
+
+def waitForGrains(outdir, n, proc, timeout=120):
+    g = os.path.join(outdir, 'grains')
+    start = time.time()
+    while time.time() - start < timeout and proc.poll() is None:
+        if os.path.isdir(g) and sum(1 for f in os.listdir(g) if f.endswith('.json')) >= n:
+            return True
+        time.sleep(0.05)
+    return False
+
+
+class Stopping(unittest.TestCase):
+    def test_kill_of_mss_batch_stops_every_process(self):
+        # the bug: `kill` of mss batch left its Python batch and workers running (19 -> 60 grains after it)
+        mss = os.environ.get('MSS_BINARY', 'mss')
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'spec.npy')
+            np.save(path, specimen())
+            out = os.path.join(d, 'out-kill-test')
+            proc = subprocess.Popen([mss, 'batch', path, '-o', out, '--spheres', '40', '--workers', '2'],
+                                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            self.assertTrue(waitForGrains(out, 2, proc))
+            proc.send_signal(signal.SIGTERM)
+            proc.wait(timeout=30)
+            time.sleep(1.0)
+            self.assertEqual(processesMentioning(out), [])  # the Python batch and its workers are gone
+            done = len([f for f in os.listdir(os.path.join(out, 'grains')) if f.endswith('.json')])
+            time.sleep(1.0)
+            self.assertEqual(done, len([f for f in os.listdir(os.path.join(out, 'grains')) if f.endswith('.json')]))
+            # what was finished is kept: the rerun completes the rest
+            code = subprocess.run([mss, 'batch', path, '-o', out, '--spheres', '40', '--workers', '2'],
+                                  capture_output=True, text=True, timeout=600)
+            self.assertEqual(code.returncode, 0, code.stderr)
+            self.assertIn('%d done before' % done, code.stdout)
+
+    def test_a_killed_local_worker_ends_the_batch(self):
+        # the bug: a killed worker hung the batch forever (error printed, then no progress for 12 minutes)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'spec.npy')
+            np.save(path, specimen())
+            out = os.path.join(d, 'out-worker-test')
+            proc = subprocess.Popen([sys.executable, '-m', 'yade_mss', 'batch', path, '-o', out, '--spheres', '40',
+                                     '--workers', '2'], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+            self.assertTrue(waitForGrains(out, 1, proc))
+            workers = childrenOf(proc.pid)
+            self.assertGreaterEqual(len(workers), 1)
+            os.kill(workers[0], signal.SIGKILL)
+            text, _ = proc.communicate(timeout=120)  # it ends
+            self.assertEqual(proc.returncode, 1, text)
+            failed = [r for r in rows(out) if r['status'] == 'failed']
+            self.assertGreater(len(failed), 0)
+            self.assertTrue(all('worker process died' in r['message'] for r in failed))
+            self.assertEqual(processesMentioning(out), [])
+
+
+class TlsCluster(unittest.TestCase):
+    def test_a_tls_cluster_on_localhost(self):
+        # the trust gap: --scheduler spoke to Dask unencrypted and unauthenticated, and Dask moves pickles
+        L = syntheticSpecimen((50, 50, 50), 3, size=(6, 10), seed=4)
+        with tempfile.TemporaryDirectory() as d, Cluster(tls=True) as c:
+            path = os.path.join(d, 'spec.npy')
+            np.save(path, L)
+            self.assertTrue(c.address.startswith('tls://'))
+            ca, cert, key = c.tls
+            code = batchMain([path, '-o', os.path.join(d, 'tls'), '--spheres', '4', '--scheduler', c.address,
+                              '--tls-ca-file', ca, '--tls-cert', cert, '--tls-key', key])
+            self.assertEqual(code, 0)
+            local = batch([path], os.path.join(d, 'local'), workers=1, nSpheres=4, progress=False)
+            self.assertEqual(len(local.results), len(regions(L)))
+            self.assertEqual(open(os.path.join(d, 'tls', 'assembly.txt')).read(),
+                             open(os.path.join(d, 'local', 'assembly.txt')).read())  # same results, on TLS
+            # half the files, or TLS files with a plain address: refused before anything is sent
+            self.assertNotEqual(batchMain([path, '-o', os.path.join(d, 'x'), '--spheres', '4', '--scheduler',
+                                           c.address, '--tls-ca-file', ca]), 0)
+            with self.assertRaises(ValueError) as ctx:
+                from yade_mss._batch import clusterSecurity
+                batch([path], None, nSpheres=4, progress=False, scheduler=c.address.replace('tls://', 'tcp://'),
+                      security=clusterSecurity(None, ca, cert, key))
+            self.assertIn('tls://', str(ctx.exception))
+
+
+def browserTitle(page):
+    """The title of *page* (a file) after headless Chromium loaded it and ran its scripts (a hostile name's
+    onerror=... would change it)."""
+    with tempfile.TemporaryDirectory() as profile:
+        out = subprocess.run(['chromium', '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic',
+                              '--no-first-run', '--disable-background-networking', '--disable-component-update',
+                              '--disable-sync', '--user-data-dir=' + profile, '--virtual-time-budget=3000',
+                              '--dump-dom', 'file://' + os.path.abspath(page)],
+                             capture_output=True, text=True, timeout=120).stdout
+    start = out.find('<title>')
+    return out[start + 7:out.find('</title>', start)] if start >= 0 else None
+
+
+class ReportInABrowser(unittest.TestCase):
+    def test_hostile_file_names_run_no_script(self):
+        # the bug: with --previews the raw file name went into the thumbnail's src: x" onerror="..." ran
+        with tempfile.TemporaryDirectory() as d:
+            bad = os.path.join(d, 'bad.html')  # the detector itself: a page that does run the payload
+            with open(bad, 'w') as f:
+                f.write('<!doctype html><title>report</title><img src="none.png" onerror="document.title=\'pwned\'">')
+            self.assertEqual(browserTitle(bad), 'pwned')
+            col = os.path.join(d, 'col')
+            os.makedirs(col)
+            for name in ('x" onerror="document.title=\'pwned\'".stl', "y' onerror='document.title=\"pwned\"'.stl",
+                         '<img src=z onerror=document.title=1>.stl'):
+                shutil.copy(os.path.join(DATA, 'cube.stl'), os.path.join(col, name))
+            out = os.path.join(d, 'out')
+            b = batch([col], out, workers=1, nSpheres=3, resolution=16, progress=False, previews=True)
+            self.assertEqual(len(b.results), 3)
+            self.assertEqual(browserTitle(os.path.join(out, 'report.html')), 'mss batch')
 
 
 class Specimen(unittest.TestCase):
