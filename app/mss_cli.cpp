@@ -159,9 +159,19 @@ mss::VoxelGrid readVoxels(const Args& a, const std::string& path) {
                         a.has("--label") ? integer(a, "--label", -1) : -1);
 }
 
+/// The largest --memory-limit (GiB): 1 PiB, far above any machine, far below a size_t's overflow.
+constexpr double kMaxMemoryGiB = 1048576.0;
+
 mss::Resolution resolution(const Args& a) {
     mss::Resolution r;
-    r.memoryLimit = static_cast<std::size_t>(number(a, "--memory-limit", 8.0) * 1073741824.0);
+    // NaN or a negative limit turned the guard off; 1e12 or inf overflowed to "a limit of 0 GiB"
+    const double gib = number(a, "--memory-limit", 8.0);
+    if (!(gib > 0.0) || !(gib <= kMaxMemoryGiB)) {
+        std::ostringstream os;
+        os << "--memory-limit must be in (0, " << kMaxMemoryGiB << "] GiB, got " << gib;
+        throw std::invalid_argument(os.str());
+    }
+    r.memoryLimit = static_cast<std::size_t>(gib * 1073741824.0);
     if (a.has("--voxel-size") && a.has("--resolution"))
         throw std::invalid_argument("give either --voxel-size or --resolution, not both");
     if (a.has("--voxel-size"))

@@ -3,6 +3,7 @@
 #include "mss/voxelize.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace mss {
@@ -29,7 +30,12 @@ Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int res
     if (resolution < 1)
         throw std::invalid_argument("scoreSpheres: resolution must be >= 1, got " +
                                     std::to_string(resolution));
-    if (!std::isfinite(offset)) throw std::invalid_argument("scoreSpheres: offset must be finite");
+    // a grid shifted by 1e300 voxels scored D 0 (nothing on it): the offset is a fraction of a voxel
+    if (!(offset >= 0.0) || !(offset < 1.0)) {
+        std::ostringstream os;
+        os << "scoreSpheres: offset must be in [0, 1) voxel, got " << offset;
+        throw std::invalid_argument(os.str());
+    }
     const MeshInfo info = analyzeMesh(target);
     Vec3 lo = info.lower, hi = info.upper;
     for (std::size_t i = 0; i < spheres.size(); ++i) {

@@ -295,6 +295,8 @@ def main(argv=None):
                 lo, hi = (int(x) for x in a.spheres.split(':'))
             except ValueError:
                 raise ValueError('curve: --spheres takes A:B (two integers), got %r' % a.spheres)
+            if not 2 <= a.points <= 1000:
+                raise ValueError('curve: --points must be in [2, 1000], got %d' % a.points)
             rows = curve(a.grain, lo, hi, a.output, a.points, a.compare, a.resolution, voxelSize=a.npy_voxel_size,
                          origin=origin, label=a.label, maxProtrusion=a.max_protrusion)
             print('wrote       %s and %s.csv  (%d counts, D %.4f at n %d to %.4f at n %d)'

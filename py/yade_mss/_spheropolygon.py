@@ -61,6 +61,9 @@ def _fit(mask, vertices, radius, pixelSize, origin, init='auto', **options):
     return r
 
 
+MAX_VERTICES = 10000  # the fit is O(N^2) a sweep: beyond this no particle image has the pixels to place them
+
+
 def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0.0), label=None, init='auto',
                   inset=True, radii=None, vertexRadii=False, minRadius=None, regionVertices=False,
                   regionTurning=None, **options):
@@ -87,6 +90,8 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
         area, perimeter, history, seconds; with regionVertices also regions, regionsFilled (vertices put in)
         and regionsMissed (regions left without a vertex: more regions than vertices)
     """
+    from ._args import integer
+    vertices = integer('spheropolygon', 'vertices', vertices, 3, MAX_VERTICES)  # 10**6 ran for hours
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     if a.ndim != 2 or a.size == 0:
         raise ValueError('spheropolygon: the image must be 2-D and not empty')

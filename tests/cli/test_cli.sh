@@ -150,6 +150,11 @@ expect_error "a FIFO as input" "not a regular file (a FIFO)" timeout 20 "$MSS" i
 expect_error "a FIFO to generate" "not a regular file (a FIFO)" timeout 20 "$MSS" generate "$TMP/pipe.stl" --spheres 3 -o "$TMP/x.csv"
 expect_error "a huge thread count (the bug: a segfault)" "threads must be in .0, 1024., got 65536" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 --threads 65536 -o "$TMP/x.csv"
 expect_error "2000 threads (the bug: libgomp's Thread creation failed)" "threads must be in .0, 1024., got 2000" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 --threads 2000 -o "$TMP/x.csv"
+for lim in nan -1 1e12 inf; do
+  expect_error "--memory-limit $lim (the bug: the guard off, or 'a limit of 0 GiB')" "memory-limit must be in" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 --memory-limit "$lim" -o "$TMP/x.csv"
+done
+expect_error "compare --offset 1e300 (the bug: D 0, a perfect score)" "offset must be in .0, 1. voxel, got 1e+300" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" --offset 1e300
+expect_error "curve --points 0" "points must be in" "$MSS" curve "$DATA/ellipsoid_2_1_1.stl" --spheres 2:4 --points 0 -o "$TMP/c.png"
 expect_error "/dev/zero as a sphere file" "not a regular file (a character device)" timeout 20 "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" /dev/zero
 
 echo "$pass passed, $fail failed"

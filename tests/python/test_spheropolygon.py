@@ -19,6 +19,18 @@ def roundedRectangle():
     return rasterizeNumpy(rect, 10.0, (200, 160)), rect
 
 
+class VertexCounts(unittest.TestCase):
+    def test_a_million_vertices_is_refused_at_once(self):
+        # the bug: spheropolygon(vertices=10**6) ran for hours
+        from yade_mss import spheropolygon
+        img = np.zeros((20, 20), dtype=bool)
+        img[5:15, 4:16] = True
+        for bad, kind in ((10 ** 6, ValueError), (2, ValueError), (True, TypeError), ('30', TypeError)):
+            with self.assertRaises(kind) as ctx:
+                spheropolygon(img, vertices=bad)
+            self.assertIn('vertices', str(ctx.exception))
+
+
 class Spheropolygons(unittest.TestCase):
     def test_rounded_rectangle_is_recovered(self):
         img, rect = roundedRectangle()
