@@ -150,6 +150,18 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     mss::detail::writeFileAtomically("mss", path, text);
 }
 
+/// Runs @p f; an error that does not name the input file gets it in front (the core's "the solid is flat" does
+/// not know the file).
+template <class F> auto namingInput(const std::string& in, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const std::invalid_argument& e) {
+        const std::string what = e.what();
+        if (what.find(in) != std::string::npos) throw;
+        throw std::invalid_argument(in + ": " + what);
+    }
+}
+
 bool isVoxelFile(const std::string& path) {
     return mss::fileExtension(path) == ".npy";
 }
@@ -243,9 +255,11 @@ int cmdGenerate(const Args& a) {
         r = mss::generate(v, o);
         r.metrics.secondsRead = tRead;
     } else {
+        if (a.has("--label")) // it was ignored
+            throw std::invalid_argument(in + ": --label applies to labelled voxel volumes (.npy); this is a mesh");
         const mss::TriangleMesh mesh = mss::readMesh(in);
         const double tRead = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        r = mss::generate(mesh, resolution(a), o, integer(a, "--supersample", 1));
+        r = namingInput(in, [&] { return mss::generate(mesh, resolution(a), o, integer(a, "--supersample", 1)); });
         r.metrics.secondsRead = tRead;
     }
     for (const std::string& w : r.metrics.warnings)
@@ -342,7 +356,7 @@ int cmdCompare(const Args& a) {
     std::vector<mss::Comparison> rows;
     for (const std::string& f : files) {
         const mss::SphereSet s = mss::readSpheres(f, clump);
-        rows.push_back(voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o));
+        rows.push_back(namingInput(in, [&] { return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o); }));
     }
     if (rows.size() == 1 && !a.has("--csv"))
         printComparison(rows[0]);

@@ -88,6 +88,8 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     supersample = integer(f, 'supersample', supersample, 1, 16)
     s = _source(source, voxelSize, origin, label)
     if isinstance(s, _Mesh):
+        if label is not None:  # it was ignored
+            raise ValueError('generate: %s: label applies to labelled voxel volumes; this is a mesh' % s.name)
         res = {}
         if voxelSize is not None and resolution is not None:
             raise ValueError('generate: give voxelSize or resolution, not both')

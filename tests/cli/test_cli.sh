@@ -155,6 +155,10 @@ for lim in nan -1 1e12 inf; do
 done
 expect_error "compare --offset 1e300 (the bug: D 0, a perfect score)" "offset must be in .0, 1. voxel, got 1e+300" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" --offset 1e300
 expect_error "curve --points 0" "points must be in" "$MSS" curve "$DATA/ellipsoid_2_1_1.stl" --spheres 2:4 --points 0 -o "$TMP/c.png"
+printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' > "$TMP/flat.stl"
+expect_error "a flat solid names its file (generate)" "flat.stl: voxelizeMesh: the solid is flat" "$MSS" generate "$TMP/flat.stl" --spheres 3 -o "$TMP/x.csv"
+expect_error "a flat solid names its file (compare)" "flat.stl: " "$MSS" compare "$TMP/flat.stl" "$TMP/e.csv"
+expect_error "--label on a mesh (the bug: ignored)" "label applies to labelled voxel volumes" "$MSS" generate "$DATA/cube.stl" --spheres 3 --label 2 -o "$TMP/x.csv"
 expect_error "/dev/zero as a sphere file" "not a regular file (a character device)" timeout 20 "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" /dev/zero
 
 echo "$pass passed, $fail failed"

@@ -60,6 +60,10 @@ class Generate(unittest.TestCase):
             self.assertIn('label', str(ctx.exception))
         self.assertIn(len(generate(a, nSpheres=2, label=3)), (1, 2))
 
+    def test_a_label_for_a_mesh_is_refused(self):
+        # the bug: --label (label=) was ignored for meshes
+        self.refused(ValueError, 'label applies to labelled voxel volumes', nSpheres=3, resolution=20, label=2)
+
     def test_negative_values_are_not_a_grain(self):
         # the bug: an int16 volume of all -1 was taken as one grain
         with self.assertRaises(ValueError) as ctx:
