@@ -3,7 +3,8 @@
 #  1. ctest on the release build: C++ unit tests, CLI and bad-input corpus, Python (plain and inside real YADE),
 #     the examples (short runs), replays of the fuzz corpus;
 #  2. the C++ tests, CLI, corpus and fuzz replays again under AddressSanitizer + UndefinedBehaviorSanitizer;
-#  3. every fuzz target (libFuzzer, clang) for MSS_FUZZ_SECONDS (default 45) each, from its seed corpus.
+#  3. every fuzz target (libFuzzer, clang) for MSS_FUZZ_SECONDS (default 45) each, from its seed corpus, inputs up
+#     to 1 MB, with the format's words (fuzz/dict/) where there is a dictionary.
 # MSS_QUICK=1 runs step 1 only.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,8 +30,10 @@ total=0
 for t in stl obj off ply npy spheres generate; do
   mkdir -p "$work/$t"
   cp fuzz/corpus/$t/* "$work/$t/"
+  dict=()
+  [ -f "fuzz/dict/$t.dict" ] && dict=(-dict="$ROOT/fuzz/dict/$t.dict")
   (cd "$work" && "$ROOT/build-fuzz/fuzz_$t" -max_total_time="${MSS_FUZZ_SECONDS:-45}" -rss_limit_mb=2048 \
-    -max_len=1048576 -timeout=10 -print_final_stats=1 "$work/$t" > "$work/$t.log" 2>&1) || {
+    "${dict[@]}" -max_len=1048576 -timeout=10 -print_final_stats=1 "$work/$t" > "$work/$t.log" 2>&1) || {
     echo "fuzz_$t found a problem:"; grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$work/$t.log" | head
     mkdir -p fuzz/found && cp "$work"/crash-* "$work"/oom-* "$work"/timeout-* fuzz/found/ 2>/dev/null || true
     echo "the inputs are in fuzz/found: add them to fuzz/regressions/$t and fix"; exit 1; }
