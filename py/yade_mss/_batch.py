@@ -313,31 +313,87 @@ def _executor(workers, scheduler, security=None):
         return run, client.close
     if workers == 1:
         return (lambda tasks: (runGrain(t) for t in tasks)), (lambda: None)
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-    # fork: a user's script needs no __main__ guard (spawn would import it again in every child). A child runs on
-    # one OpenMP thread throughout (generation, previews): GNU OpenMP hangs in a forked child that asks for the
-    # parent's thread pool (it did in a preview's scoring once generate stopped leaving 1 thread behind).
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context('fork'),
-                               initializer=_oneThread)
+    pool = _LocalPool(workers)
+    return pool.run, pool.close
 
-    from concurrent.futures.process import BrokenProcessPool
 
-    def run(tasks):
-        futures = {pool.submit(runGrain, t): t for t in tasks}
-        for fut in as_completed(futures):
-            try:
-                yield fut.result()
-            except BrokenProcessPool:  # a worker was killed (or ran out of memory): its grains fail, the batch ends
-                yield _failedRow(futures[fut], 'a worker process died (killed, or out of memory) before this grain '
-                                 'was done; run the batch again to retry it')
+def _workerLoop(conn):
+    """A local worker: grains in, rows and results out, over its own pipe, until it gets None."""
+    _oneThread()
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):
+            return
+        if task is None:
+            return
+        conn.send(runGrain(task))
 
-    def close():  # at once: a grain being computed is lost, every finished one is already written
-        for proc in list(getattr(pool, '_processes', {}).values()):
+
+class _LocalPool(object):
+    """Worker processes, each with a pipe of its own (not concurrent.futures' shared result queue: a worker
+    killed while it wrote there left a part of a message that blocked every reader, and the batch hung). A
+    worker that dies fails the grain it had; the others go on; the batch always ends. Forked: a user's script
+    needs no __main__ guard (spawn would import it again in every child); each child runs on one OpenMP thread
+    (GNU OpenMP hangs in a forked child that asks for the parent's thread pool)."""
+
+    def __init__(self, n):
+        import multiprocessing
+        ctx = multiprocessing.get_context('fork')
+        self.workers = []
+        for _ in range(n):
+            mine, theirs = ctx.Pipe(duplex=True)
+            proc = ctx.Process(target=_workerLoop, args=(theirs,), daemon=True)
+            proc.start()
+            theirs.close()  # only the child holds its end: its death is EOF here
+            self.workers.append([proc, mine, None])  # process, pipe, the task it has
+
+    def run(self, tasks):
+        from multiprocessing.connection import wait
+        todo = list(reversed(tasks))
+        live = list(self.workers)
+
+        def give(w):
+            if todo:
+                w[2] = todo.pop()
+                try:
+                    w[1].send(w[2])
+                except (OSError, ValueError):
+                    pass  # dead already: wait() sees its sentinel
+        for w in live:
+            give(w)
+        while any(w[2] is not None for w in live):
+            ready = wait([w[1] for w in live if w[2] is not None] + [w[0].sentinel for w in live if w[2] is not None])
+            for w in list(live):
+                if w[2] is None or not (w[1] in ready or w[0].sentinel in ready):
+                    continue
+                try:
+                    result = w[1].recv() if w[1].poll() else None
+                except (EOFError, OSError):
+                    result = None
+                if result is None and w[0].is_alive() and w[1] not in ready:
+                    continue
+                if result is None:  # killed (or out of memory) before its grain was done
+                    yield _failedRow(w[2], 'a worker process died (killed, or out of memory) before this grain '
+                                     'was done; run the batch again to retry it')
+                    w[2] = None
+                    live.remove(w)
+                    if not live:  # nobody left: the rest fail too, the batch ends
+                        while todo:
+                            yield _failedRow(todo.pop(), 'every worker process died; run the batch again')
+                    continue
+                w[2] = None
+                yield result
+                give(w)
+
+    def close(self):
+        """At once: a grain being computed is lost, every finished one is already written."""
+        for proc, conn, task in self.workers:
             if proc.is_alive():
                 proc.terminate()
-        pool.shutdown(wait=False, cancel_futures=True)
-    return run, close
+        for proc, conn, task in self.workers:
+            proc.join(timeout=5)
+            conn.close()
 
 
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,

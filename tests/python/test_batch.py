@@ -152,9 +152,9 @@ class Integrity(unittest.TestCase):
         asked = []
         real = B._executor
 
-        def spy(workers, scheduler):
+        def spy(workers, scheduler, security=None):
             asked.append(workers)
-            return real(workers, scheduler)
+            return real(workers, scheduler, security)
         B._executor = spy
         try:
             with tempfile.TemporaryDirectory() as d:
