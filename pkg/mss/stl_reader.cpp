@@ -206,6 +206,16 @@ TriangleMesh readAsciiStl(const std::string& path, const FileBytes& buf) {
         mergeCorners(0);
     }
     if (meshes[0].triangles.empty() && meshes[1].triangles.empty()) fail(path, "ASCII STL has no facets");
+    { // a file cut after a whole facet parsed, and passed as an open mesh: every writer ends with endsolid
+        const char* last = e;
+        while (last > b && std::isspace(static_cast<unsigned char>(last[-1]))) --last; // trailing blanks
+        const std::size_t tail = std::min<std::size_t>(std::size_t(last - b), 4096);
+        const std::string end(last - tail, tail);
+        const std::size_t at = end.rfind("endsolid");
+        // the last line must be that endsolid (its solid's name may hold any word)
+        if (at == std::string::npos || end.find('\n', at) != std::string::npos)
+            fail(path, "ASCII STL ends without 'endsolid' (truncated?)");
+    }
     TriangleMesh mesh = std::move(meshes[0]);
     VertexMerger merge(mesh, mesh.vertices.size() + meshes[1].vertices.size());
     std::vector<int> global(meshes[1].vertices.size());
@@ -240,9 +250,11 @@ TriangleMesh readStl(const std::string& path) {
     } else if (!startsSolid) {
         fail(path, "file too short for binary STL (" + std::to_string(size) + " bytes, need at least 84)");
     }
+    // ASCII STL is text: control bytes mark a binary file; bytes of 0x80 and above are UTF-8 (a solid's name in
+    // another script: "solid Größe" was refused)
     for (std::size_t i = 0; i < std::min<std::size_t>(size, 1 << 16); ++i) {
         const unsigned char c = static_cast<unsigned char>(buf[i]);
-        if (!(std::isprint(c) || std::isspace(c)))
+        if ((c < 0x20 && !std::isspace(c)) || c == 0x7f)
             fail(path,
                  "neither binary STL (size does not match its triangle count) nor ASCII STL (binary bytes)");
     }

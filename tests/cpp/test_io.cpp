@@ -573,3 +573,26 @@ TEST(SphereIo, test_first_row_dropped_and_ids_merged) {
     std::remove(p.c_str());
 }
 
+// The bug: an ASCII STL whose solid is named in UTF-8 was refused as "binary bytes".
+TEST(MeshIo, test_utf8_solid_name_was_binary) {
+    const std::string p = tempPath("utf8.stl");
+    writeText(p, "solid Gr\xc3\xb6\xc3\x9f" "e\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                 "vertex 0 1 0\nendloop\nendfacet\nendsolid Gr\xc3\xb6\xc3\x9f" "e\n");
+    EXPECT_EQ(readMesh(p).triangles.size(), 1u);
+    writeText(p, std::string("solid x\n\x01\x02 binary", 17));
+    expectError([&] { readMesh(p); }, "binary bytes");
+    std::remove(p.c_str());
+}
+
+// The bug: an ASCII STL cut after a whole facet passed, with an "open mesh" warning.
+TEST(MeshIo, test_truncated_ascii_stl_passed_as_open) {
+    const std::string p = tempPath("cut.stl");
+    const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+                              "endfacet\n";
+    writeText(p, "solid t\n" + facet + facet);
+    expectError([&] { readMesh(p); }, "ends without 'endsolid'");
+    writeText(p, "solid t\n" + facet + "endsolid t\n");
+    EXPECT_EQ(readMesh(p).triangles.size(), 1u);
+    std::remove(p.c_str());
+}
+
