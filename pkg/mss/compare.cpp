@@ -117,8 +117,11 @@ void massFigures(Comparison& c, const SphereSet& s, const MassProperties& grain,
 void checkFrame(const Comparison& c, const CompareOptions& o) {
     if (!o.checkFrame || o.align != Align::None || c.insideBox >= 0.5) return;
     std::ostringstream os;
-    os << "compare: only " << std::round(1000.0 * c.insideBox) / 10.0
-       << "% of the spheres' volume lies inside the grain's bounding box: the file is in another frame? "
+    if (std::isfinite(c.insideBox))
+        os << "compare: only " << std::round(1000.0 * c.insideBox) / 10.0 << "% of the spheres' volume lies";
+    else // "-nan%" said nothing
+        os << "compare: the spheres' volume could not be located (coordinates too large to sample), none of it";
+    os << " inside the grain's bounding box: the file is in another frame? "
           "register it with --align bbox, centroid or principal (align= in Python)";
     throw std::invalid_argument(os.str());
 }

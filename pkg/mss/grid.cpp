@@ -37,9 +37,12 @@ void checkGridSize(const char* where, const std::array<long long, 3>& dims, std:
         std::ostringstream os;
         os.precision(3);
         os << where << ": a grid of " << dims[0] << "x" << dims[1] << "x" << dims[2] << " voxels would need "
-           << static_cast<double>(bytes / (1024.0L * 1024.0L * 1024.0L)) << " GiB, over the limit of "
-           << static_cast<double>(memoryLimit) / (1024.0 * 1024.0 * 1024.0)
-           << " GiB; choose a coarser resolution (about "
+           << static_cast<double>(bytes / (1024.0L * 1024.0L * 1024.0L)) << " GiB";
+        if (bytes > static_cast<long double>(memoryLimit))
+            os << ", over the limit of " << static_cast<double>(memoryLimit) / (1024.0 * 1024.0 * 1024.0) << " GiB";
+        else
+            os << " and has over 2^31 - 1 voxels, more than a grid can index";
+        os << "; choose a coarser resolution (about "
            << static_cast<double>(std::cbrt(static_cast<double>(memoryLimit) / bytesPerVoxel / voxels))
            << " times the voxel count along each edge would fit)";
         throw std::invalid_argument(os.str());

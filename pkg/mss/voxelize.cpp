@@ -60,8 +60,11 @@ GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res,
         std::ostringstream os;
         os.precision(4);
         os << w << ": a grid of " << dims[0] << "x" << dims[1] << "x" << dims[2] << " voxels would need "
-           << static_cast<double>(bytesFor(g.h) / 1073741824.0L) << " GiB, over the limit of "
-           << static_cast<double>(res.memoryLimit) / 1073741824.0 << " GiB";
+           << static_cast<double>(bytesFor(g.h) / 1073741824.0L) << " GiB";
+        if (bytesFor(g.h) > static_cast<long double>(res.memoryLimit))
+            os << ", over the limit of " << static_cast<double>(res.memoryLimit) / 1073741824.0 << " GiB";
+        else // what stops it is the count, not the memory ("931 GiB, over the limit of 1.02e+03 GiB" said)
+            os << " and has over 2^31 - 1 voxels, more than a grid can index";
         long long lo = 0, hi = hasRes ? res.resolution : static_cast<long long>(std::ceil(shortest / g.h));
         while (lo < hi) { // largest resolution that fits
             const long long mid = (lo + hi + 1) / 2;

@@ -22,7 +22,7 @@ import urllib.parse
 
 import numpy as np
 
-from ._files import atomicWrite, parseOrigin
+from ._files import atomicWrite, parseOrigin, requireRegularFile
 from ._generate import GENERATE_OPTIONS
 from ._results import MssResult
 from ._specimen import _VOLUME_EXT, readVolume, regions
@@ -54,6 +54,7 @@ def _cropDigest(crop, voxelSize, origin):
 
 
 def _fileDigest(path):
+    requireRegularFile('batch', path)
     h = hashlib.sha256()
     with open(path, 'rb') as f:
         for block in iter(lambda: f.read(1 << 20), b''):

@@ -45,6 +45,20 @@ def atomicWrite(path, write, where):
         raise
 
 
+def requireRegularFile(where, path):
+    """Refuses a path that is not a regular file, by name (a FIFO would block the reader; a device never end). A
+    missing path passes: the reader says it cannot open it."""
+    try:
+        st = os.stat(path)
+    except OSError:
+        return
+    if not stat.S_ISREG(st.st_mode):
+        kind = ('a directory' if stat.S_ISDIR(st.st_mode) else 'a FIFO' if stat.S_ISFIFO(st.st_mode) else
+                'a character device' if stat.S_ISCHR(st.st_mode) else 'a block device' if stat.S_ISBLK(st.st_mode)
+                else 'a socket' if stat.S_ISSOCK(st.st_mode) else 'not a file')
+        raise ValueError('%s: %s: not a regular file (%s)' % (where, os.fspath(path), kind))
+
+
 class cppPath(object):
     """A path the C++ readers can take (Boost.Python passes UTF-8 text): *path* itself, or, for a name whose
     bytes are not UTF-8, a link of a UTF-8 name (the same extension) in a private temporary folder, while the

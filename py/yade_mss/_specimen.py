@@ -10,6 +10,7 @@ import os
 import numpy as np
 
 from ._clumps import randomRotation
+from ._files import requireRegularFile
 
 _VOLUME_EXT = ('.npy', '.tif', '.tiff')
 
@@ -18,6 +19,7 @@ def readVolume(path):
     """An integer or boolean volume from a .npy file or a TIFF stack. Raises ValueError naming the problem."""
     path = os.fspath(path)
     ext = os.path.splitext(path)[1].lower()
+    requireRegularFile('readVolume', path)
     try:
         if ext == '.npy':
             a = np.load(path, mmap_mode='r', allow_pickle=False)

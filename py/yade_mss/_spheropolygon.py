@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from . import _mss
-from ._files import atomicWrite, parseOrigin
+from ._files import atomicWrite, parseOrigin, requireRegularFile
 
 _DEFAULT_RADII = (0.0025, 0.004, 0.006, 0.01, 0.02)  # fractions of the particle's size
 
@@ -26,6 +26,7 @@ def readImage(path, threshold=None):
     grey below *threshold*, default 0.5). PNG rows run down the picture; here j runs up (element [i, j])."""
     path = os.fspath(path)
     ext = os.path.splitext(path)[1].lower()
+    requireRegularFile('readImage', path)
     if ext == '.npy':
         a = np.load(path, allow_pickle=False)
         if a.ndim != 2:

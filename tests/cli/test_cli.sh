@@ -159,6 +159,12 @@ printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nver
 expect_error "a flat solid names its file (generate)" "flat.stl: voxelizeMesh: the solid is flat" "$MSS" generate "$TMP/flat.stl" --spheres 3 -o "$TMP/x.csv"
 expect_error "a flat solid names its file (compare)" "flat.stl: " "$MSS" compare "$TMP/flat.stl" "$TMP/e.csv"
 expect_error "--label on a mesh (the bug: ignored)" "label applies to labelled voxel volumes" "$MSS" generate "$DATA/cube.stl" --spheres 3 --label 2 -o "$TMP/x.csv"
+mkfifo "$TMP/pipe.npy" "$TMP/pipe.png"
+expect_error "a FIFO to batch (the bug: a hang)" "not a regular file (a FIFO)" timeout 60 "$MSS" batch "$TMP/pipe.npy" -o "$TMP/bo" --spheres 3
+expect_error "a FIFO to spheropolygon (the bug: a hang)" "not a regular file (a FIFO)" timeout 60 "$MSS" spheropolygon "$TMP/pipe.png" -o "$TMP/sp.json"
+expect_error "over 2^31 voxels says so (the bug: '931 GiB, over the limit of 1.02e+03 GiB')" "more than a grid can index" "$MSS" generate "$DATA/cube.stl" --spheres 3 --resolution 1300 --memory-limit 100000 -o "$TMP/x.csv"
+printf 'x,y,z,r\n1e300,0,0,1e200\n' > "$TMP/huge.csv"
+expect_error "spheres too large to sample (the bug: 'only -nan%')" "could not be located" "$MSS" compare "$DATA/cube.stl" "$TMP/huge.csv"
 expect_error "/dev/zero as a sphere file" "not a regular file (a character device)" timeout 20 "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" /dev/zero
 
 echo "$pass passed, $fail failed"
