@@ -322,7 +322,15 @@ private:
 
 /// The elements' data: vertices (x, y, z) and faces (a list of vertex indices); other elements and
 /// properties are read past.
-void readPlyElement(const std::string& path, const PlyElement& e, PlyValues& value, TriangleMesh& mesh) {
+/// The faces of a PLY file, kept until every vertex is read (a file may list its faces first): their vertex
+/// indices one after another, and where each face starts.
+struct PlyFaces {
+    std::vector<long long> indices;
+    std::vector<std::size_t> starts;
+};
+
+void readPlyElement(const std::string& path, const PlyElement& e, PlyValues& value, TriangleMesh& mesh,
+                    PlyFaces& faces) {
     int ix = -1, iy = -1, iz = -1, il = -1;
     for (int k = 0; k < static_cast<int>(e.props.size()); ++k) {
         const PlyProperty& p = e.props[static_cast<std::size_t>(k)];
@@ -363,7 +371,8 @@ void readPlyElement(const std::string& path, const PlyElement& e, PlyValues& val
                 fail(path, "PLY vertex " + std::to_string(n) + " has a non-finite coordinate");
             mesh.vertices.push_back(v);
         } else if (e.name == "face") {
-            addPolygon(mesh, poly, path, "PLY face " + std::to_string(n));
+            faces.starts.push_back(faces.indices.size());
+            faces.indices.insert(faces.indices.end(), poly.begin(), poly.end());
         }
     }
 }
@@ -373,7 +382,14 @@ TriangleMesh readPly(const std::string& path, const FileBytes& buf) {
     const PlyHeader h = readPlyHeader(path, buf, pos);
     PlyValues value(path, buf, pos, h.format);
     TriangleMesh mesh;
-    for (const PlyElement& e : h.elements) readPlyElement(path, e, value, mesh);
+    PlyFaces faces;
+    for (const PlyElement& e : h.elements) readPlyElement(path, e, value, mesh, faces);
+    std::vector<long long> poly;
+    for (std::size_t f = 0; f < faces.starts.size(); ++f) {
+        const std::size_t end = f + 1 < faces.starts.size() ? faces.starts[f + 1] : faces.indices.size();
+        poly.assign(faces.indices.begin() + long(faces.starts[f]), faces.indices.begin() + long(end));
+        addPolygon(mesh, poly, path, "PLY face " + std::to_string(f));
+    }
     if (mesh.triangles.empty()) fail(path, "PLY file has no faces");
     return mesh;
 }

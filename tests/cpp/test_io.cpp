@@ -596,3 +596,19 @@ TEST(MeshIo, test_truncated_ascii_stl_passed_as_open) {
     std::remove(p.c_str());
 }
 
+// The bug: a valid PLY that lists its faces before its vertices was refused (indices beyond the vertices read).
+TEST(MeshIo, test_ply_faces_first_was_refused) {
+    const std::string p = tempPath("faces_first.ply");
+    writeText(p, "ply\nformat ascii 1.0\nelement face 4\nproperty list uchar int vertex_indices\n"
+                 "element vertex 4\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                 "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n");
+    const TriangleMesh m = readMesh(p);
+    EXPECT_EQ(m.vertices.size(), 4u);
+    EXPECT_EQ(m.triangles.size(), 4u);
+    writeText(p, "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
+                 "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                 "3 0 1 7\n0 0 0\n1 0 0\n0 1 0\n");
+    expectError([&] { readMesh(p); }, "PLY face 0");
+    std::remove(p.c_str());
+}
+
