@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +20,6 @@
 #include <malloc.h>
 #include <map>
 #include <sched.h>
-#include <csignal>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -96,7 +96,8 @@ Unpinned& unpinned() {
     return u;
 }
 
-/// Whether this is the build tree's command (not the installed one): then its Python package is the build tree's.
+/// Whether this is the build tree's command (not the installed one): then its Python package is the build
+/// tree's.
 bool runFromBuildTree() {
     char exe[4096];
     const ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
@@ -110,9 +111,10 @@ bool runFromBuildTree() {
 }
 
 /// Runs `python3 -m yade_mss COMMAND ...` (Debian's python3): the commands drawn with matplotlib (`mss
-/// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's command puts
-/// the build tree's package first, so an uninstalled build draws with its own code; the installed command runs
-/// the installed package. The child dies with this process (a killed `mss batch` leaves no batch running).
+/// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's command
+/// puts the build tree's package first, so an uninstalled build draws with its own code; the installed
+/// command runs the installed package. The child dies with this process (a killed `mss batch` leaves no batch
+/// running).
 /// @return the exit status.
 int runPython(const std::vector<std::string>& args) {
     std::string path;
@@ -150,8 +152,8 @@ void writeTextAtomically(const std::string& path, const std::string& text) {
     mss::detail::writeFileAtomically("mss", path, text);
 }
 
-/// Runs @p f; an error that does not name the input file gets it in front (the core's "the solid is flat" does
-/// not know the file).
+/// Runs @p f; an error that does not name the input file gets it in front (the core's "the solid is flat"
+/// does not know the file).
 template <class F> auto namingInput(const std::string& in, F&& f) -> decltype(f()) {
     try {
         return f();
@@ -256,10 +258,12 @@ int cmdGenerate(const Args& a) {
         r.metrics.secondsRead = tRead;
     } else {
         if (a.has("--label")) // it was ignored
-            throw std::invalid_argument(in + ": --label applies to labelled voxel volumes (.npy); this is a mesh");
+            throw std::invalid_argument(in +
+                                        ": --label applies to labelled voxel volumes (.npy); this is a mesh");
         const mss::TriangleMesh mesh = mss::readMesh(in);
         const double tRead = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        r = namingInput(in, [&] { return mss::generate(mesh, resolution(a), o, integer(a, "--supersample", 1)); });
+        r = namingInput(
+            in, [&] { return mss::generate(mesh, resolution(a), o, integer(a, "--supersample", 1)); });
         r.metrics.secondsRead = tRead;
     }
     for (const std::string& w : r.metrics.warnings)
@@ -356,7 +360,8 @@ int cmdCompare(const Args& a) {
     std::vector<mss::Comparison> rows;
     for (const std::string& f : files) {
         const mss::SphereSet s = mss::readSpheres(f, clump);
-        rows.push_back(namingInput(in, [&] { return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o); }));
+        rows.push_back(namingInput(
+            in, [&] { return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o); }));
     }
     if (rows.size() == 1 && !a.has("--csv"))
         printComparison(rows[0]);

@@ -21,7 +21,8 @@ namespace {
 void writeFileAtomically(const std::string& where, const std::string& path, const std::string& text) {
     struct stat st {};
     if (::lstat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
-        fail(where, path, "exists and is not a regular file (a link, device, FIFO or directory): not replaced");
+        fail(where, path,
+             "exists and is not a regular file (a link, device, FIFO or directory): not replaced");
     const std::size_t slash = path.rfind('/');
     const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash == 0 ? 1 : slash);
     const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);

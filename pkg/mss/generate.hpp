@@ -40,7 +40,7 @@ struct GenerateOptions {
     double deltaMin = 1.0;   ///< minimal distance between sphere centres, voxels (paper section 3.4, δmin)
     Method method = Method::Optimized;
     bool keepSymmetry = true; ///< optimized: detect mirror planes of the voxelised grain and keep them
-    int threads = 0;          ///< OpenMP threads, 0..kMaxThreads; 0 = the default. The result does not depend on it.
+    int threads = 0; ///< OpenMP threads, 0..kMaxThreads; 0 = the default. The result does not depend on it.
     /// No sphere protrudes from the solid (paper section 3.5, exactly): a mesh's spheres get radii at most
     /// the exact distance from their centre to the surface, a sphere whose centre is outside is not placed; a
     /// voxel volume's spheres stay inside the union of its solid voxels (exact distance to the nearest

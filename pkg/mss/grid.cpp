@@ -39,7 +39,8 @@ void checkGridSize(const char* where, const std::array<long long, 3>& dims, std:
         os << where << ": a grid of " << dims[0] << "x" << dims[1] << "x" << dims[2] << " voxels would need "
            << static_cast<double>(bytes / (1024.0L * 1024.0L * 1024.0L)) << " GiB";
         if (bytes > static_cast<long double>(memoryLimit))
-            os << ", over the limit of " << static_cast<double>(memoryLimit) / (1024.0 * 1024.0 * 1024.0) << " GiB";
+            os << ", over the limit of " << static_cast<double>(memoryLimit) / (1024.0 * 1024.0 * 1024.0)
+               << " GiB";
         else
             os << " and has over 2^31 - 1 voxels, more than a grid can index";
         os << "; choose a coarser resolution (about "

@@ -8,9 +8,10 @@
 
 namespace mss::detail {
 
-/// Refuses a path that is not a regular file, by name: a FIFO would block the reader at open, a character device
-/// (/dev/zero) never end, a directory or socket has no bytes to read. A missing path passes (the reader says it
-/// cannot open it). Throws std::invalid_argument("WHERE: PATH: not a regular file (a FIFO)").
+/// Refuses a path that is not a regular file, by name: a FIFO would block the reader at open, a character
+/// device
+/// (/dev/zero) never end, a directory or socket has no bytes to read. A missing path passes (the reader says
+/// it cannot open it). Throws std::invalid_argument("WHERE: PATH: not a regular file (a FIFO)").
 inline void requireRegularFile(const std::string& where, const std::string& path) {
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;

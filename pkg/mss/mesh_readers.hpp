@@ -13,7 +13,6 @@
 #include <string>
 #include <vector>
 
-
 namespace mss::detail {
 
 /// The readers' error: names the file and the problem.
@@ -21,9 +20,9 @@ namespace mss::detail {
     throw std::invalid_argument("readMesh: " + path + ": " + what);
 }
 
-/// A whole file in memory, read-only, read in one piece (a byte-by-byte stream iterator took a third of reading
-/// an ASCII STL). Not mapped: a file that shrinks while mapped kills the reader with SIGBUS; a read just stops
-/// short. Empty for a file that is not a regular file or cannot be read.
+/// A whole file in memory, read-only, read in one piece (a byte-by-byte stream iterator took a third of
+/// reading an ASCII STL). Not mapped: a file that shrinks while mapped kills the reader with SIGBUS; a read
+/// just stops short. Empty for a file that is not a regular file or cannot be read.
 class FileBytes {
 public:
     explicit FileBytes(const std::string& path) {
@@ -41,15 +40,9 @@ public:
     FileBytes(const FileBytes&) = delete;
     FileBytes& operator=(const FileBytes&) = delete;
 
-    const char* data() const {
-        return data_;
-    }
-    std::size_t size() const {
-        return size_;
-    }
-    char operator[](std::size_t i) const {
-        return data_[i];
-    }
+    const char* data() const { return data_; }
+    std::size_t size() const { return size_; }
+    char operator[](std::size_t i) const { return data_[i]; }
 
 private:
     const char* data_ = nullptr;

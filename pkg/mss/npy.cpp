@@ -1,10 +1,10 @@
 #include "mss/npy.hpp"
 #include "mss/input_file.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
-#include <cctype>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -87,8 +87,8 @@ NpyHeader readNpyHeader(const std::string& path, std::ifstream& in, std::streamo
     }
     if (static_cast<std::streamoff>(pre + headerLen) > size) fail(path, "truncated header");
     if (headerLen > kMaxNpyHeader)
-        fail(path, "header of " + std::to_string(headerLen) + " bytes (at most " + std::to_string(kMaxNpyHeader) +
-                       ": not a volume's)");
+        fail(path, "header of " + std::to_string(headerLen) + " bytes (at most " +
+                       std::to_string(kMaxNpyHeader) + ": not a volume's)");
     std::string header(headerLen, '\0');
     in.read(header.data(), static_cast<std::streamsize>(headerLen));
     if (in.gcount() != static_cast<std::streamsize>(headerLen)) fail(path, "truncated header");

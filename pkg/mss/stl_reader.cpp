@@ -250,8 +250,8 @@ TriangleMesh readStl(const std::string& path) {
     } else if (!startsSolid) {
         fail(path, "file too short for binary STL (" + std::to_string(size) + " bytes, need at least 84)");
     }
-    // ASCII STL is text: control bytes mark a binary file; bytes of 0x80 and above are UTF-8 (a solid's name in
-    // another script: "solid Größe" was refused)
+    // ASCII STL is text: control bytes mark a binary file; bytes of 0x80 and above are UTF-8 (a solid's name
+    // in another script: "solid Größe" was refused)
     for (std::size_t i = 0; i < std::min<std::size_t>(size, 1 << 16); ++i) {
         const unsigned char c = static_cast<unsigned char>(buf[i]);
         if ((c < 0x20 && !std::isspace(c)) || c == 0x7f)

@@ -1,7 +1,7 @@
 // Sphere sets in legacy VTK files (what CLUMP's outputVTK= and our own .vtk write): POLYDATA points with a
 // radius array, ASCII or BINARY (big-endian, as the legacy format prescribes).
-#include "mss/spheres.hpp"
 #include "mss/input_file.hpp"
+#include "mss/spheres.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -436,7 +436,8 @@ TEST(Npy, BadArraysGetClearErrors) {
 TEST(Npy, test_long_header_overflowed_the_stack) {
     const std::string p = tempPath("long.npy");
     for (std::size_t pad : {30000u, 60000u}) {
-        std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (2, 2, 2), }" + std::string(pad, ' ');
+        std::string header =
+            "{'descr': '|b1', 'fortran_order': False, 'shape': (2, 2, 2), }" + std::string(pad, ' ');
         header += '\n';
         std::ofstream out(p, std::ios::binary);
         out.write("\x93NUMPY\x01\x00", 8);
@@ -446,7 +447,7 @@ TEST(Npy, test_long_header_overflowed_the_stack) {
         out.close();
         EXPECT_EQ(readNpy(p)(1, 1, 1), 1); // long, but a header: read
     }
-    {   // version 2: a length of 16 MB, refused by its size
+    { // version 2: a length of 16 MB, refused by its size
         std::ofstream out(p, std::ios::binary);
         out.write("\x93NUMPY\x02\x00", 8);
         const std::uint32_t len = 1u << 24;
@@ -480,7 +481,8 @@ TEST(Npy, HeadersOfEitherQuoteAndMalformedOnes) {
     std::remove(p.c_str());
 }
 
-// The bug: a FIFO as input hung generate, info and compare; /dev/zero as a sphere file read until memory ran out.
+// The bug: a FIFO as input hung generate, info and compare; /dev/zero as a sphere file read until memory ran
+// out.
 TEST(Files, test_fifo_and_devices_hung_the_readers) {
     const std::string fifo = tempPath("pipe.stl");
     std::remove(fifo.c_str());
@@ -550,13 +552,15 @@ TEST(SpheresIo, ClumpMatlabFormatWithCrlf) {
     std::remove(p.c_str());
 }
 
-// The bugs: the first sphere row was dropped when it began with a UTF-8 BOM, nan, inf or Infinity (taken for a
-// header); clump ids 1.5 / 2.5, -1 / -2 and 1e16 were merged with the spheres without an id.
+// The bugs: the first sphere row was dropped when it began with a UTF-8 BOM, nan, inf or Infinity (taken for
+// a header); clump ids 1.5 / 2.5, -1 / -2 and 1e16 were merged with the spheres without an id.
 TEST(SphereIo, test_first_row_dropped_and_ids_merged) {
     const std::string p = tempPath("rows.txt");
-    writeText(p, "\xEF\xBB\xBF" "1 2 3 0.5\n4 5 6 0.25\n");
+    writeText(p, "\xEF\xBB\xBF"
+                 "1 2 3 0.5\n4 5 6 0.25\n");
     EXPECT_EQ(readSpheres(p).size(), 2u);
-    writeText(p, "\xEF\xBB\xBF" "x,y,z,r\n1,2,3,0.5\n");
+    writeText(p, "\xEF\xBB\xBF"
+                 "x,y,z,r\n1,2,3,0.5\n");
     EXPECT_EQ(readSpheres(p).size(), 1u); // a header after the mark is still a header
     for (const char* first : {"nan", "inf", "Infinity", "-inf"}) {
         writeText(p, std::string(first) + " 2 3 0.5\n4 5 6 0.25\n");
@@ -576,8 +580,10 @@ TEST(SphereIo, test_first_row_dropped_and_ids_merged) {
 // The bug: an ASCII STL whose solid is named in UTF-8 was refused as "binary bytes".
 TEST(MeshIo, test_utf8_solid_name_was_binary) {
     const std::string p = tempPath("utf8.stl");
-    writeText(p, "solid Gr\xc3\xb6\xc3\x9f" "e\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
-                 "vertex 0 1 0\nendloop\nendfacet\nendsolid Gr\xc3\xb6\xc3\x9f" "e\n");
+    writeText(p, "solid Gr\xc3\xb6\xc3\x9f"
+                 "e\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+                 "vertex 0 1 0\nendloop\nendfacet\nendsolid Gr\xc3\xb6\xc3\x9f"
+                 "e\n");
     EXPECT_EQ(readMesh(p).triangles.size(), 1u);
     writeText(p, std::string("solid x\n\x01\x02 binary", 17));
     expectError([&] { readMesh(p); }, "binary bytes");
@@ -587,8 +593,9 @@ TEST(MeshIo, test_utf8_solid_name_was_binary) {
 // The bug: an ASCII STL cut after a whole facet passed, with an "open mesh" warning.
 TEST(MeshIo, test_truncated_ascii_stl_passed_as_open) {
     const std::string p = tempPath("cut.stl");
-    const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
-                              "endfacet\n";
+    const std::string facet =
+        "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\n"
+        "endfacet\n";
     writeText(p, "solid t\n" + facet + facet);
     expectError([&] { readMesh(p); }, "ends without 'endsolid'");
     writeText(p, "solid t\n" + facet + "endsolid t\n");
@@ -596,7 +603,8 @@ TEST(MeshIo, test_truncated_ascii_stl_passed_as_open) {
     std::remove(p.c_str());
 }
 
-// The bug: a valid PLY that lists its faces before its vertices was refused (indices beyond the vertices read).
+// The bug: a valid PLY that lists its faces before its vertices was refused (indices beyond the vertices
+// read).
 TEST(MeshIo, test_ply_faces_first_was_refused) {
     const std::string p = tempPath("faces_first.ply");
     writeText(p, "ply\nformat ascii 1.0\nelement face 4\nproperty list uchar int vertex_indices\n"
@@ -611,4 +619,3 @@ TEST(MeshIo, test_ply_faces_first_was_refused) {
     expectError([&] { readMesh(p); }, "PLY face 0");
     std::remove(p.c_str());
 }
-
