@@ -397,12 +397,10 @@ TriangleMesh readPly(const std::string& path, const FileBytes& buf) {
 } // namespace
 
 TriangleMesh readMesh(const std::string& path) {
+    detail::requireRegularFile("readMesh", path); // first: a directory or device says what it is
     const std::string ext = fileExtension(path);
     if (ext != ".stl" && ext != ".obj" && ext != ".off" && ext != ".ply")
         fail(path, "unknown mesh extension '" + ext + "' (expected .stl, .obj, .off or .ply)");
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not a mesh file");
-    detail::requireRegularFile("readMesh", path);
     std::ifstream probe(path, std::ios::binary | std::ios::ate);
     if (!probe) fail(path, "cannot open file");
     const auto end = probe.tellg();

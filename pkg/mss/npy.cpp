@@ -1,8 +1,10 @@
 #include "mss/npy.hpp"
 #include "mss/input_file.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <set>
@@ -64,6 +66,7 @@ struct NpyHeader {
     char kind = 0;
     int width = 0;
     std::size_t dataOffset = 0; ///< bytes before the data
+    bool bigEndian = false;     ///< values stored most significant byte first (swapped on reading)
 };
 
 NpyHeader readNpyHeader(const std::string& path, std::ifstream& in, std::streamoff size) {
@@ -118,8 +121,10 @@ NpyHeader readNpyHeader(const std::string& path, std::ifstream& in, std::streamo
         }
     }
     if (shape.size() != 3) fail(path, "array must be 3-D, got " + std::to_string(shape.size()) + "-D");
-    for (long long d : shape)
-        if (d <= 0) fail(path, "array is empty (shape has a zero)");
+    for (long long d : shape) {
+        if (d == 0) fail(path, "array is empty (shape has a zero)");
+        if (d < 0) fail(path, "malformed shape (a negative size: " + std::to_string(d) + ")");
+    }
     if (descr.size() < 3) fail(path, "unsupported dtype '" + descr + "'");
     const char endian = descr[0], kind = descr[1];
     int width = 0;
@@ -131,8 +136,8 @@ NpyHeader readNpyHeader(const std::string& path, std::ifstream& in, std::streamo
     if (!(kind == 'b' || kind == 'u' || kind == 'i') ||
         !(width == 1 || width == 2 || width == 4 || width == 8))
         fail(path, "dtype '" + descr + "' is not boolean or integer (threshold a grey-level volume first)");
-    if (endian == '>' && width > 1) fail(path, "big-endian arrays are not supported");
     NpyHeader h;
+    h.bigEndian = endian == '>' && width > 1;
     h.shape = shape;
     h.fortran = fortran;
     h.kind = kind;
@@ -179,15 +184,24 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     const bool fortran = h.fortran;
     const char kind = h.kind;
     const int width = h.width;
+    // the header's word against the file's size first (in long double: a lying shape overflows 64 bits)
+    const std::uintmax_t held = static_cast<std::uintmax_t>(size) - h.dataOffset;
+    const long double wanted = static_cast<long double>(shape[0]) * shape[1] * shape[2] * width;
+    if (wanted > static_cast<long double>(held)) {
+        std::ostringstream os;
+        os << "truncated data: the shape " << shape[0] << "x" << shape[1] << "x" << shape[2] << " needs "
+           << static_cast<double>(wanted) << " bytes after the header, more than the file holds (" << held << ")";
+        fail(path, os.str());
+    }
     checkGridSize("readNpy", {shape[0], shape[1], shape[2]}, 1, std::size_t(1) << 40);
     const std::size_t count = static_cast<std::size_t>(shape[0] * shape[1] * shape[2]);
-    if (static_cast<std::uintmax_t>(size) < h.dataOffset + count * static_cast<std::size_t>(width))
-        fail(path, "truncated data: expected " + std::to_string(count * width) +
-                       " bytes after the header, file has " +
-                       std::to_string(size - static_cast<std::streamoff>(h.dataOffset)));
     std::vector<char> raw(count * static_cast<std::size_t>(width));
     in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
     if (static_cast<std::size_t>(in.gcount()) != raw.size()) fail(path, "truncated data");
+    if (h.bigEndian)
+        for (std::size_t q = 0; q < raw.size(); q += static_cast<std::size_t>(width))
+            std::reverse(raw.begin() + static_cast<std::ptrdiff_t>(q),
+                         raw.begin() + static_cast<std::ptrdiff_t>(q) + width);
 
     GridSpec g;
     g.dims = {static_cast<int>(shape[0]), static_cast<int>(shape[1]), static_cast<int>(shape[2])};

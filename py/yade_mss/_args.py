@@ -12,8 +12,13 @@ def _isBool(v):
     return isinstance(v, (bool, np.bool_))
 
 
-def integer(func, name, value, low=None, high=None):
-    """An int (or a float with an integral value, as 30.0), not a bool or a string, within [low, high]."""
+INT_MAX = 2 ** 31 - 1  # counts, resolutions, masks: C++ ints
+INT64_MAX = 2 ** 63 - 1  # labels, seeds
+
+
+def integer(func, name, value, low=None, high=INT_MAX):
+    """An int (or a float with an integral value, as 30.0), not a bool or a string, within [low, high] (by
+    default at most INT_MAX, and never beyond 64 bits: Python's OverflowError is not a message)."""
     if _isBool(value) or isinstance(value, (str, bytes)) or not isinstance(value, numbers.Real):
         raise TypeError('%s: %s must be an integer, got %r' % (func, name, value))
     if isinstance(value, numbers.Integral):
@@ -23,8 +28,15 @@ def integer(func, name, value, low=None, high=None):
         if not (math.isfinite(f) and f == int(f)):
             raise ValueError('%s: %s must be an integer, got %r' % (func, name, value))
         v = int(f)
-    if (low is not None and v < low) or (high is not None and v > high):
-        rng = ('>= %d' % low if high is None else 'in [%d, %d]' % (low, high)) if low is not None else '<= %d' % high
+    low = -INT64_MAX - 1 if low is None else low
+    high = INT64_MAX if high is None else high
+    if v < low or v > high:
+        if v < low and high in (INT_MAX, INT64_MAX):
+            rng = '>= %d' % low
+        elif low == -INT64_MAX - 1:
+            rng = '<= %d' % high
+        else:
+            rng = 'in [%d, %d]' % (low, high)
         raise ValueError('%s: %s must be %s, got %r' % (func, name, rng, value))
     return v
 

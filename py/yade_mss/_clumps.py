@@ -32,7 +32,7 @@ import warnings
 
 import numpy as np
 
-from ._args import integer, number, vector3
+from ._args import INT64_MAX, integer, number, vector3
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._loads import memberLoads
@@ -399,7 +399,7 @@ def _mass(func, mass):
 
 
 def _seed(func, seed):
-    return None if seed is None else integer(func, 'seed', seed)
+    return None if seed is None else integer(func, 'seed', seed, None, INT64_MAX)
 
 
 def _plans(func, r, mass, placements):

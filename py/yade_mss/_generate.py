@@ -4,7 +4,7 @@ import inspect
 import warnings
 
 from . import _mss
-from ._args import flag, integer, number, vector3
+from ._args import INT64_MAX, flag, integer, number, vector3
 from ._results import MassProperties, MssResult, readSpheres
 from ._sources import _Mesh, _flat, _plane, _source
 
@@ -82,7 +82,7 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, voxelSize=No
     if resolution is not None:
         resolution = integer(f, 'resolution', resolution, 1)
     if label is not None:
-        label = integer(f, 'label', label, 0)
+        label = integer(f, 'label', label, 0, INT64_MAX)
     if origin is not None:
         origin = vector3(f, 'origin', origin)
     supersample = integer(f, 'supersample', supersample, 1, 16)
@@ -126,11 +126,13 @@ def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=N
 
     :return: dict with dice (eq. 27), eta (eq. 7), volumeRatio, coverage, outside, and the grid
     """
+    resolution = integer('score', 'resolution', resolution, 1)
+    offset = number('score', 'offset', offset)
     sp = spheres if isinstance(spheres, MssResult) else readSpheres(spheres)
     s = _source(target, voxelSize, origin, label)
     cuts = [_plane(p) for p in planes]
     if isinstance(s, _Mesh):
-        return _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), int(resolution), float(offset), 1,
+        return _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), resolution, offset, 1,
                               cuts)
     return _mss.scoreVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist(), cuts)
 
@@ -149,7 +151,8 @@ def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes
         (3x3) and translation of the registration applied
     """
     items = list(spheres) if isinstance(spheres, (list, tuple)) else [spheres]
-    opts = {'resolution': int(resolution), 'offset': float(offset), 'planes': [_plane(p) for p in planes]}
+    opts = {'resolution': integer('compareMany', 'resolution', resolution, 1),
+            'offset': number('compareMany', 'offset', offset), 'planes': [_plane(p) for p in planes]}
     if align is not None:  # 'none': as written, even in another frame
         opts['align'] = str(align)
     s = _source(target, voxelSize, origin, label)

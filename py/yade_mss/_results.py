@@ -55,6 +55,11 @@ class MssResult(object):
         self.radii = np.asarray(radii, dtype=float).reshape(-1)
         if len(self.centers) != len(self.radii):
             raise ValueError('MssResult: %d centres but %d radii' % (len(self.centers), len(self.radii)))
+        if not (np.all(np.isfinite(self.centers)) and np.all(np.isfinite(self.radii)) and np.all(self.radii > 0)):
+            raise ValueError('MssResult: centres must be finite numbers and radii finite numbers > 0 (%d not finite, '
+                             '%d radii <= 0)' % (int(np.sum(~np.isfinite(self.centers).all(axis=1))
+                                                    + np.sum(~np.isfinite(self.radii))),
+                                                 int(np.sum(self.radii <= 0))))
         self.metrics = dict(metrics or {})
         self.grid = grid
         self.targetMass = targetMass
@@ -70,6 +75,8 @@ class MssResult(object):
 
     def unionMass(self, resolution=200):
         """:class:`MassProperties` of the union of the spheres (overlaps counted once), unit density."""
+        from ._args import integer
+        resolution = integer('MssResult.unionMass', 'resolution', resolution, 2)
         if self._unionMass is None or self._unionMass[0] != resolution:
             d = _mss.massSpheres(self.centers.ravel().tolist(), self.radii.tolist(), resolution)
             self._unionMass = (resolution, MassProperties._fromDict(d))
@@ -121,15 +128,17 @@ class MssResult(object):
             _checkArchive(os.fspath(path))
             with np.load(str(path), allow_pickle=False) as z:
                 meta = json.loads(str(z['meta']))
-                r = MssResult(z['centers'], z['radii'], meta.get('metrics'), meta.get('grid'), None, meta.get('source', ''))
-        except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile) as e:
+                centers, radii = z['centers'], z['radii']
+                if centers.ndim != 2 or centers.shape[1:] != (3,) or radii.shape != (len(centers),):
+                    raise ValueError('centres must be (n, 3) and radii (n,), got %s and %s'
+                                     % (centers.shape, radii.shape))
+                if not isinstance(meta, dict):
+                    raise ValueError('its meta data is not a dict')
+                r = MssResult(centers, radii, meta.get('metrics'), meta.get('grid'), None, meta.get('source', ''))
+                if meta.get('targetMass'):
+                    r.targetMass = MassProperties._fromDict(meta['targetMass'])
+        except (OSError, KeyError, ValueError, TypeError, AttributeError, EOFError, zipfile.BadZipFile) as e:
             raise ValueError('MssResult.load: %s: not a saved result (%s)' % (path, e))
-        if (r.centers.ndim != 2 or r.centers.shape[1:] != (3,) or r.radii.shape != (len(r.centers),)
-                or not np.all(np.isfinite(r.centers)) or not np.all(np.isfinite(r.radii)) or not np.all(r.radii > 0)):
-            raise ValueError('MssResult.load: %s: not a saved result (centres must be (n, 3) finite numbers and '
-                             'radii n positive ones)' % (path,))
-        if meta.get('targetMass'):
-            r.targetMass = MassProperties._fromDict(meta['targetMass'])
         return r
 
 
@@ -156,5 +165,7 @@ def readSpheres(path, clumpId=None):
     :param int clumpId: of a YADE text file holding several clumps, the one to read; such a file is refused
         without it (clumps are never merged silently). :func:`readClumps` reads them all, as clumps.
     """
-    c, r = _mss.readSpheres(os.fspath(path), -1 if clumpId is None else int(clumpId))
+    from ._args import INT64_MAX, integer
+    clump = -1 if clumpId is None else integer('readSpheres', 'clumpId', clumpId, 0, INT64_MAX)
+    c, r = _mss.readSpheres(os.fspath(path), clump)
     return MssResult(c, r, source=os.path.basename(os.fspath(path)))

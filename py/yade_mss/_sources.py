@@ -6,7 +6,7 @@ import os
 import numpy as np
 
 from . import _mss
-from ._files import cppPath
+from ._files import cppPath, requireRegularFile
 from ._results import MassProperties
 
 _MESH_EXT = ('.stl', '.obj', '.off', '.ply')
@@ -73,6 +73,7 @@ def _source(source, voxelSize=None, origin=None, label=None):
     """A mesh or voxel source from a file name, an array, (vertices, triangles) or a dict."""
     if isinstance(source, (str, os.PathLike)):
         path = os.fspath(source)
+        requireRegularFile('readMesh' if os.path.splitext(path)[1].lower() in _MESH_EXT else 'read', path)
         ext = os.path.splitext(path)[1].lower()
         if ext in _MESH_EXT:
             with cppPath(path) as p:

@@ -9,6 +9,7 @@ import os
 
 import numpy as np
 
+from ._args import INT64_MAX, integer, number
 from ._clumps import randomRotation
 from ._files import requireRegularFile
 
@@ -61,6 +62,8 @@ def regions(labels, only=None):
     volume (``scipy.ndimage.find_objects``), then each label counted in its own box."""
     from scipy import ndimage
     labels = np.asarray(labels)
+    if labels.ndim != 3 or not (labels.dtype == bool or np.issubdtype(labels.dtype, np.integer)):
+        raise ValueError('regions: labels must be a 3-D array of integers, got %s of %s' % (labels.shape, labels.dtype))
     if labels.dtype == bool:
         labels = labels.astype(np.uint8)
     if labels.min() < 0:
@@ -88,12 +91,24 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
     :param gap: least number of empty voxels between two grains
     :return: int32 array, labels 1..n (n may fall short of *grains* if they do not fit)
     """
-    rng = np.random.default_rng(seed)
-    shape = tuple(int(n) for n in shape)
+    func = 'syntheticSpecimen'
+    if isinstance(shape, (str, bytes)) or not hasattr(shape, '__len__') or len(shape) != 3:
+        raise TypeError('%s: shape must be 3 integers, got %r' % (func, shape))
+    shape = tuple(integer(func, 'shape', n, 1) for n in shape)
+    if shape[0] * shape[1] * shape[2] > 1 << 31:
+        raise ValueError('%s: shape %r holds over 2^31 voxels' % (func, shape))
+    grains = integer(func, 'grains', grains, 1)
+    if isinstance(size, (str, bytes)) or not hasattr(size, '__len__') or len(size) != 2:
+        raise TypeError('%s: size must be (smallest, largest) semi-axis in voxels, got %r' % (func, size))
+    lo, hi = (number(func, 'size', v, 0.5) for v in size)
+    if lo > hi:
+        raise ValueError('%s: size must be (smallest, largest), got %r' % (func, size))
+    gap = integer(func, 'gap', gap, 0)
+    maxTries = integer(func, 'maxTries', maxTries, 1)
+    rng = np.random.default_rng(integer(func, 'seed', seed, 0, INT64_MAX))
     labels = np.zeros(shape, dtype=np.int32)
     grown = np.zeros(shape, dtype=bool)  # grains dilated by the gap: where no new grain may go
     placed = 0
-    lo, hi = size
     for _ in range(maxTries):
         if placed == grains:
             break

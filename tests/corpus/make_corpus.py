@@ -69,3 +69,56 @@ two[5:8, 5:8, 5:8] = 2
 np.save(os.path.join(D, 'two_labels.npy'), two)  # without --label the grains would merge
 w('bad_byte.csv', b'x,y,z,r\n0,0,\xb5,1\n', 'wb')  # not UTF-8: the message quotes it
 w('two_clumps.txt', '0 0 0 1 0\n1 0 0 1 0\n5 0 0 1 7\n')
+
+# hostile files: readers that trusted a header, rows read as comments, ids merged, valid files refused
+full = np.ones((4, 4, 4), dtype=np.uint8)
+
+
+def npy(header_text, payload=b'', version=1):
+    h = header_text.encode('latin1')
+    if version == 1:
+        pad = 64 - (10 + len(h) + 1) % 64
+        return b'\x93NUMPY\x01\x00' + struct.pack('<H', len(h) + pad % 64 + 1) + h + b' ' * (pad % 64) + b'\n' + payload
+    pad = 64 - (12 + len(h) + 1) % 64
+    return b'\x93NUMPY\x02\x00' + struct.pack('<I', len(h) + pad % 64 + 1) + h + b' ' * (pad % 64) + b'\n' + payload
+
+
+dict_u8 = "{'descr': '|u1', 'fortran_order': False, 'shape': (4, 4, 4), }"
+w('big_header_valid.npy', npy(dict_u8 + ' ' * 30000, full.tobytes()), 'wb')  # ~30 KB: crashed std::regex
+w('huge_header.npy', npy(dict_u8 + ' ' * 200000, full.tobytes(), version=2), 'wb')
+w('nested_header.npy', npy('{' * 20000 + '}' * 20000, full.tobytes(), version=2), 'wb')
+w('huge_shape.npy', npy("{'descr': '|u1', 'fortran_order': False, 'shape': (100000, 100000, 100000), }", b'\1' * 64),
+  'wb')
+w('overflow_shape.npy', npy("{'descr': '<i8', 'fortran_order': False, 'shape': (4294967296, 4294967296, 4294967296)"
+                            ", }", b'\1' * 64), 'wb')
+w('negative_shape.npy', npy("{'descr': '|u1', 'fortran_order': False, 'shape': (4, -4, 4), }", full.tobytes()), 'wb')
+w('unicode_descr.npy', npy("{'descr': '<U4', 'fortran_order': False, 'shape': (4, 4, 4), }", b'\0' * 1024), 'wb')
+w('object_descr.npy', npy("{'descr': '|O', 'fortran_order': False, 'shape': (4, 4, 4), }", b'\0' * 512), 'wb')
+w('big_endian_valid.npy', npy("{'descr': '>i2', 'fortran_order': False, 'shape': (4, 4, 4), }",
+                              full.astype('>i2').tobytes()), 'wb')
+w('nan_row.csv', 'x,y,z,r\nnan,0,0,1\n0,0,0,1\n')
+w('inf_row.csv', 'x,y,z,r\ninf,0,0,1\n0,0,0,1\n')
+w('infinity_radius.csv', 'x,y,z,r\n0,0,0,Infinity\n')
+w('bom_valid.csv', '\ufeffx,y,z,r\n0,0,0,0.4\n0.1,0,0,0.3\n')  # inside tests/data/cube.stl
+w('bom_first_row.csv', '\ufeff0,0,0,0.4\n0.1,0,0,0.3\n')
+w('inside.csv', 'x,y,z,r\n0,0,0,0.4\n0.1,0,0,0.3\n')
+w('fraction_ids.txt', '0 0 0 1 1.5\n1 0 0 1 2.5\n')
+w('negative_ids.txt', '0 0 0 1 -1\n1 0 0 1 -2\n')
+w('huge_ids.txt', '0 0 0 1 1e16\n1 0 0 1 10000000000000001\n')
+w('no_endsolid.stl', ascii_stl(tet).replace('endsolid t\n', ''))
+w('utf8_solid_valid.stl', ascii_stl(tet).replace('solid t', 'solid grain_\u00e9\u00e8').replace('endsolid t',
+                                                                                                'endsolid grain'))
+w('faces_first_valid.ply', 'ply\nformat ascii 1.0\nelement face 4\nproperty list uchar int vertex_indices\n'
+  'element vertex 4\nproperty float x\nproperty float y\nproperty float z\nend_header\n'
+  '3 0 1 2\n3 0 2 3\n3 0 3 1\n3 1 3 2\n0 0 0\n0 1 0\n1 0 0\n0 0 1\n')
+w('huge_vertex_count.ply', 'ply\nformat binary_little_endian 1.0\nelement vertex 1000000000000\nproperty float x\n'
+  'property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n')
+w('truncated_binary.ply', b'ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n'
+  b'property float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n'
+  + b'\0' * 30, 'wb')
+w('index_zero.obj', 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 0 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n')
+w('huge_coordinates.obj', 'v 0 0 0\nv 1e308 0 0\nv 0 1e308 0\nv 0 0 1e308\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n')
+w('zero_triangles.stl', binary_stl([], count=0), 'wb')
+w('huge_count.off', 'OFF\n99999999999 99999999999 0\n0 0 0\n')
+w('vtk_bad_points.vtk', '# vtk DataFile Version 3.0\nspheres\nASCII\nDATASET POLYDATA\nPOINTS 1000000000 double\n'
+  '0 0 0\n')

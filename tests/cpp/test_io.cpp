@@ -321,8 +321,16 @@ TEST(MeshIo, BadFilesGetClearErrors) {
     expectError([&] { readMesh(tempPath("x.xyz")); }, "unknown mesh extension");
     const std::string dir = tempPath("folder.stl"); // a directory with a mesh's name
     std::filesystem::create_directories(dir);
-    expectError([&] { readMesh(dir); }, "is a directory");
+    expectError([&] { readMesh(dir); }, "not a regular file (a directory)");
     std::filesystem::remove(dir);
+    // a directory or device is named as such whatever its name (it was 'unknown mesh extension')
+    expectError([&] { readMesh("/dev/zero"); }, "/dev/zero: not a regular file (a character device)");
+    // the bug: coordinates of 1e308 voxelised at 1e306 a voxel and gave a 'grain' of D 0.9997, the mass
+    // properties overflowing; refused with the bound
+    writeText(tempPath("huge.obj"), "v 0 0 0\nv 1e308 0 0\nv 0 1e308 0\nv 0 0 1e308\nf 1 3 2\nf 1 2 4\nf 1 4 "
+                                    "3\nf 2 3 4\n");
+    expectError([&] { readMesh(tempPath("huge.obj")); }, "has a coordinate of 1e+308, too large (at most 1e+60");
+    std::remove(tempPath("huge.obj").c_str());
 }
 
 TEST(SpheresIo, RoundTripAtFullPrecision) {
@@ -428,6 +436,43 @@ TEST(Npy, BadArraysGetClearErrors) {
     expectError([&] { readNpy(p); }, "no solid voxel");
     writeText(p, "not numpy at all");
     expectError([&] { readNpy(p); }, "magic");
+    std::remove(p.c_str());
+}
+
+// Big-endian arrays (NumPy writes them as '>i2' etc.) were refused; their bytes are swapped now: the same
+// labels as the little-endian file of the same values (258 = 0x0102 reads as 513 unswapped).
+TEST(Npy, BigEndianArraysReadAsTheirValues) {
+    const std::string p = tempPath("big.npy");
+    for (const char* descr : {">i2", ">u4", ">i8"}) {
+        const int width = descr[2] - '0';
+        std::vector<char> little(24 * width, 0), big(24 * width, 0);
+        for (int q = 0; q < 24; ++q) {
+            const std::uint64_t v = q % 5 == 0 ? 258 : 1;
+            for (int b = 0; b < width && b < 8; ++b) {
+                little[q * width + b] = char((v >> (8 * b)) & 0xff);
+                big[q * width + (width - 1 - b)] = char((v >> (8 * b)) & 0xff);
+            }
+        }
+        writeNpy(p, std::string("<") + (descr + 1), "2, 3, 4", little);
+        const VoxelGrid a = readNpy(p, 1.0, Vec3::Zero(), 258);
+        writeNpy(p, descr, "2, 3, 4", big);
+        const VoxelGrid b = readNpy(p, 1.0, Vec3::Zero(), 258);
+        EXPECT_EQ(countSolid(a), 5u) << descr;
+        EXPECT_EQ(a.data, b.data) << descr;
+    }
+    std::remove(p.c_str());
+}
+
+// The bug: a shape that the file cannot hold was judged against the memory limit ('would need 9.31e+05 GiB ...
+// choose a coarser resolution', for a file of 64 bytes), and a shape overflowing 64 bits wrapped around.
+TEST(Npy, ShapesBeyondTheFileAreRefusedBeforeAnythingElse) {
+    const std::string p = tempPath("lying.npy");
+    writeNpy(p, "|u1", "100000, 100000, 100000", std::vector<char>(64, 1));
+    expectError([&] { readNpy(p); }, "needs 1e+15 bytes after the header, more than the file holds (64)");
+    writeNpy(p, "<i8", "4294967296, 4294967296, 4294967296", std::vector<char>(64, 1));
+    expectError([&] { readNpy(p); }, "more than the file holds (64)");
+    writeNpy(p, "|u1", "4, -4, 4", std::vector<char>(64, 1));
+    expectError([&] { readNpy(p); }, "a negative size: -4");
     std::remove(p.c_str());
 }
 

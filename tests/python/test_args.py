@@ -135,6 +135,45 @@ class Archives(unittest.TestCase):
                 g.write(b'PK not a zip')
             with self.assertRaises(ValueError):
                 MssResult.load(f)
+            np.savez(f, centers=c[:1], radii=np.ones(1), meta=np.array('[1, 2]'))  # meta not a dict
+            with self.assertRaises(ValueError) as ctx:
+                MssResult.load(f)
+            self.assertIn('not a saved result', str(ctx.exception))
+        # nor is one made in memory: nothing such is saved (the bug: it saved)
+        with self.assertRaises(ValueError) as ctx:
+            MssResult([[np.nan, 0, 0]], [1.0])
+        self.assertIn('finite', str(ctx.exception))
+        with self.assertRaises(ValueError):
+            MssResult([[0, 0, 0]], [-1.0])
+
+    def test_huge_integers_are_refused_with_a_message(self):
+        # the bug: Python's OverflowError ('int too large to convert to C long'), not a message
+        from yade_mss import readSpheres, regions, score, syntheticSpecimen
+        Generate.refused(self, ValueError, 'nSpheres must be in [1, 2147483647], got 10' + '0' * 29, nSpheres=10 ** 30)
+        Generate.refused(self, ValueError, 'resolution must be in [1, 2147483647]', nSpheres=3, resolution=10 ** 30)
+        spheres = os.path.join(DATA, '..', 'corpus', 'files', 'two_clumps.txt')
+        for v in (float('inf'), 10 ** 30, -10 ** 20):
+            with self.assertRaises(ValueError) as ctx:
+                readSpheres(spheres, clumpId=v)
+            self.assertIn('clumpId must be', str(ctx.exception))
+            with self.assertRaises(ValueError) as ctx:
+                score(ELL, spheres, resolution=v)
+            self.assertIn('resolution must be', str(ctx.exception))
+            with self.assertRaises(ValueError):
+                MssResult([[0, 0, 0]], [1.0]).unionMass(v)
+        with self.assertRaises(ValueError) as ctx:
+            regions(10 ** 30)
+        self.assertIn('3-D array of integers', str(ctx.exception))
+
+    def test_a_specimen_of_no_grains_is_refused_at_once(self):
+        # the bug: grains=-1 tried 20000 placements (minutes) for nothing
+        from yade_mss import syntheticSpecimen
+        for kw, fragment in (({'grains': -1}, 'grains must be >= 1'), ({'grains': True}, 'grains must be an integer'),
+                             ({'shape': (30, 30)}, 'shape must be 3 integers'), ({'size': (9, 3)}, 'size must be'),
+                             ({'gap': -1}, 'gap must be >= 0'), ({'shape': (10 ** 4,) * 3}, 'over 2^31 voxels')):
+            with self.assertRaises((TypeError, ValueError)) as ctx:
+                syntheticSpecimen(**dict({'shape': (30, 30, 30), 'grains': 2}, **kw))
+            self.assertIn(fragment, str(ctx.exception))
 
 
 class Checks(unittest.TestCase):
