@@ -31,12 +31,14 @@ void validateMesh(const TriangleMesh& mesh, const std::string& where) {
         if (!mesh.vertices[v].allFinite())
             throw std::invalid_argument(where + ": vertex " + std::to_string(v) +
                                         " has a non-finite coordinate");
-        // mass properties sum coordinates to the fifth power (the inertia): beyond this they overflow a double
+        // mass properties sum coordinates to the fifth power (the inertia): beyond this they overflow a
+        // double
         constexpr double kMaxCoordinate = 1e60;
         if (mesh.vertices[v].cwiseAbs().maxCoeff() > kMaxCoordinate) {
             std::ostringstream os;
-            os << where << ": vertex " << v << " has a coordinate of " << mesh.vertices[v].cwiseAbs().maxCoeff()
-               << ", too large (at most " << kMaxCoordinate << ": the inertia, which grows as size^5, would overflow)";
+            os << where << ": vertex " << v << " has a coordinate of "
+               << mesh.vertices[v].cwiseAbs().maxCoeff() << ", too large (at most " << kMaxCoordinate
+               << ": the inertia, which grows as size^5, would overflow)";
             throw std::invalid_argument(os.str());
         }
     }

@@ -190,7 +190,8 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     if (wanted > static_cast<long double>(held)) {
         std::ostringstream os;
         os << "truncated data: the shape " << shape[0] << "x" << shape[1] << "x" << shape[2] << " needs "
-           << static_cast<double>(wanted) << " bytes after the header, more than the file holds (" << held << ")";
+           << static_cast<double>(wanted) << " bytes after the header, more than the file holds (" << held
+           << ")";
         fail(path, os.str());
     }
     checkGridSize("readNpy", {shape[0], shape[1], shape[2]}, 1, std::size_t(1) << 40);

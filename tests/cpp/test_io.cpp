@@ -329,7 +329,8 @@ TEST(MeshIo, BadFilesGetClearErrors) {
     // properties overflowing; refused with the bound
     writeText(tempPath("huge.obj"), "v 0 0 0\nv 1e308 0 0\nv 0 1e308 0\nv 0 0 1e308\nf 1 3 2\nf 1 2 4\nf 1 4 "
                                     "3\nf 2 3 4\n");
-    expectError([&] { readMesh(tempPath("huge.obj")); }, "has a coordinate of 1e+308, too large (at most 1e+60");
+    expectError([&] { readMesh(tempPath("huge.obj")); },
+                "has a coordinate of 1e+308, too large (at most 1e+60");
     std::remove(tempPath("huge.obj").c_str());
 }
 
@@ -463,8 +464,8 @@ TEST(Npy, BigEndianArraysReadAsTheirValues) {
     std::remove(p.c_str());
 }
 
-// The bug: a shape that the file cannot hold was judged against the memory limit ('would need 9.31e+05 GiB ...
-// choose a coarser resolution', for a file of 64 bytes), and a shape overflowing 64 bits wrapped around.
+// The bug: a shape that the file cannot hold was judged against the memory limit ('would need 9.31e+05 GiB
+// ... choose a coarser resolution', for a file of 64 bytes), and a shape overflowing 64 bits wrapped around.
 TEST(Npy, ShapesBeyondTheFileAreRefusedBeforeAnythingElse) {
     const std::string p = tempPath("lying.npy");
     writeNpy(p, "|u1", "100000, 100000, 100000", std::vector<char>(64, 1));
