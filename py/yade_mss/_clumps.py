@@ -292,37 +292,37 @@ def _withLoads(groups, action, me):
     """Runs *action* (a YADE call that sums clump members) while the members of every group carry the loads
     that make the sums exact; then every member is YADE's sphere again.
 
-    A group: (bodies, masses for the sums, final masses, final inertias (Vector3), which members' inertias to
-    set (None: none), member 0's moments *j* and axes *V*). Through the sums every member keeps its final
-    sphere inertia (isotropic: its orientation does not matter), so member 0's tensor is *j* less the others';
-    inertias are set first only where they are not the final ones already (after a density change)."""
+    A group: (bodies, masses for the sums, final masses, final inertias (Vector3), whether to set the members'
+    inertias first, member 0's moments *j* and axes *V*, and the members' (shape, state) as already read, or
+    None). Through the sums every member keeps its final sphere inertia (isotropic: its orientation does not
+    matter), so member 0's tensor is *j* less the others'; the inertias are set first only where they may not
+    be the final ones already (after a density change)."""
     from yade.wrapper import Box
     tmp = Box(extents=me.Vector3(0, 0, 0))
     done = []
     try:
-        for bodies, m, final, inertia, fix, j, V in groups:
-            shapes = []
-            done.append((bodies, shapes, final, inertia))
-            for b, mi in zip(bodies, m):
-                shapes.append(b.shape)
+        for bodies, m, final, inertia, setInertia, j, V, refs in groups:
+            if refs is None:
+                refs = [(b.shape, b.state) for b in bodies]
+            done.append((bodies, refs, final, inertia))
+            for b, (shape, st), mi in zip(bodies, refs, m):
                 b.shape = tmp
-                b.state.mass = mi
-            if fix is not None:
-                for b, Ii, f in zip(bodies, inertia, fix):
-                    if f:
-                        b.state.inertia = Ii
+                st.mass = mi
+            if setInertia:
+                for (shape, st), Ii in zip(refs, inertia):
+                    st.inertia = Ii
             rest = sum(Ii[0] for Ii in inertia[1:])
-            b0 = bodies[0].state
+            b0 = refs[0][1]
             b0.inertia = me.Vector3(*(j - rest).tolist())
             # YADE turns a member's tensor by ori.conjugate() (Clump::inertiaTensorRotate): V = matrix(ori*)
             b0.ori = _quaternion(V, me).conjugate()
         return action()
     finally:
-        for bodies, shapes, final, inertia in done:
-            for b, shape, mf in zip(bodies, shapes, final):
+        for bodies, refs, final, inertia in done:
+            for b, (shape, st), mf in zip(bodies, refs, final):
                 b.shape = shape
-                b.state.mass = mf
-            bodies[0].state.inertia = inertia[0]
+                st.mass = mf
+            refs[0][1].inertia = inertia[0]
 
 
 def _check(func, O, cid, M, C, moments):
@@ -350,7 +350,7 @@ def _build(func, plans, members, warn=None):
         for p in plans:
             bodies, final, inertia = members.make(p.centers, p.radii)
             rho = members.density(bodies[0].mat)
-            cid, ids = _withLoads([(bodies, (rho * p.m).tolist(), final, inertia, None, rho * p.j, p.V)],
+            cid, ids = _withLoads([(bodies, (rho * p.m).tolist(), final, inertia, False, rho * p.j, p.V, None)],
                                   lambda: O.bodies.appendClumped(bodies, discretization=0), me)
             ids = list(ids)
             made.append((cid, ids))

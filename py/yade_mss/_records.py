@@ -71,7 +71,7 @@ class Record(object):
         self.centroid, self.inertia = a[3:6], a[6:15].reshape(3, 3)
         self.J, self.Q01 = a[15:24].reshape(3, 3), a[24:33].reshape(3, 3)
         k = _HEAD
-        self.ids = [int(v) for v in a[k:k + n]]
+        self.ids = a[k:k + n].astype(np.int64).tolist()
         self.radii = a[k + n:k + 2 * n]
         self.rel = a[k + 2 * n:k + 5 * n].reshape(n, 3)
         self.m = a[k + 5 * n:k + 6 * n]
