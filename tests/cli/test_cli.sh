@@ -167,5 +167,24 @@ printf 'x,y,z,r\n1e300,0,0,1e200\n' > "$TMP/huge.csv"
 expect_error "spheres too large to sample (the bug: 'only -nan%')" "could not be located" "$MSS" compare "$DATA/cube.stl" "$TMP/huge.csv"
 expect_error "/dev/zero as a sphere file" "not a regular file (a character device)" timeout 20 "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" /dev/zero
 
+# spheropolygon -o replaces only regular files: a device, or a link planted to one, is refused by name
+/usr/bin/python3 -c "import numpy as np; a = np.zeros((40, 40), np.uint8); a[10:30, 8:32] = 1; np.save('$TMP/img.npy', a)"
+expect_error "spheropolygon -o a device" "/dev/full: exists and is not a regular file" "$MSS" spheropolygon "$TMP/img.npy" -o /dev/full
+ln -s /dev/full "$TMP/planted.json"
+expect_error "spheropolygon -o a link to a device" "planted.json: exists and is not a regular file" "$MSS" spheropolygon "$TMP/img.npy" -o "$TMP/planted.json"
+check "the planted link is left as it was" [ "$(readlink "$TMP/planted.json")" = /dev/full ]
+
+# the installed mss runs the installed package (the bug: it put the build tree first on PYTHONPATH); the build
+# tree's runs the build tree's. Installed here into a folder of the test's own.
+if cmake --install "$(dirname "$MSS")" --prefix "$TMP/inst" > "$TMP/install.log" 2>&1; then
+  site=$(echo "$TMP"/inst/lib/python3*/dist-packages)
+  from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$TMP/inst/bin/mss" spheropolygon "$TMP/img.npy" -o "$TMP/i.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
+  check "installed mss imports yade_mss from $site (got: $from)" grep -qF "$site/yade_mss/__init__.py" <<<"$from"
+  from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$MSS" spheropolygon "$TMP/img.npy" -o "$TMP/b.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
+  check "the build tree's mss imports its own yade_mss (got: $from)" grep -qF "$(realpath "$(dirname "$MSS")")/py/yade_mss/__init__.py" <<<"$from"
+else
+  fail=$((fail + 1)); echo "FAILED: cmake --install into $TMP/inst: $(tail -3 "$TMP/install.log")"
+fi
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
