@@ -180,7 +180,7 @@ if cmake --install "$(dirname "$MSS")" --prefix "$TMP/inst" > "$TMP/install.log"
   site=$(echo "$TMP"/inst/lib/python3*/dist-packages)
   from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$TMP/inst/bin/mss" spheropolygon "$TMP/img.npy" -o "$TMP/i.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
   check "installed mss imports yade_mss from $site (got: $from)" grep -qF "$site/yade_mss/__init__.py" <<<"$from"
-  from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$MSS" spheropolygon "$TMP/img.npy" -o "$TMP/b.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
+  from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$(realpath "$MSS")" spheropolygon "$TMP/img.npy" -o "$TMP/b.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
   check "the build tree's mss imports its own yade_mss (got: $from)" grep -qF "$(realpath "$(dirname "$MSS")")/py/yade_mss/__init__.py" <<<"$from"
 else
   fail=$((fail + 1)); echo "FAILED: cmake --install into $TMP/inst: $(tail -3 "$TMP/install.log")"
