@@ -176,12 +176,13 @@ check "the planted link is left as it was" [ "$(readlink "$TMP/planted.json")" =
 
 # the installed mss runs the installed package (the bug: it put the build tree first on PYTHONPATH); the build
 # tree's runs the build tree's. Installed here into a folder of the test's own.
+mss_abs=$(realpath "$MSS")
 if cmake --install "$(dirname "$MSS")" --prefix "$TMP/inst" > "$TMP/install.log" 2>&1; then
   site=$(echo "$TMP"/inst/lib/python3*/dist-packages)
   from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$TMP/inst/bin/mss" spheropolygon "$TMP/img.npy" -o "$TMP/i.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
   check "installed mss imports yade_mss from $site (got: $from)" grep -qF "$site/yade_mss/__init__.py" <<<"$from"
-  from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$(realpath "$MSS")" spheropolygon "$TMP/img.npy" -o "$TMP/b.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
-  check "the build tree's mss imports its own yade_mss (got: $from)" grep -qF "$(realpath "$(dirname "$MSS")")/py/yade_mss/__init__.py" <<<"$from"
+  from=$(cd "$TMP" && PYTHONVERBOSE=1 PYTHONPATH="$site" "$mss_abs" spheropolygon "$TMP/img.npy" -o "$TMP/b.json" 2>&1 | grep -m1 'code object from .*yade_mss/__init__.py')
+  check "the build tree's mss imports its own yade_mss (got: $from)" grep -qF "$(dirname "$mss_abs")/py/yade_mss/__init__.py" <<<"$from"
 else
   fail=$((fail + 1)); echo "FAILED: cmake --install into $TMP/inst: $(tail -3 "$TMP/install.log")"
 fi
