@@ -22,6 +22,7 @@
 #include <sched.h>
 #include <sstream>
 #include <stdexcept>
+#include <new>
 #include <string>
 #include <sys/mman.h>
 #include <sys/prctl.h>
@@ -715,6 +716,11 @@ int main(int argc, char** argv) {
         if (cmd == "generate") return cmdGenerate(a);
         if (cmd == "compare") return cmdCompare(a);
         return cmdInfo(a);
+    } catch (const std::bad_alloc&) { // --memory-limit allows more than this machine could give
+        std::cerr << "mss " << cmd
+                  << ": error: out of memory: the machine could not give what this run needs; lower --resolution, "
+                     "or set --memory-limit to the memory the machine has (default 8 GiB) to be told before\n";
+        return 1;
     } catch (const std::exception& e) {
         std::cerr << "mss " << cmd << ": error: " << e.what() << "\n";
         return 1;

@@ -13,6 +13,7 @@
 
 #include <cstring>
 #include <stdexcept>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -480,6 +481,11 @@ void translateInvalid(const std::invalid_argument& e) {
 void translateRuntime(const std::runtime_error& e) {
     setError(PyExc_RuntimeError, e.what());
 }
+void translateBadAlloc(const std::bad_alloc&) { // memoryLimit allows more than this machine could give
+    setError(PyExc_RuntimeError, "out of memory: the machine could not give what this run needs; lower the "
+                                 "resolution, or set memoryLimit to the memory the machine has (default 8 GiB) "
+                                 "to be told before");
+}
 
 } // namespace
 
@@ -494,6 +500,7 @@ void setOmpThreads(int n) {
 BOOST_PYTHON_MODULE(_mss) {
     py::register_exception_translator<std::invalid_argument>(&translateInvalid);
     py::register_exception_translator<std::runtime_error>(&translateRuntime);
+    py::register_exception_translator<std::bad_alloc>(&translateBadAlloc);
     py::scope().attr("__doc__") = "yade-mss core (C++). Use the yade_mss package, which wraps this module.";
     py::def("setOmpThreads", setOmpThreads, (py::arg("n")), "OpenMP threads of this process from now on.");
     py::def("readMesh", readMesh, (py::arg("path")), "Mesh file -> (flat vertices, flat triangles).");

@@ -165,6 +165,16 @@ class Archives(unittest.TestCase):
             regions(10 ** 30)
         self.assertIn('3-D array of integers', str(ctx.exception))
 
+    def test_out_of_memory_is_a_runtime_error_with_the_remedy(self):
+        # the bug: a bare bad_alloc; the address space of a child is capped at 6 GB, the machine untouched
+        import subprocess
+        import sys
+        code = ("import resource, yade_mss\nresource.setrlimit(resource.RLIMIT_AS, (6 << 30, 6 << 30))\ntry:\n"
+                "    yade_mss.generate(%r, nSpheres=3, resolution=1200, memoryLimit=100000)\n"
+                "except RuntimeError as e:\n    print('RuntimeError:', e)\n" % os.path.join(DATA, 'cube.stl'))
+        out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, timeout=300)
+        self.assertIn('RuntimeError: out of memory: the machine could not give', out.stdout, out.stderr)
+
     def test_a_specimen_of_no_grains_is_refused_at_once(self):
         # the bug: grains=-1 tried 20000 placements (minutes) for nothing
         from yade_mss import syntheticSpecimen
