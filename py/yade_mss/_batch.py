@@ -86,9 +86,7 @@ def fileKeys(files):
 def runGrain(task):
     """Generates one grain (one thread); never raises: a failure is a row with its message."""
     from ._generate import generate
-    row = {'label': task.label if task.label is not None else '', 'file': task.path or '', 'voxels': task.voxels,
-           'touches_border': int(bool(task.touchesBorder)), 'spheres': 0, 'dice': '', 'eta': '', 'seconds': '',
-           'message': ''}
+    row = _row(task)
     t0 = time.perf_counter()
     try:
         opts = dict(task.options, threads=1)
@@ -140,10 +138,16 @@ def _oneThread():
     _mss.setOmpThreads(1)
 
 
+def _row(task):
+    """A grain's row before it is generated: what the task says of it, no figures yet."""
+    return {'label': task.label if task.label is not None else '', 'file': task.path or '', 'voxels': task.voxels,
+            'touches_border': int(bool(task.touchesBorder)), 'spheres': 0, 'dice': '', 'eta': '', 'seconds': '',
+            'message': ''}
+
+
 def _failedRow(task, message):
-    return task.key, {'label': task.label if task.label is not None else '', 'file': task.path or '',
-                      'voxels': task.voxels, 'touches_border': int(bool(task.touchesBorder)), 'spheres': 0,
-                      'dice': '', 'eta': '', 'seconds': '', 'status': 'failed', 'message': message}, None
+    """The row of a grain whose worker died: as :func:`runGrain` records a failure."""
+    return task.key, dict(_row(task), status='failed', message=message), None
 
 
 def runGrains(tasks):

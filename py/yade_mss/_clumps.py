@@ -130,9 +130,6 @@ def _finite(func, name, value, positive=False):
     return v
 
 
-_vector3 = vector3
-
-
 def _checkBody(func, body):
     """The types utils.sphere's keywords must have, checked before YADE sees them (YADE's own errors for these
     are Boost's signatures or a member silently wrong)."""
@@ -144,7 +141,7 @@ def _checkBody(func, body):
     if 'mask' in body:
         body['mask'] = integer(func, 'mask', body['mask'])
     if body.get('color') is not None:
-        c = _vector3(func, 'color', body['color'])
+        c = vector3(func, 'color', body['color'])
         if not np.all((c >= 0) & (c <= 1)):
             raise ValueError('%s: color components must be in [0, 1], got %r' % (func, body['color']))
         body['color'] = tuple(float(v) for v in c)
@@ -442,7 +439,7 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
     mass = _mass('mssClump', mass)
     s = _scale('mssClump', scale)
     R = rotation(orientation, _seed('mssClump', seed))
-    C = None if center is None else _vector3('mssClump', 'center', center)
+    C = None if center is None else vector3('mssClump', 'center', center)
     members = _Members('mssClump', body)
     if isinstance(source, MssResult):
         if gen:

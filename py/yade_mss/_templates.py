@@ -6,7 +6,8 @@ import warnings
 
 import numpy as np
 
-from ._clumps import _Members, _basePlan, _scale, _vector3, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
+from ._args import vector3
+from ._clumps import _Members, _basePlan, _scale, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._results import MssResult
@@ -191,8 +192,8 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
     for name, flag in (('periodic', periodic), ('distributeMass', distributeMass)):
         if not isinstance(flag, (bool, np.bool_)):
             raise TypeError('%s: %s must be True or False, got %r' % (func, name, flag))
-    lo = _vector3(func, 'minCorner', minCorner)
-    hi = _vector3(func, 'maxCorner', maxCorner)
+    lo = vector3(func, 'minCorner', minCorner)
+    hi = vector3(func, 'maxCorner', maxCorner)
     if not np.all(hi > lo):
         raise ValueError('%s: maxCorner must exceed minCorner on every axis' % func)
     if (psdSizes is None) != (psdCumm is None):
