@@ -213,10 +213,10 @@ rm -f "$TMP/big.stl" "$TMP/shrinking.stl"
 
 # a memory limit above what the machine gives: a message, not a bare std::bad_alloc (the bug); the address
 # space is capped at 6 GB here so that the machine's own memory is never touched
-# (under AddressSanitizer, whose shadow needs the address space, ASan's own cap on one allocation does it)
+# (not under AddressSanitizer: its shadow memory needs the address space that the cap takes away, and the
+# grids are mapped past its allocator; the release build runs it)
 if grep -qa __asan_init "$MSS"; then
-  expect_error "out of memory names the remedy (the bug: 'std::bad_alloc')" "out of memory: the machine could not give" \
-    env ASAN_OPTIONS="${ASAN_OPTIONS:-}:allocator_may_return_null=1:max_allocation_size_mb=1000" "$MSS" generate "$DATA/cube.stl" --spheres 3 --resolution 1200 --memory-limit 100000 -o "$TMP/x.csv"
+  echo "not run: out of memory under a capped address space (an AddressSanitizer build)"
 else
   expect_error "out of memory names the remedy (the bug: 'std::bad_alloc')" "out of memory: the machine could not give" \
     bash -c "ulimit -v 6000000; exec \"\$0\" generate \"\$1\" --spheres 3 --resolution 1200 --memory-limit 100000 -o \"\$2\"" "$MSS" "$DATA/cube.stl" "$TMP/x.csv"
