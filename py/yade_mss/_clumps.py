@@ -19,10 +19,10 @@ Why not an extra member: a correction body (tried first) breaks YADE's clump API
 Why not a C++ extension against YADE's headers: Debian ships none, and a fork's headers tie the package to
 Debian's binary layout.
 
-Each clump's exact properties (unit density, in the frame of its first member) are carried by the clump body
+Each clump's exact properties (unit density, in the frame of its second member) are carried by the clump body
 itself, as the label of a material of its own (YADE's clumps have none; :mod:`yade_mss._records`): YADE saves
-them with the body, and they go with it. A fingerprint of the members (their ids, radii, positions relative to
-the first member and the first two members' relative orientation) is checked before they are applied.
+them with the body, and they go with it. A fingerprint of the members (their ids, radii and positions in that
+frame) is checked before they are applied.
 """
 
 import inspect
@@ -336,6 +336,22 @@ def _check(func, O, cid, M, C, moments):
         raise RuntimeError('%s: YADE did not take the requested mass properties of clump %d (mass %g vs %g, '
                            'principal moments %s vs %s)' % (func, cid, st.mass, M, sorted((I[0], I[1], I[2])),
                                                             list(moments)))
+
+
+def _checkMany(func, cids, states, M, C, moments):
+    """:func:`_check` for many clumps at once: their states (already read), wanted masses (k), centres (k, 3)
+    and ascending principal moments (k, 3)."""
+    got = np.array([(st.mass,) + tuple(st.pos[i] for i in range(3)) + tuple(st.inertia[i] for i in range(3))
+                    for st in states]).reshape(len(states), 7)
+    size = np.maximum(1.0, np.abs(C).max(axis=1))
+    far = 100 * 2.2e-16 * M * (C * C).sum(axis=1)
+    bad = ((np.abs(got[:, 0] - M) > 1e-9 * M) | (np.linalg.norm(got[:, 1:4] - C, axis=1) > 1e-9 * size)
+           | (np.abs(np.sort(got[:, 4:7], axis=1) - moments).max(axis=1) > 1e-7 * moments.max(axis=1) + far))
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise RuntimeError('%s: YADE did not take the requested mass properties of clump %d (mass %g vs %g, '
+                           'principal moments %s vs %s)' % (func, cids[k], got[k, 0], M[k], sorted(got[k, 4:7]),
+                                                            list(moments[k])))
 
 
 def _build(func, plans, members, warn=None):

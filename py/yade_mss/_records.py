@@ -6,23 +6,25 @@ YADE has none, and nothing in YADE reads one: contacts are its members'). So YAD
 can never be found by another clump that reuses the id. (``O.tags`` was the first home: YADE scans every tag's
 text at each access, so a record a clump made building n clumps cost O(n^2).)
 
-It holds the clump's plan at unit density in the frame of its first member (position x0, rotation R0; members
-turn with the clump, so the record holds wherever the clump goes) and a fingerprint of its members: ids, radii,
-positions, and the first two members' relative orientation Q01 = R0^T R1. Member 0 wears the orientation V* of
-its load tensor's axes V (so R0 = V^T) and the others YADE's identity, so Q01 = V R1: a clump made any other way
-(``appendClumped`` gives identities) does not match, even of the same spheres at the same places.
+It holds the clump's plan at unit density and a fingerprint of its members (ids, radii, positions), in the
+frame F of its second member (position x0 of the first, rotation F = R1 of the second; one member: its own). The
+members turn with the clump, so the record holds wherever the clump goes; and member 1 is never turned by
+yade-mss (member 0 wears the orientation V* of its load tensor's axes, set again at each restore), so a
+restore of an unchanged clump leaves its record as it was: nothing is written.
 
-Layout: float64, little endian, base64 after ``mss2:``: [2, n, volume, centroid (3), inertia (9), member 0's load
-tensor (9), Q01 (9), ids (n), radii (n), positions (3n), masses for the sums (n)].
+Layout: float64, little endian, base64 after ``mss3:``: [3, n, volume, centroid (3), inertia (9), member 0's load
+tensor (9), ids (n), radii (n), positions (3n), masses for the sums (n)]. ``mss2:`` records (frame of member 0,
+rewritten at each restore) are not read.
 """
 
 import base64
 
 import numpy as np
 
-PREFIX = 'mss2:'
+PREFIX = 'mss3:'
+OLDER = 'mss2:'  # the frame of member 0 (not read: the clump's record is dropped with a warning)
 OLD_TAG = 'mss.clump.'  # O.tags, one a clump, JSON: yade-mss before records had fingerprints (not read)
-_HEAD = 3 + 3 + 9 + 9 + 9
+_HEAD = 3 + 3 + 9 + 9
 
 
 def quaternionMatrices(q):
@@ -34,30 +36,29 @@ def quaternionMatrices(q):
                      2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=1).reshape(-1, 3, 3)
 
 
-def encodeMany(ids, x, radii, volume, C, I, m, V, j, R1):
-    """Records of k clumps just given their loads (member 0 wearing V*): lists of per-clump arrays *ids*, *x*
-    (n, 3), *radii*, *m*; stacked *volume* (k), *C* (k, 3), *I*, *V*, *R1* (k, 3, 3) and *j* (k, 3), at unit
-    density. :return: list of k strings"""
+def encodeMany(ids, x, radii, volume, C, I, m, V, j, F):
+    """Records of k clumps just given their loads: lists of per-clump arrays *ids*, *x* (n, 3), *radii*, *m*;
+    stacked *volume* (k), *C* (k, 3), *I*, *V* (k, 3, 3), *j* (k, 3), at unit density, and the frames *F*
+    (k, 3, 3): member 1's rotation matrix (one member: member 0's, V^T). :return: list of k strings"""
     k = len(ids)
     x0 = np.array([xi[0] for xi in x]).reshape(k, 3)
-    Vt = np.transpose(V, (0, 2, 1))
-    crel = np.einsum('kij,kj->ki', V, C - x0)
-    Irel = np.einsum('kij,kjl,klm->kim', V, I, Vt)
+    Ft = np.transpose(F, (0, 2, 1))
+    crel = np.einsum('kij,kj->ki', Ft, C - x0)
+    Irel = np.einsum('kij,kjl,klm->kim', Ft, I, F)
     J = np.einsum('kij,kj,klj->kil', V, j, V)  # V diag(j) V^T
-    Jrel = np.einsum('kij,kjl,klm->kim', V, J, Vt)
-    Q = np.einsum('kij,kjl->kil', V, R1)
+    Jrel = np.einsum('kij,kjl,klm->kim', Ft, J, F)
     out = []
     for i in range(k):
-        rel = (x[i] - x0[i]).dot(Vt[i])
-        a = np.concatenate([[2.0, len(ids[i]), volume[i]], crel[i], Irel[i].ravel(), Jrel[i].ravel(), Q[i].ravel(),
+        rel = (x[i] - x0[i]).dot(F[i])
+        a = np.concatenate([[3.0, len(ids[i]), volume[i]], crel[i], Irel[i].ravel(), Jrel[i].ravel(),
                             np.asarray(ids[i], dtype=float), radii[i], rel.ravel(), m[i]])
         out.append(PREFIX + base64.b64encode(a.astype('<f8').tobytes()).decode('ascii'))
     return out
 
 
 class Record(object):
-    """A decoded record: volume, centroid, inertia, J, Q01 (member 0's frame, unit density), ids, radii, rel
-    (n, 3), m. Raises ValueError for a text that is not one."""
+    """A decoded record: volume, centroid, inertia, J (frame F, unit density), ids, radii, rel (n, 3), m.
+    Raises ValueError for a text that is not one."""
 
     def __init__(self, text):
         try:
@@ -65,11 +66,10 @@ class Record(object):
         except (ValueError, TypeError):
             raise ValueError('not a record')
         n = int(a[1]) if a.size >= 2 and np.isfinite(a[1]) and 1 <= a[1] <= a.size else -1
-        if n < 1 or a[0] != 2 or a.size != _HEAD + 6 * n or not np.all(np.isfinite(a)):
+        if n < 1 or a[0] != 3 or a.size != _HEAD + 6 * n or not np.all(np.isfinite(a)):
             raise ValueError('not a record')
         self.volume = float(a[2])
-        self.centroid, self.inertia = a[3:6], a[6:15].reshape(3, 3)
-        self.J, self.Q01 = a[15:24].reshape(3, 3), a[24:33].reshape(3, 3)
+        self.centroid, self.inertia, self.J = a[3:6], a[6:15].reshape(3, 3), a[15:24].reshape(3, 3)
         k = _HEAD
         self.ids = a[k:k + n].astype(np.int64).tolist()
         self.radii = a[k + n:k + 2 * n]
@@ -82,6 +82,8 @@ def recordOf(body):
     readable: damaged)."""
     mat = body.material
     text = mat.label if mat is not None else ''
+    if text.startswith(OLDER):
+        return False
     if not text.startswith(PREFIX):
         return None
     try:
@@ -99,16 +101,16 @@ def drop(body):
     body.material = None  # as YADE's own clumps: no material
 
 
-def matchMembers(rec, ids, radii, x, R0, R1):
-    """How the members found (ids, radii, positions (n, 3), member 0's and 1's rotations) match record *rec*:
-    'same' (ids, radii, positions in member 0's frame and Q01 as recorded), 'changed' (some recorded members
-    left or others joined, the rest where they were: their distances), or None (another clump)."""
+def matchMembers(rec, ids, radii, x, F):
+    """How the members found (ids, radii, positions (n, 3), the record's frame now: member 1's rotation, or
+    member 0's alone) match record *rec*: 'same' (ids, radii and positions in that frame as recorded), 'changed'
+    (some recorded members left or others joined, the rest where they were: their distances), or None (another
+    clump)."""
     size = float(np.ptp(x, axis=0).max() + 2 * radii.max())
     tol = 1e-9 * size
     if rec.ids == ids:
         if (np.abs(rec.radii - radii).max() <= 1e-12 * radii.max()
-                and np.abs((x - x[0]).dot(R0) - rec.rel).max() <= tol
-                and np.abs(R0.T.dot(R1) - rec.Q01).max() <= 1e-9):
+                and np.abs((x - x[0]).dot(F) - rec.rel).max() <= tol):
             return 'same'
         return None
     where = {i: k for k, i in enumerate(rec.ids)}

@@ -6,7 +6,7 @@ import warnings
 import numpy as np
 
 from . import _mss
-from ._clumps import _Plan, _check, _clumpIds, _sphereMass, _withLoads, _yade
+from ._clumps import _Plan, _checkMany, _clumpIds, _sphereMass, _withLoads, _yade
 from ._records import OLD_TAG, attach, drop, encodeMany, matchMembers, quaternionMatrices, recordOf
 
 
@@ -102,7 +102,7 @@ def _restore(func, O, me, ids, explicit, resolution, recs={}):
     for k, (cid, body, mids, members, radii, x, rho, rec, refs) in enumerate(found):
         how = 'same' if same[k] else None
         if rec and not same[k]:
-            how = matchMembers(rec, mids, np.array(radii), np.array(x), R[k, 0], R[k, 1])
+            how = matchMembers(rec, mids, np.array(radii), np.array(x), R[k, 1])
         if rec is not None and how is None:
             warnings.warn('%s: the record of clump %d %s: dropped, not applied' % (
                 func, cid, 'is not readable' if rec is False else
@@ -129,40 +129,44 @@ def _restore(func, O, me, ids, explicit, resolution, recs={}):
         before = ((p[0], p[1], p[2]), (v[0], v[1], v[2]), (w[0], w[1], w[2]))
         final = [spheres[rd] if rd in spheres else spheres.setdefault(rd, _sphereMass(rd[0], rd[1], V3))
                  for rd in zip(radii, rho)]
-        work.append((cid, members, plan, rho[0], before, kind, final, refs))
+        work.append((cid, members, plan, rho[0], before, kind, final, refs, k, s and len(members) > 1))
     wanted = set(w[0] for w in work)
     others = [i for i in _clumpIds(O) if i not in wanted]
     # the inertias are set too: the density may have changed, whatever the masses say
     _withLoads([(members, (rho * p.m).tolist(), [f[0] for f in final], [f[1] for f in final], True, rho * p.j, p.V,
-                 refs) for cid, members, p, rho, before, kind, final, refs in work],
+                 refs) for cid, members, p, rho, before, kind, final, refs, k, kept in work],
                lambda: O.bodies.updateClumpProperties(excludeList=others, discretization=0), me)
-    done = []
-    for cid, members, p, rho, (pos0, vel0, w), kind, final, refs in work:
-        _check(func, O, cid, rho * p.volume, p.centroid, (rho * p.moments).tolist())
-        st = O.bodies[cid].state
-        # YADE's update zeroes the velocities: keep the motion (the centre of mass may have moved)
-        d = [p.centroid[i] - pos0[i] for i in range(3)]
-        st.vel = V3(vel0[0] + w[1] * d[2] - w[2] * d[1], vel0[1] + w[2] * d[0] - w[0] * d[2],
-                    vel0[2] + w[0] * d[1] - w[1] * d[0])
-        st.angVel = V3(*w)
-        st.angMom = V3(*(rho * p.inertia.dot(w)).tolist())
-        done.append((cid, kind))
-    # member 0 now wears V*: the records again, in its new frame (member 1 did not turn)
-    idx = {f[0]: k for k, f in enumerate(found)}
-    R1s = np.array([R[idx[cid], 1] if len(members) > 1 else p.V.T for cid, members, p, *rest in work])
-    texts = encodeMany([found[idx[w[0]]][2] for w in work], [np.asarray(found[idx[w[0]]][5]) for w in work],
-                       [np.asarray(found[idx[w[0]]][4]) for w in work], np.array([w[2].volume for w in work]),
-                       np.array([w[2].centroid for w in work]), np.array([w[2].inertia for w in work]),
-                       [w[2].m for w in work], np.array([w[2].V for w in work]), np.array([w[2].j for w in work]), R1s)
-    from yade.wrapper import Material
-    for w, text in zip(work, texts):
-        attach(O.bodies[w[0]], text, Material)
+    states = [O.bodies[w[0]].state for w in work]
+    rho = np.array([w[3] for w in work])
+    _checkMany(func, [w[0] for w in work], states, rho * np.array([w[2].volume for w in work]),
+               np.array([w[2].centroid for w in work]), rho[:, None] * np.array([w[2].moments for w in work]))
+    # YADE's update zeroes the velocities: keep the motion (the centre of mass may have moved)
+    pos0, vel0, w = (np.array([x[4][i] for x in work]) for i in range(3))
+    C = np.array([x[2].centroid for x in work])
+    vel = vel0 + np.cross(w, C - pos0)
+    mom = rho[:, None] * np.einsum('kij,kj->ki', np.array([x[2].inertia for x in work]), w)
+    for st, v, wi, L in zip(states, vel.tolist(), w.tolist(), mom.tolist()):
+        st.vel, st.angVel, st.angMom = V3(*v), V3(*wi), V3(*L)
+    done = [(x[0], x[5]) for x in work]
+    # the record of an unchanged clump of several members holds as it was (its frame is member 1's, which did
+    # not turn); the others' are written: a union's is new, a lone member's frame is member 0's, which turned
+    write = [w for w in work if not w[9]]
+    if write:
+        texts = encodeMany([found[w[8]][2] for w in write], [np.asarray(found[w[8]][5]) for w in write],
+                           [np.asarray(found[w[8]][4]) for w in write], np.array([w[2].volume for w in write]),
+                           np.array([w[2].centroid for w in write]), np.array([w[2].inertia for w in write]),
+                           [w[2].m for w in write], np.array([w[2].V for w in write]),
+                           np.array([w[2].j for w in write]),
+                           np.array([R[w[8], 1] if len(w[1]) > 1 else w[2].V.T for w in write]))
+        from yade.wrapper import Material
+        for w, text in zip(write, texts):
+            attach(O.bodies[w[0]], text, Material)
     return done
 
 
 def _sameMembers(found, R):
     """For each clump found, whether its members are exactly those of its record (ids, radii, positions in
-    member 0's frame, Q01): :func:`yade_mss._records.matchMembers`'s 'same', for all clumps at once."""
+    its frame): :func:`yade_mss._records.matchMembers`'s 'same', for all clumps at once."""
     out = np.zeros(len(found), dtype=bool)
     cand = [k for k, f in enumerate(found) if f[7] and f[7].ids == f[2]]
     if not cand:
@@ -174,30 +178,28 @@ def _sameMembers(found, R):
     radii = np.array([r for k in cand for r in found[k][4]])
     recRadii = np.concatenate([found[k][7].radii for k in cand])
     recRel = np.concatenate([found[k][7].rel for k in cand])
-    R0 = R[cand, 0]
-    rel = np.einsum('mi,mij->mj', X - X[starts][which], R0[which])
+    F = R[cand, 1]
+    rel = np.einsum('mi,mij->mj', X - X[starts][which], F[which])
     size = (np.maximum.reduceat(X, starts, axis=0) - np.minimum.reduceat(X, starts, axis=0)).max(axis=1) \
         + 2 * np.maximum.reduceat(radii, starts)
     posErr = np.maximum.reduceat(np.abs(rel - recRel).max(axis=1), starts)
     radErr = np.maximum.reduceat(np.abs(radii - recRadii), starts)
-    Q = np.einsum('kji,kjl->kil', R0, R[cand, 1])
-    qErr = np.abs(Q - np.array([found[k][7].Q01 for k in cand])).reshape(len(cand), 9).max(axis=1)
-    ok = (posErr <= 1e-9 * size) & (radErr <= 1e-12 * np.maximum.reduceat(radii, starts)) & (qErr <= 1e-9)
-    out[cand] = ok
+    out[cand] = (posErr <= 1e-9 * size) & (radErr <= 1e-12 * np.maximum.reduceat(radii, starts))
     return out
 
 
 def _plans(found, R):
-    """The recorded plans of clumps found unchanged, in the world now (R: members 0 and 1's rotations)."""
+    """The recorded plans of clumps found unchanged, in the world now (R: members 0 and 1's rotations; the
+    records are in member 1's frame, or member 0's alone)."""
     if not found:
         return []
-    R0 = R[:, 0]
+    F = R[:, 1]
     x0 = np.array([f[5][0] for f in found])
     recs = [f[7] for f in found]
-    C = x0 + np.einsum('kij,kj->ki', R0, np.array([r.centroid for r in recs]))
+    C = x0 + np.einsum('kij,kj->ki', F, np.array([r.centroid for r in recs]))
     Irel = np.array([r.inertia for r in recs])
-    I = np.einsum('kij,kjl,kml->kim', R0, Irel, R0)
-    j, V = np.linalg.eigh(np.einsum('kij,kjl,kml->kim', R0, np.array([r.J for r in recs]), R0))
+    I = np.einsum('kij,kjl,kml->kim', F, Irel, F)
+    j, V = np.linalg.eigh(np.einsum('kij,kjl,kml->kim', F, np.array([r.J for r in recs]), F))
     flip = np.linalg.det(V) < 0
     V[flip, :, 2] *= -1
     moments = np.linalg.eigvalsh(Irel)

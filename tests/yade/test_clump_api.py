@@ -6,6 +6,7 @@ import os
 import sys
 import tempfile
 import unittest
+import warnings
 
 import numpy as np
 
@@ -190,6 +191,42 @@ class SideBySide(Base):
         for i in ids:  # members follow the density: YADE's spheres of it
             b = O.bodies[i]
             self.assertLess(abs(b.state.mass / (RHO / 10 * 4.0 / 3.0 * math.pi * b.shape.radius ** 3) - 1), 1e-14)
+
+    def test_turned_clumps_restore_exactly_again_and_again(self):
+        # the record is in member 1's frame, which only turns with the clump: after the clump turned, restores
+        # stay exact, and one of an unchanged clump writes nothing (member 0's frame is set again each time)
+        (cid, ids), _ = self.pair()
+        r1 = generate(FEMUR, nSpheres=1, resolution=30)
+        with warnings.catch_warnings():  # one sphere: the centre of mass off it is said, and moved onto it
+            warnings.simplefilter('ignore')
+            one, oneIds = mssClump(r1, material=self.mat, center=(0, 300, 0))
+        M, C, I = exactFemur()
+        x0, x1 = vec(O.bodies[ids[0]].state.pos), vec(O.bodies[oneIds[0]].state.pos)
+        c1, I1 = O.bodies[one].state.pos, tensor(O.bodies[one].state)
+        c1 = vec(c1)
+        label = O.bodies[cid].material.label
+        O.engines = [ForceResetter(), NewtonIntegrator(damping=0, gravity=(0, 0, 0))]
+        O.dt = 1e-3
+        for turn in range(3):
+            for k in (cid, one):  # a clump moves by its angular momentum
+                st = O.bodies[k].state
+                w = np.array([0.7, -0.4 * turn, 1.1])
+                st.angVel, st.angMom = me.Vector3(*w), me.Vector3(*tensor(st).dot(w))
+            O.run(400, True)
+            O.bodies.updateClumpProperties(discretization=0)
+            self.assertEqual(sorted(restoreClumpProperties()), sorted([(cid, 'grain'), (one, 'grain')]))
+            self.assertEqual(O.bodies[cid].material.label, label)  # nothing written for it
+            R = rot(O.bodies[ids[1]].state.ori)  # member 1 started unturned
+            self.assertGreater(np.linalg.norm(R - np.eye(3)), 0.5)  # it did turn
+            self.assertExact(cid, M, vec(O.bodies[ids[0]].state.pos) + R.dot(C - x0), R.dot(I).dot(R.T))
+            # a lone member: its record is in member 0's frame, written again; mass, principal moments and the
+            # centre's distance from the sphere are those it was made with
+            st = O.bodies[one].state
+            self.assertLess(abs(st.mass - RHO * r1.targetMass.volume) / st.mass, 1e-9)
+            np.testing.assert_allclose(np.linalg.eigvalsh(tensor(st)), np.linalg.eigvalsh(I1), rtol=1e-9,
+                                       atol=1e-12 * np.abs(I1).max())
+            self.assertAlmostEqual(np.linalg.norm(vec(st.pos) - vec(O.bodies[oneIds[0]].state.pos)),
+                                   np.linalg.norm(c1 - x1), delta=1e-9 * 100)
 
     def test_restore_keeps_the_motion(self):
         (cid, ids), _ = self.pair()
