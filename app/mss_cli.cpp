@@ -19,10 +19,10 @@
 #include <limits>
 #include <malloc.h>
 #include <map>
+#include <new>
 #include <sched.h>
 #include <sstream>
 #include <stdexcept>
-#include <new>
 #include <string>
 #include <sys/mman.h>
 #include <sys/prctl.h>
@@ -717,9 +717,10 @@ int main(int argc, char** argv) {
         if (cmd == "compare") return cmdCompare(a);
         return cmdInfo(a);
     } catch (const std::bad_alloc&) { // --memory-limit allows more than this machine could give
-        std::cerr << "mss " << cmd
-                  << ": error: out of memory: the machine could not give what this run needs; lower --resolution, "
-                     "or set --memory-limit to the memory the machine has (default 8 GiB) to be told before\n";
+        std::cerr
+            << "mss " << cmd
+            << ": error: out of memory: the machine could not give what this run needs; lower --resolution, "
+               "or set --memory-limit to the memory the machine has (default 8 GiB) to be told before\n";
         return 1;
     } catch (const std::exception& e) {
         std::cerr << "mss " << cmd << ": error: " << e.what() << "\n";

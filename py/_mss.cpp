@@ -12,8 +12,8 @@
 #endif
 
 #include <cstring>
-#include <stdexcept>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -482,9 +482,10 @@ void translateRuntime(const std::runtime_error& e) {
     setError(PyExc_RuntimeError, e.what());
 }
 void translateBadAlloc(const std::bad_alloc&) { // memoryLimit allows more than this machine could give
-    setError(PyExc_RuntimeError, "out of memory: the machine could not give what this run needs; lower the "
-                                 "resolution, or set memoryLimit to the memory the machine has (default 8 GiB) "
-                                 "to be told before");
+    setError(PyExc_RuntimeError,
+             "out of memory: the machine could not give what this run needs; lower the "
+             "resolution, or set memoryLimit to the memory the machine has (default 8 GiB) "
+             "to be told before");
 }
 
 } // namespace

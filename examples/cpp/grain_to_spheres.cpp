@@ -25,9 +25,9 @@ int main(int argc, char** argv) {
         Eigen::Matrix3d axes;
         grain.principal(moments, axes);
         std::printf("spheres %zu\ndice %.6g\n", result.spheres.size(), result.metrics.dice);
-        std::printf("mass %.10g\ncentre %.10g %.10g %.10g\nmoments %.10g %.10g %.10g\n", density * grain.volume,
-                    grain.centroid.x(), grain.centroid.y(), grain.centroid.z(), density * moments.x(),
-                    density * moments.y(), density * moments.z());
+        std::printf("mass %.10g\ncentre %.10g %.10g %.10g\nmoments %.10g %.10g %.10g\n",
+                    density * grain.volume, grain.centroid.x(), grain.centroid.y(), grain.centroid.z(),
+                    density * moments.x(), density * moments.y(), density * moments.z());
         for (std::size_t i = 0; i < result.spheres.size(); ++i) {
             const mss::Vec3& c = result.spheres.centers[i];
             std::printf("sphere %.10g %.10g %.10g %.10g\n", c.x(), c.y(), c.z(), result.spheres.radii[i]);

@@ -200,9 +200,6 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
         std::vector<Ball> cold = engine::runOptimized(S, E, opt, boundVox, coldM, secondsRefine, {}, nullptr,
                                                       &coldMismatch, &shared);
         const double select = warmM.secondsSelect + coldM.secondsSelect;
-        if (std::getenv("MSS_DEBUG"))
-            std::fprintf(stderr, "warm %lld (%zu) cold %lld (%zu)\n", warmMismatch, warm.size(), coldMismatch,
-                         cold.size());
         // with a quality target (problem (ii)) fewer spheres win first, else less mismatch
         const auto w = std::make_pair(double(warmMismatch), double(warm.size()));
         const auto c = std::make_pair(double(coldMismatch), double(cold.size()));
@@ -414,7 +411,8 @@ void validateOptions(const GenerateOptions& o) {
     if (!(o.rMin >= 0.0) || !std::isfinite(o.rMin)) bad("rMin must be >= 0", o.rMin);
     if (o.maxIterations < 1) bad("maxIterations must be >= 1", o.maxIterations);
     if (!(o.deltaMin >= 0.0) || !std::isfinite(o.deltaMin)) bad("deltaMin must be >= 0", o.deltaMin);
-    // more threads than libgomp can start end in "Thread creation failed" (2000) or overflow its stacks (65536)
+    // more threads than libgomp can start end in "Thread creation failed" (2000) or overflow its stacks
+    // (65536)
     if (o.threads < 0 || o.threads > kMaxThreads)
         bad("threads must be in [0, " + std::to_string(kMaxThreads) + "]", o.threads);
     if (o.maxProtrusion && !(*o.maxProtrusion >= 0.0))

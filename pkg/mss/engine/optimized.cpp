@@ -8,10 +8,6 @@ namespace mss::engine {
 
 namespace {
 
-void debug(Clock::time_point tStart, const char* what) {
-    if (std::getenv("MSS_DEBUG")) std::fprintf(stderr, "%8.4f %s\n", secondsSince(tStart), what);
-}
-
 void unplaceAll(Selection& s) {
     for (const Orbit& o : s.chosen) s.cov.remove(s.sym.images(o));
 }
@@ -21,7 +17,7 @@ void unplaceAll(Selection& s) {
 /// more of the budget with at most 5% more mismatch. @p tune: the orbits near the trade are refined before
 /// it is judged (after the main loop); without, it is judged as the greedy leaves it (after the first greedy
 /// round, before any refinement, which then tunes the trade with everything else).
-void repairSymmetry(Selection& s, Clock::time_point tStart, bool tune) {
+void repairSymmetry(Selection& s, bool tune) {
     for (int attempt = 0; attempt < 4 && s.sym.planes() > 0 && !s.full() && !s.met(); ++attempt) {
         std::ptrdiff_t centre = -1;
         for (std::size_t q = 0; q < s.chosen.size(); ++q)
@@ -35,12 +31,9 @@ void repairSymmetry(Selection& s, Clock::time_point tStart, bool tune) {
         s.placed -= 1;
         s.chosen.erase(s.chosen.begin() + centre);
         const std::size_t kept = s.chosen.size();
-        debug(tStart, "repair: removed");
         s.greedy();
-        debug(tStart, "repair: greedy");
         touched.insert(touched.end(), s.chosen.begin() + std::ptrdiff_t(kept), s.chosen.end());
         if (tune) refine(s, &touched, 2, false);
-        debug(tStart, "repair: refine");
         if (s.placed > savedPlaced && double(s.cov.mismatch()) <= 1.05 * double(before)) continue;
         unplaceAll(s);
         s.chosen = saved;
@@ -97,10 +90,8 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
                                const BoundVox& bound, Metrics& m, double& secondsRefine,
                                const std::vector<Orbit>& start, std::vector<Orbit>* orbitsOut,
                                long long* mismatchOut, SharedCandidates* shared) {
-    const auto tStart = Clock::now();
     Selection s(S, E, opt, bound, shared);
     m.symmetryPlanes = s.sym.planes();
-    debug(tStart, "candidates");
     s.warmStart(start);
     m.iterations = 0;
     if (s.t.hasQuality() && start.empty()) growToTarget(s, m, secondsRefine);
@@ -113,7 +104,7 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         // main loop had not filled the budget, a second round of it (ellipsoid 10: 0.112 -> 0.087 s, D
         // 0.00666 -> 0.00605; octahedron 30: 0.062 -> 0.044 s, 0.0392 -> 0.0391; ellipsoid 40: 0.236 ->
         // 0.207 s, 0.00081 -> 0.00075). A trade refused here is tried again, refined, after the main loop.
-        if (m.iterations == 0) repairSymmetry(s, tStart, false);
+        if (m.iterations == 0) repairSymmetry(s, false);
         m.secondsSelect += secondsSince(t0);
         const auto t1 = Clock::now();
         // where no mirror plane is kept, a sweep of half-voxel steps, then one of half- and quarter-voxel
@@ -131,13 +122,8 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Ge
         }
         if (s.placed == before && !pruned) break; // nothing new: converged
     }
-    debug(tStart, "main loop");
-    repairSymmetry(s, tStart, true);
+    repairSymmetry(s, true);
     fillAlone(s);
-    debug(tStart, "repair");
-    if (std::getenv("MSS_DEBUG"))
-        std::fprintf(stderr, "candidates %zu ridge %zu evaluations %zu\n", s.cands.size(), s.ridge,
-                     s.evaluations);
     if (orbitsOut) *orbitsOut = s.chosen;
     if (mismatchOut) *mismatchOut = s.cov.mismatch();
     std::vector<Ball> out;

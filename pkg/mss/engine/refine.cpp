@@ -134,7 +134,6 @@ void tune(const Selection& s, Orbit& o, long long& best, bool fine, bool quarter
 } // namespace
 
 void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps, bool coarseFirst) {
-    static const bool kSkip = !std::getenv("MSS_NOSKIP");
     std::vector<Orbit>& chosen = s.chosen;
     std::vector<char> moved(chosen.size(), 1);
     if (touched)
@@ -152,7 +151,7 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps, bool co
         for (std::size_t oi = 0; oi < chosen.size(); ++oi) {
             Orbit& o = chosen[oi];
             if ((sweep == 0 || last) && !eligible[oi]) continue; // far from what changed
-            if (sweep > 0 && !last && kSkip) {
+            if (sweep > 0 && !last) {
                 bool stale = true;
                 for (std::size_t oj = 0; oj < chosen.size() && stale; ++oj)
                     if (moved[oj] && (oj == oi || overlaps(s.sym, o, chosen[oj]))) stale = false;
