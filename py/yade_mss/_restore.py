@@ -51,7 +51,8 @@ def restoreClumpProperties(clumpIds=None, resolution=200):
     if isinstance(resolution, (bool, np.bool_)) or not isinstance(resolution, (int, np.integer)) or resolution < 2:
         raise ValueError('%s: resolution must be an integer >= 2, got %r' % (func, resolution))
     # Python's cyclic collector, run by the many small objects a restore makes, scans every live one each time:
-    # with thousands of clumps it took about half the time. Nothing here makes cycles; it runs again after.
+    # with thousands of clumps it doubled the cost of the YADE calls alone. Nothing here makes cycles; it runs
+    # again after.
     collecting = gc.isenabled()
     gc.disable()
     try:
@@ -62,7 +63,7 @@ def restoreClumpProperties(clumpIds=None, resolution=200):
             gc.enable()
 
 
-def _restore(func, O, me, ids, explicit, resolution, recs={}):
+def _restore(func, O, me, ids, explicit, resolution, recs):
     if any(k.startswith(OLD_TAG) for k in O.tags.keys()):
         warnings.warn('%s: this scene holds records of an older yade-mss (O.tags mss.clump.*), which had no '
                       'fingerprint of their clumps: not read' % func, stacklevel=3)
