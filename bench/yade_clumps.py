@@ -159,8 +159,8 @@ def main():
         hi = np.full(3, (n * (2 * t.boundingRadius) ** 3 * 8) ** (1 / 3.0))  # a loose cloud: 1/8 filled by balls
         m = {k: [] for k in ('plain', 'ours', 'ycloud', 'ocloud', 'yupdate', 'restore', 'floor')}
         for k in range(a.rounds):
-            # each pair back to back, the first of it alternating: a YADE cloud just before a timing slowed it
-            # (20000 clumps: ours after YADE's cloud 1.39-1.44x, first in its round 1.19x)
+            # each pair back to back, the first of it alternating: a YADE cloud timed just before mssClump made it
+            # about a fifth slower
             for yade in ((True, False) if k % 2 == 0 else (False, True)):
                 m['plain' if yade else 'ours'].append((plainClumps if yade else ourClumps)(r, at))
             for yade in ((True, False) if k % 2 == 0 else (False, True)):
