@@ -323,24 +323,17 @@ def _withLoads(groups, action, me):
 
 
 def _check(func, O, cid, M, C, moments):
-    """The clump took the wanted mass, centre and principal moments (YADE chose the principal frame itself).
-    YADE sums the members' tensors about the world's origin and then moves the sum to the centre of mass, which
-    loses about eps M |C|^2 (a grain far from the origin for its size): the tolerance allows for it."""
-    st = O.bodies[cid].state
-    p, I = st.pos, st.inertia
-    size = max(1.0, abs(C[0]), abs(C[1]), abs(C[2]))
-    far = 100 * 2.2e-16 * M * (C[0] * C[0] + C[1] * C[1] + C[2] * C[2])
-    ok = (abs(st.mass - M) <= 1e-9 * M and math.sqrt(sum((p[k] - C[k]) ** 2 for k in range(3))) <= 1e-9 * size
-          and max(abs(a - b) for a, b in zip(sorted((I[0], I[1], I[2])), moments)) <= 1e-7 * max(moments) + far)
-    if not ok:
-        raise RuntimeError('%s: YADE did not take the requested mass properties of clump %d (mass %g vs %g, '
-                           'principal moments %s vs %s)' % (func, cid, st.mass, M, sorted((I[0], I[1], I[2])),
-                                                            list(moments)))
+    """The clump took the wanted mass, centre and principal moments (YADE chose the principal frame itself):
+    :func:`_checkMany` for one clump."""
+    _checkMany(func, [cid], [O.bodies[cid].state], np.array([M], dtype=float), np.array([C], dtype=float),
+               np.array([moments], dtype=float))
 
 
 def _checkMany(func, cids, states, M, C, moments):
-    """:func:`_check` for many clumps at once: their states (already read), wanted masses (k), centres (k, 3)
-    and ascending principal moments (k, 3)."""
+    """Each clump took the wanted mass, centre and principal moments: their states (already read), wanted masses
+    (k), centres (k, 3) and ascending principal moments (k, 3). YADE sums the members' tensors about the world's
+    origin and then moves the sum to the centre of mass, which loses about eps M |C|^2 (a grain far from the
+    origin for its size): the tolerance allows for it."""
     got = np.array([(st.mass,) + tuple(st.pos[i] for i in range(3)) + tuple(st.inertia[i] for i in range(3))
                     for st in states]).reshape(len(states), 7)
     size = np.maximum(1.0, np.abs(C).max(axis=1))
