@@ -32,58 +32,39 @@
 
 namespace {
 
+/// What the command line gave, as text by option name (the option table's); --plane may repeat.
 struct Args {
     std::vector<std::string> positional;
-    std::vector<std::string> planes; // --plane may repeat
+    std::vector<std::string> planes;
     std::map<std::string, std::string> opts;
     bool has(const std::string& k) const { return opts.count(k) != 0; }
+    const std::string& text(const std::string& k) const { return opts.at(k); }
 };
 
-double number(const Args& a, const std::string& key, double fallback) {
-    auto it = a.opts.find(key);
-    if (it == a.opts.end()) return fallback;
-    char* end = nullptr;
-    const double v = std::strtod(it->second.c_str(), &end);
-    if (end == it->second.c_str() || *end != '\0')
-        throw std::invalid_argument(key + ": '" + it->second + "' is not a number");
-    return v;
+/// The command line's spelling of an option: its long flag.
+std::string flagOf(const std::string& name) {
+    const mss::OptionSpec* s = mss::findOption(name);
+    if (!s) return name;
+    const std::string f = s->flag;
+    return f.substr(f.rfind(',') + 1);
 }
 
-int integer(const Args& a, const std::string& key, int fallback) {
-    auto it = a.opts.find(key);
-    if (it == a.opts.end()) return fallback;
-    char* end = nullptr;
-    const long v = std::strtol(it->second.c_str(), &end, 10);
-    if (end == it->second.c_str() || *end != '\0' || v < -2147483647L || v > 2147483647L)
-        throw std::invalid_argument(key + ": '" + it->second + "' is not an integer");
-    return static_cast<int>(v);
-}
-
-std::vector<mss::Plane> planes(const Args& a) {
-    std::vector<mss::Plane> out;
-    for (const std::string& text : a.planes) {
-        std::string t = text;
-        for (char& c : t)
-            if (c == ',') c = ' ';
-        std::istringstream is(t);
-        mss::Plane p;
-        if (!(is >> p.point.x() >> p.point.y() >> p.point.z() >> p.normal.x() >> p.normal.y() >>
-              p.normal.z()))
-            throw std::invalid_argument("--plane: expected PX,PY,PZ,NX,NY,NZ, got '" + text + "'");
-        out.push_back(p);
+/// The values given to command @p cmd, each parsed as the table's row says. @throws mss::OptionError
+mss::OptionValues values(const Args& a, unsigned cmd) {
+    mss::OptionValues v;
+    for (const auto& [name, text] : a.opts) {
+        const mss::OptionSpec* s = mss::findOption(name, cmd);
+        if (s && s->type != mss::OptionType::Text) v[name] = mss::parseOption(*s, text);
     }
-    return out;
-}
-
-mss::Vec3 vec3(const Args& a, const std::string& key) {
-    auto it = a.opts.find(key);
-    if (it == a.opts.end()) return mss::Vec3::Zero();
-    std::string s = it->second;
-    for (char& c : s)
-        if (c == ',') c = ' ';
-    std::istringstream is(s);
-    mss::Vec3 v;
-    if (!(is >> v.x() >> v.y() >> v.z())) throw std::invalid_argument(key + ": expected X,Y,Z");
+    if (!a.planes.empty()) {
+        std::vector<mss::Plane> all;
+        for (const std::string& text : a.planes) {
+            const auto p =
+                std::get<std::vector<mss::Plane>>(mss::parseOption(*mss::findOption("planes"), text));
+            all.insert(all.end(), p.begin(), p.end());
+        }
+        v["planes"] = all;
+    }
     return v;
 }
 
@@ -169,35 +150,16 @@ bool isVoxelFile(const std::string& path) {
     return mss::fileExtension(path) == ".npy";
 }
 
-mss::VoxelGrid readVoxels(const Args& a, const std::string& path) {
-    return mss::readNpy(path, number(a, "--npy-voxel-size", 1.0), vec3(a, "--origin"),
-                        a.has("--label") ? integer(a, "--label", -1) : -1);
+mss::VoxelGrid readVoxels(const mss::Settings& st, const std::string& path) {
+    return mss::readNpy(path, st.voxelSize > 0 ? st.voxelSize : 1.0, st.origin, st.label);
 }
 
-/// The largest --memory-limit (GiB): 1 PiB, far above any machine, far below a size_t's overflow.
-constexpr double kMaxMemoryGiB = 1048576.0;
-
-mss::Resolution resolution(const Args& a) {
-    mss::Resolution r;
-    // NaN or a negative limit turned the guard off; 1e12 or inf overflowed to "a limit of 0 GiB"
-    const double gib = number(a, "--memory-limit", 8.0);
-    if (!(gib > 0.0) || !(gib <= kMaxMemoryGiB)) {
-        std::ostringstream os;
-        os << "--memory-limit must be in (0, " << kMaxMemoryGiB << "] GiB, got " << gib;
-        throw std::invalid_argument(os.str());
-    }
-    r.memoryLimit = static_cast<std::size_t>(gib * 1073741824.0);
-    if (a.has("--voxel-size") && a.has("--resolution"))
-        throw std::invalid_argument("give either --voxel-size or --resolution, not both");
-    if (a.has("--voxel-size"))
-        r.voxelSize = number(a, "--voxel-size", 0.0);
-    else
-        r.resolution = integer(a, "--resolution", 100);
-    if (a.has("--resolution") && r.resolution < 1)
-        throw std::invalid_argument("--resolution must be >= 1 voxel along the shortest edge, got " +
-                                    a.opts.at("--resolution"));
-    if (a.has("--voxel-size") && !(r.voxelSize > 0)) throw std::invalid_argument("--voxel-size must be > 0");
-    return r;
+/// Refuses, for a mesh, the options that only voxel volumes take (they would be ignored).
+void voxelOptionsOnly(const Args& a, const std::string& in, std::initializer_list<const char*> names) {
+    for (const char* name : names)
+        if (a.has(name))
+            throw std::invalid_argument(in + ": " + flagOf(name) +
+                                        " applies to voxel volumes (.npy); this is a mesh");
 }
 
 void printMetrics(const mss::Result& r) {
@@ -219,52 +181,33 @@ void printMetrics(const mss::Result& r) {
 
 int cmdGenerate(const Args& a) {
     if (a.positional.size() != 1) throw std::invalid_argument("generate needs one INPUT file");
-    if (!a.has("--output")) throw std::invalid_argument("generate needs -o OUT (.csv, .txt or .vtk)");
-    const std::string in = a.positional[0], out = a.opts.at("--output");
+    if (!a.has("output")) throw std::invalid_argument("generate needs -o OUT (.csv, .txt or .vtk)");
+    const std::string in = a.positional[0], out = a.text("output");
     {
         const std::string ext = mss::fileExtension(out);
         if (ext != ".csv" && ext != ".txt" && ext != ".vtk")
             throw std::invalid_argument(out + ": unknown output extension '" + ext +
                                         "' (expected .csv, .txt or .vtk)");
     }
-    mss::GenerateOptions o;
-    o.nSpheres = integer(a, "--spheres", 0);
-    if (a.has("--spheres") && o.nSpheres < 1)
-        throw std::invalid_argument("--spheres must be >= 1, got " + a.opts.at("--spheres"));
-    o.eta = number(a, "--eta", 0.0);
-    o.dice = number(a, "--dice", 0.0);
-    o.rMin = number(a, "--rmin", 0.0);
-    o.deltaMin = number(a, "--delta-min", 1.0);
-    o.maxIterations = integer(a, "--max-iterations", 100);
-    o.threads = integer(a, "--threads", 0);
-    o.keepSymmetry = !a.has("--no-symmetry");
-    o.clip = a.has("--clip");
-    o.refill = !a.has("--no-refill");
-    if (a.has("--max-protrusion")) o.maxProtrusion = number(a, "--max-protrusion", 0.0);
-    o.planes = planes(a);
-    const std::string method = a.has("--method") ? a.opts.at("--method") : "optimized";
-    if (method == "optimized")
-        o.method = mss::Method::Optimized;
-    else if (method == "paper")
-        o.method = mss::Method::Paper;
-    else
-        throw std::invalid_argument("--method must be optimized or paper, got '" + method + "'");
+    const mss::Settings st = mss::settingsFrom(values(a, mss::command::Generate), mss::command::Generate);
+    const mss::GenerateOptions& o = st.generate;
     mss::validateOptions(o);
     const auto t0 = std::chrono::steady_clock::now();
     mss::Result r;
     if (isVoxelFile(in)) {
-        const mss::VoxelGrid v = readVoxels(a, in);
+        if (a.has("resolution"))
+            throw std::invalid_argument(in +
+                                        ": --resolution applies to meshes; a voxel volume is used at its "
+                                        "own voxels (--voxel-size sets their edge)");
+        const mss::VoxelGrid v = readVoxels(st, in);
         const double tRead = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         r = mss::generate(v, o);
         r.metrics.secondsRead = tRead;
     } else {
-        if (a.has("--label")) // it was ignored
-            throw std::invalid_argument(in +
-                                        ": --label applies to labelled voxel volumes (.npy); this is a mesh");
+        voxelOptionsOnly(a, in, {"label", "origin"});
         const mss::TriangleMesh mesh = mss::readMesh(in);
         const double tRead = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        r = namingInput(
-            in, [&] { return mss::generate(mesh, resolution(a), o, integer(a, "--supersample", 1)); });
+        r = namingInput(in, [&] { return mss::generate(mesh, st.resolution, o, st.supersample); });
         r.metrics.secondsRead = tRead;
     }
     for (const std::string& w : r.metrics.warnings)
@@ -273,10 +216,10 @@ int cmdGenerate(const Args& a) {
     r.metrics.secondsTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     printMetrics(r);
     std::cout << "wrote       " << out << std::endl;
-    if (a.has("--preview")) {
-        std::vector<std::string> args{"preview", in, out, "-o", a.opts.at("--preview")};
-        for (const char* k : {"--npy-voxel-size", "--origin", "--label"})
-            if (a.has(k)) args.insert(args.end(), {k, a.opts.at(k)});
+    if (a.has("preview")) {
+        std::vector<std::string> args{"preview", in, out, "-o", a.text("preview")};
+        for (const char* k : {"voxelSize", "origin", "label"})
+            if (a.has(k) && isVoxelFile(in)) args.insert(args.end(), {flagOf(k), a.text(k)});
         if (runPython(args) != 0) throw std::runtime_error("the preview could not be drawn (see above)");
     }
     return 0;
@@ -343,46 +286,43 @@ void printTable(const std::vector<std::string>& files, const std::vector<mss::Co
 }
 
 int cmdCompare(const Args& a) {
-    mss::CompareOptions o;
-    o.planes = planes(a);
     if (a.positional.size() < 2)
         throw std::invalid_argument("compare needs INPUT and at least one SPHERES file");
-    o.resolution = integer(a, "--resolution", 100);
-    o.offset = number(a, "--offset", 0.37);
-    o.supersample = integer(a, "--supersample", 1);
-    o.align = mss::parseAlign(a.has("--align") ? a.opts.at("--align") : "none");
-    o.checkFrame = !a.has("--align"); // an explicit --align none scores the file as written
-    const long long clump = a.has("--clump") ? integer(a, "--clump", -1) : -1;
+    const mss::Settings st = mss::settingsFrom(values(a, mss::command::Compare), mss::command::Compare);
+    const mss::CompareOptions& o = st.compare;
     const std::string in = a.positional[0];
     const bool voxels = isVoxelFile(in);
-    const mss::VoxelGrid v = voxels ? readVoxels(a, in) : mss::VoxelGrid();
+    if (!voxels) voxelOptionsOnly(a, in, {"voxelSize", "origin", "label"});
+    const mss::VoxelGrid v = voxels ? readVoxels(st, in) : mss::VoxelGrid();
     const mss::TriangleMesh mesh = voxels ? mss::TriangleMesh() : mss::readMesh(in);
     const std::vector<std::string> files(a.positional.begin() + 1, a.positional.end());
     std::vector<mss::Comparison> rows;
     for (const std::string& f : files) {
-        const mss::SphereSet s = mss::readSpheres(f, clump);
+        const mss::SphereSet s = mss::readSpheres(f, st.clumpId);
         rows.push_back(namingInput(
             in, [&] { return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o); }));
     }
-    if (rows.size() == 1 && !a.has("--csv"))
+    if (rows.size() == 1 && !a.has("csv"))
         printComparison(rows[0]);
     else
-        printTable(files, rows, a.has("--csv") ? a.opts.at("--csv") : "");
+        printTable(files, rows, a.has("csv") ? a.text("csv") : "");
     return 0;
 }
 
 int cmdInfo(const Args& a) {
     if (a.positional.size() != 1) throw std::invalid_argument("info needs one INPUT file");
     const std::string in = a.positional[0];
+    const mss::Settings st = mss::settingsFrom(values(a, mss::command::Info), mss::command::Info);
     std::cout << std::setprecision(8);
     if (isVoxelFile(in)) {
-        const mss::VoxelGrid v = readVoxels(a, in);
+        const mss::VoxelGrid v = readVoxels(st, in);
         std::cout << "voxels        " << v.nx() << " x " << v.ny() << " x " << v.nz() << "\n";
         std::cout << "solid         " << mss::countSolid(v) << "\n";
         std::cout << "voxel size    " << v.spec.h << "\n";
         std::cout << "volume        " << double(mss::countSolid(v)) * v.spec.h * v.spec.h * v.spec.h << "\n";
         return 0;
     }
+    voxelOptionsOnly(a, in, {"voxelSize", "origin", "label"});
     const mss::TriangleMesh mesh = mss::readMesh(in);
     const mss::MeshInfo i = mss::analyzeMesh(mesh);
     std::cout << "vertices      " << i.vertices << "\n";
@@ -438,77 +378,71 @@ std::string unknownOption(const CLI::App* sub, const std::vector<std::string>& e
     return "unknown option '" + bad + "'" + (best.empty() ? "" : ": did you mean '" + best + "'?");
 }
 
-void value(CLI::App* sub, Args& a, const std::string& names, const std::string& key, const std::string& help,
-           const std::string& type) {
+/// The --help line of a table row: its help, unit, range and default.
+std::string helpOf(const mss::OptionSpec& s) {
+    std::string extra;
+    auto add = [&extra](const std::string& t) { extra += (extra.empty() ? "" : "; ") + t; };
+    if (*s.unit) add(s.unit);
+    if (s.type == mss::OptionType::Choice) add(std::string("one of ") + s.choices);
+    const std::string range = mss::optionRange(s);
+    if (!range.empty()) add(range);
+    if (*s.fallback && s.type != mss::OptionType::Flag) add(std::string("default ") + s.fallback);
+    const bool offFlag = s.type == mss::OptionType::Flag && std::string(s.fallback) == "true";
+    return (offFlag ? "turns off: " : "") + std::string(s.help) + (extra.empty() ? "" : " [" + extra + "]");
+}
+
+/// The options of command @p cmd, from the option table: values kept as text by name, parsed by values().
+void tableOptions(CLI::App* sub, Args& a, unsigned cmd) {
+    for (const mss::OptionSpec& s : mss::optionTable()) {
+        if (!(s.commands & cmd) || !*s.flag) continue;
+        const std::string name = s.name;
+        if (s.type == mss::OptionType::Flag) {
+            const std::string set = std::string(s.fallback) == "true" ? "false" : "true";
+            sub->add_flag_callback(
+                s.flag, [&a, name, set] { a.opts[name] = set; }, helpOf(s));
+        } else if (s.type == mss::OptionType::Planes) {
+            sub->add_option("--plane", a.planes, helpOf(s))
+                ->type_name(s.metavar)
+                ->type_size(1)
+                ->expected(1)
+                ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+        } else {
+            sub->add_option_function<std::string>(
+                   s.flag, [&a, name](const std::string& v) { a.opts[name] = v; }, helpOf(s))
+                ->type_name(s.metavar);
+        }
+    }
+    if (cmd & (mss::command::Generate | mss::command::Compare | mss::command::Info)) {
+        // the name before --voxel-size took the voxel volumes' edge too: still read, not shown
+        sub->add_option_function<std::string>(
+               "--npy-voxel-size",
+               [&a](const std::string& v) {
+                   std::cerr << "mss: warning: --npy-voxel-size is now --voxel-size\n";
+                   a.opts["voxelSize"] = v;
+               },
+               "")
+            ->group("");
+    }
+}
+
+void inputArgument(CLI::App* sub, Args& a) {
     sub->add_option_function<std::string>(
-           names, [&a, key](const std::string& v) { a.opts[key] = v; }, help)
-        ->type_name(type);
-}
-
-void flag(CLI::App* sub, Args& a, const std::string& name, const std::string& help) {
-    sub->add_flag_callback(
-        name, [&a, name] { a.opts[name] = ""; }, help);
-}
-
-void voxelOptions(CLI::App* sub, Args& a) {
-    value(sub, a, "--npy-voxel-size", "--npy-voxel-size", "voxel edge of a .npy array (default 1)", "H");
-    value(sub, a, "--origin", "--origin", "centre of voxel (0,0,0) of a .npy array", "X,Y,Z");
-    value(sub, a, "--label", "--label", "solid = voxels equal to L (labelled volumes: required when several)",
-          "L");
-}
-
-void planeOption(CLI::App* sub, Args& a, const std::string& help) {
-    sub->add_option("--plane", a.planes, help)
-        ->type_name("PX,PY,PZ,NX,NY,NZ")
-        ->type_size(1)
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+           "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
+        ->required();
 }
 
 CLI::App* generateCommand(CLI::App& app, Args& a) {
     CLI::App* g = app.add_subcommand("generate", "spheres for a mesh (.stl .obj .off .ply) or voxels (.npy)");
     g->footer("Termination (paper section 3.5): give at least one of --spheres, --eta, --dice, --rmin.");
-    g->add_option_function<std::string>(
-         "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
-        ->required();
-    value(g, a, "-o,--output", "--output", ".csv (x,y,z,r), .txt (YADE text clump x y z r clumpId) or .vtk",
-          "OUT");
-    value(g, a, "--spheres", "--spheres", "at most N spheres (problem (i) of the paper)", "N");
-    value(g, a, "--eta", "--eta", "stop at relative mismatch eta <= X (eq. 7; problem (ii))", "X");
-    value(g, a, "--dice", "--dice", "stop at Dice mismatch D <= X (eq. 27)", "X");
-    value(g, a, "--rmin", "--rmin", "no sphere of radius below R (world units)", "R");
-    value(g, a, "--voxel-size", "--voxel-size", "voxel edge in world units (meshes), or", "H");
-    value(g, a, "--resolution", "--resolution", "N voxels along the shortest bounding-box edge (default 100)",
-          "N");
-    value(g, a, "--supersample", "--supersample", "K^3 samples per voxel when voxelising a mesh (default 1)",
-          "K");
-    value(g, a, "--method", "--method", "optimized (default) or paper (the published procedure)", "M");
-    value(g, a, "--delta-min", "--delta-min", "minimal centre distance in voxels, paper mode (default 1)",
-          "D");
-    flag(g, a, "--no-symmetry", "do not detect and keep mirror planes");
-    flag(g, a, "--clip",
-         "no sphere protrudes from the grain (exact distance to the mesh; voxel faces for .npy)");
-    value(g, a, "--max-protrusion", "--max-protrusion",
-          "no sphere reaches farther than H beyond the grain (world units; default one voxel; 0 = --clip; "
-          "inf = unbounded)",
-          "H");
-    flag(g, a, "--no-refill",
-         "with --clip or --max-protrusion: shrink the spheres afterwards instead of choosing them under it");
-    planeOption(g, a, "no sphere crosses this plane (spheres stay on the normal's side); may repeat");
-    value(g, a, "--max-iterations", "--max-iterations", "iteration cap (default 100)", "N");
-    value(g, a, "--threads", "--threads", "OpenMP threads (the result is the same for any T)", "T");
-    value(g, a, "--memory-limit", "--memory-limit", "refuse grids needing more (default 8)", "GIB");
-    value(g, a, "--preview", "--preview", "also draw the clump against the grain (as mss preview)", "PNG");
-    voxelOptions(g, a);
+    inputArgument(g, a);
+    tableOptions(g, a, mss::command::Generate);
     return g;
 }
 
 CLI::App* compareCommand(CLI::App& app, Args& a) {
     CLI::App* c =
         app.add_subcommand("compare", "score a sphere file against the target on a grid of its own");
-    c->add_option_function<std::string>(
-         "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
-        ->required();
+    inputArgument(c, a);
     c->add_option_function<std::vector<std::string>>(
          "SPHERES",
          [&a](const std::vector<std::string>& v) {
@@ -516,27 +450,14 @@ CLI::App* compareCommand(CLI::App& app, Args& a) {
          },
          "sphere files (.csv, .txt, CLUMP's and YADE's, legacy VTK); several give one table")
         ->required();
-    value(c, a, "--align", "--align",
-          "register the spheres first: centroid, bbox or principal; none: as written, even in another frame",
-          "MODE");
-    value(c, a, "--csv", "--csv", "also write the rows as CSV", "OUT");
-    value(c, a, "--resolution", "--resolution",
-          "scoring grid: N voxels along the shortest edge (default 100)", "N");
-    value(c, a, "--offset", "--offset", "shift of the scoring grid, in voxels (default 0.37)", "F");
-    value(c, a, "--supersample", "--supersample", "K^3 samples per voxel of the target (default 1)", "K");
-    value(c, a, "--clump", "--clump", "the clump with this id, when SPHERES is a YADE text file of several",
-          "ID");
-    planeOption(c, a, "score against the part of the target on the normal's side (a fragment)");
-    voxelOptions(c, a);
+    tableOptions(c, a, mss::command::Compare);
     return c;
 }
 
 CLI::App* infoCommand(CLI::App& app, Args& a) {
     CLI::App* i = app.add_subcommand("info", "what was read: mesh closedness, defects, volume; voxel counts");
-    i->add_option_function<std::string>(
-         "INPUT", [&a](const std::string& v) { a.positional.push_back(v); }, "mesh or voxel file")
-        ->required();
-    voxelOptions(i, a);
+    inputArgument(i, a);
+    tableOptions(i, a, mss::command::Info);
     return i;
 }
 
@@ -721,6 +642,9 @@ int main(int argc, char** argv) {
             << "mss " << cmd
             << ": error: out of memory: the machine could not give what this run needs; lower --resolution, "
                "or set --memory-limit to the memory the machine has (default 8 GiB) to be told before\n";
+        return 1;
+    } catch (const mss::OptionError& e) { // named as the command line spells it
+        std::cerr << "mss " << cmd << ": error: " << flagOf(e.option()) << e.detail() << "\n";
         return 1;
     } catch (const std::exception& e) {
         std::cerr << "mss " << cmd << ": error: " << e.what() << "\n";

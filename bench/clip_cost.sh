@@ -24,7 +24,7 @@ run() { # input label method n [extra options for every run]
       -o "$OUT/s.csv" > "$OUT/run.log"
     [ "$clip" = "--max-protrusion inf" ] && gen=$(awk '/^dice/{print $2}' "$OUT/run.log")
     # a voxel volume is scored on its own voxels (--resolution and --offset apply to meshes)
-    d+=("$($MSS compare "$in" "$OUT/s.csv" --resolution 100 --offset 0.37 ${NPY:+--npy-voxel-size 1} |
+    d+=("$($MSS compare "$in" "$OUT/s.csv" --resolution 100 --offset 0.37 ${NPY:+--voxel-size 1} |
       awk '/^dice/{print $2}')")
   done
   local same="-"
@@ -42,6 +42,6 @@ for n in 30 70; do run $F femur paper "$n" --resolution 103; done
 for g in ellipsoid_2_1_1 cube octahedron torus stanford_bunny_open; do
   for n in 10 40; do run tests/data/$g.stl "$g" optimized "$n" --resolution 103; done
 done
-for n in 10 30; do NPY=1 run tests/data/grain_voxels_155x157x167.npy CT-voxels optimized "$n" --npy-voxel-size 1; done
+for n in 10 30; do NPY=1 run tests/data/grain_voxels_155x157x167.npy CT-voxels optimized "$n" --voxel-size 1; done
 echo "D: Dice mismatch (eq. 27) on an independent grid; ratio = D_clip / D_free; n_clip_same_D: spheres that"
 echo "--clip needs to reach, on the generation grid, the D that n unbounded spheres reach there."

@@ -9,5 +9,5 @@ FEMUR=tests/data/human_femur.stl
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 $MSS generate $FEMUR --spheres 40 --resolution 103 -o "$tmp/femur_40.txt" --preview docs/femur40_preview.png
-$MSS curve $FEMUR --spheres 5:100 -o docs/femur_curve.png \
+$MSS curve $FEMUR --counts 5:100 -o docs/femur_curve.png \
   --compare tests/data/clump/FA_femur_N70_min.txt tests/data/clump/FM_femur_n70_dmin2_rmin1_rstep0.1_seed5.txt

@@ -10,6 +10,7 @@
 #include "mss/maxima.hpp"        // local maxima and sub-voxel refinement (eq. 11-24)
 #include "mss/mesh.hpp"          // triangle meshes and their files
 #include "mss/npy.hpp"           // .npy voxel volumes
+#include "mss/options.hpp"       // the option table every front end is made from
 #include "mss/score.hpp"         // scoring sphere sets (eq. 7, 27)
 #include "mss/spheres.hpp"       // sphere sets and their files
 #include "mss/spheropolygon.hpp" // 2-D: spheropolygons from particle images (the second paper)

@@ -123,40 +123,146 @@ std::vector<mss::Plane> planes(const py::object& list) {
     return out;
 }
 
-mss::GenerateOptions options(const py::dict& d) {
-    mss::GenerateOptions o;
-    if (d.has_key("nSpheres")) o.nSpheres = py::extract<int>(d["nSpheres"]);
-    if (d.has_key("eta")) o.eta = py::extract<double>(d["eta"]);
-    if (d.has_key("dice")) o.dice = py::extract<double>(d["dice"]);
-    if (d.has_key("rMin")) o.rMin = py::extract<double>(d["rMin"]);
-    if (d.has_key("maxIterations")) o.maxIterations = py::extract<int>(d["maxIterations"]);
-    if (d.has_key("deltaMin")) o.deltaMin = py::extract<double>(d["deltaMin"]);
-    if (d.has_key("keepSymmetry")) o.keepSymmetry = py::extract<bool>(d["keepSymmetry"]);
-    if (d.has_key("threads")) o.threads = py::extract<int>(d["threads"]);
-    if (d.has_key("clip")) o.clip = py::extract<bool>(d["clip"]);
-    if (d.has_key("refill")) o.refill = py::extract<bool>(d["refill"]);
-    if (d.has_key("maxProtrusion")) o.maxProtrusion = py::extract<double>(d["maxProtrusion"]);
-    if (d.has_key("planes")) {
-        o.planes = planes(d["planes"]);
+/// A Python value as the option table's row @p spec types it (the facade has checked its kind: this only
+/// converts). @throws mss::OptionError
+mss::OptionValue optionValue(const mss::OptionSpec& spec, const py::object& v) {
+    using T = mss::OptionType;
+    const auto bad = [&](const char* what) { return mss::OptionError("options", spec.name, what); };
+    switch (spec.type) {
+    case T::Integer: {
+        if (PyBool_Check(v.ptr()) || !PyLong_Check(v.ptr())) throw bad(" must be an integer");
+        int overflow = 0;
+        const long long x = PyLong_AsLongLongAndOverflow(v.ptr(), &overflow);
+        if (overflow) throw bad(" is out of range");
+        return x;
     }
-    if (d.has_key("method")) {
-        const std::string m = py::extract<std::string>(d["method"]);
-        if (m == "optimized")
-            o.method = mss::Method::Optimized;
-        else if (m == "paper")
-            o.method = mss::Method::Paper;
-        else
-            throw std::invalid_argument("generate: method must be 'optimized' or 'paper', got '" + m + "'");
+    case T::Number: {
+        py::extract<double> x(v);
+        if (PyBool_Check(v.ptr()) || !x.check()) throw bad(" must be a number");
+        return x();
     }
-    return o;
+    case T::Flag:
+        if (!PyBool_Check(v.ptr())) throw bad(" must be True or False");
+        return v.ptr() == Py_True;
+    case T::Choice:
+    case T::Text: {
+        py::extract<std::string> x(v);
+        if (!x.check()) throw bad(" must be a string");
+        return x();
+    }
+    case T::Point:
+        return vec3(v, spec.name);
+    case T::Planes:
+        return planes(v);
+    case T::Files: {
+        std::vector<std::string> out;
+        for (long i = 0; i < py::len(v); ++i) out.push_back(py::extract<std::string>(v[i]));
+        return out;
+    }
+    }
+    throw bad(" has a type the table does not know");
 }
 
-mss::Resolution resolution(const py::dict& d) {
-    mss::Resolution r;
-    if (d.has_key("voxelSize")) r.voxelSize = py::extract<double>(d["voxelSize"]);
-    if (d.has_key("resolution")) r.resolution = py::extract<int>(d["resolution"]);
-    if (d.has_key("memoryLimit")) r.memoryLimit = py::extract<std::size_t>(d["memoryLimit"]);
-    return r;
+/// Settings of command @p cmd from a dict of keyword -> value: a key the command does not take is an error.
+mss::Settings settings(const py::dict& d, unsigned cmd) {
+    mss::OptionValues values;
+    const py::list keys = d.keys();
+    for (long i = 0; i < py::len(keys); ++i) {
+        py::extract<std::string> key(keys[i]);
+        if (!key.check()) throw std::invalid_argument("options: the keys must be option names");
+        const mss::OptionSpec* spec = mss::findOption(key(), cmd);
+        if (spec)
+            values[key()] = optionValue(*spec, d[keys[i]]);
+        else
+            values[key()] = false; // settingsFrom names it and suggests the nearest
+    }
+    return mss::settingsFrom(values, cmd);
+}
+
+const char* typeWord(mss::OptionType t) {
+    switch (t) {
+    case mss::OptionType::Integer:
+        return "int";
+    case mss::OptionType::Number:
+        return "float";
+    case mss::OptionType::Flag:
+        return "bool";
+    case mss::OptionType::Choice:
+        return "choice";
+    case mss::OptionType::Text:
+        return "str";
+    case mss::OptionType::Point:
+        return "point";
+    case mss::OptionType::Planes:
+        return "planes";
+    case mss::OptionType::Files:
+        return "files";
+    }
+    return "";
+}
+
+unsigned commandBit(const std::string& name) {
+    static const std::pair<const char*, unsigned> kCommands[] = {
+        {"generate", mss::command::Generate}, {"compare", mss::command::Compare},
+        {"info", mss::command::Info},         {"batch", mss::command::Batch},
+        {"preview", mss::command::Preview},   {"curve", mss::command::Curve}};
+    for (const auto& [word, bit] : kCommands)
+        if (name == word) return bit;
+    throw std::invalid_argument("options: no command '" + name + "'");
+}
+
+/// The value of @p text for option @p name of @p command, parsed as the command line parses it.
+py::object parseOption(const std::string& name, const std::string& command, const std::string& text) {
+    const mss::OptionSpec* spec = mss::findOption(name, commandBit(command));
+    if (!spec) throw std::invalid_argument(command + ": no option '" + name + "'");
+    const mss::OptionValue v = mss::parseOption(*spec, text);
+    if (const bool* b = std::get_if<bool>(&v)) return py::object(*b);
+    if (const long long* i = std::get_if<long long>(&v)) return py::object(*i);
+    if (const double* x = std::get_if<double>(&v)) return py::object(*x);
+    if (const std::string* t = std::get_if<std::string>(&v)) return py::object(*t);
+    if (const mss::Vec3* p = std::get_if<mss::Vec3>(&v)) return py::make_tuple(p->x(), p->y(), p->z());
+    if (const auto* ps = std::get_if<std::vector<mss::Plane>>(&v)) {
+        py::list out;
+        for (const mss::Plane& q : *ps)
+            out.append(py::make_tuple(py::make_tuple(q.point.x(), q.point.y(), q.point.z()),
+                                      py::make_tuple(q.normal.x(), q.normal.y(), q.normal.z())));
+        return out;
+    }
+    py::list files;
+    for (const std::string& f : std::get<std::vector<std::string>>(v)) files.append(f);
+    return files;
+}
+
+/// The option table (mss/options.hpp) as a list of dicts, for the facade's parsers and docstrings.
+py::list optionTable() {
+    static const std::pair<unsigned, const char*> kCommands[] = {
+        {mss::command::Generate, "generate"}, {mss::command::Compare, "compare"},
+        {mss::command::Info, "info"},         {mss::command::Batch, "batch"},
+        {mss::command::Preview, "preview"},   {mss::command::Curve, "curve"}};
+    py::list out;
+    for (const mss::OptionSpec& s : mss::optionTable()) {
+        py::dict d;
+        d["name"] = s.name;
+        d["flag"] = s.flag;
+        d["python"] = s.python;
+        d["type"] = typeWord(s.type);
+        d["default"] = s.fallback;
+        d["low"] = s.low;
+        d["high"] = s.high;
+        d["lowOpen"] = s.lowOpen;
+        d["highOpen"] = s.highOpen;
+        d["range"] = mss::optionRange(s);
+        d["choices"] = s.choices;
+        d["unit"] = s.unit;
+        d["metavar"] = s.metavar;
+        d["help"] = s.help;
+        py::list commands;
+        for (const auto& [bit, name] : kCommands)
+            if (s.commands & bit) commands.append(name);
+        d["commands"] = commands;
+        out.append(d);
+    }
+    return out;
 }
 
 py::dict grid(const mss::GridSpec& g) {
@@ -277,14 +383,15 @@ py::dict meshInfo(const py::object& vertices, const py::object& triangles) {
     return d;
 }
 
-py::dict generateMesh(const py::object& vertices, const py::object& triangles, const py::dict& res,
-                      const py::dict& opts, int supersample) {
-    return result(mss::generate(mesh(vertices, triangles), resolution(res), options(opts), supersample));
+py::dict generateMesh(const py::object& vertices, const py::object& triangles, const py::dict& opts) {
+    const mss::Settings st = settings(opts, mss::command::Generate);
+    return result(mss::generate(mesh(vertices, triangles), st.resolution, st.generate, st.supersample));
 }
 
 py::dict generateVoxels(const py::object& data, const py::object& shape, double voxelSize,
                         const py::object& origin, const py::dict& opts) {
-    return result(mss::generate(voxels(data, shape, voxelSize, origin), options(opts)));
+    return result(mss::generate(voxels(data, shape, voxelSize, origin),
+                                settings(opts, mss::command::Generate).generate));
 }
 
 // with planes: the part of the solid on their allowed side (a fragment)
@@ -328,16 +435,7 @@ py::dict scoreVoxels(const py::object& data, const py::object& shape, double vox
 }
 
 mss::CompareOptions compareOptions(const py::dict& d) {
-    mss::CompareOptions o;
-    if (d.has_key("resolution")) o.resolution = py::extract<int>(d["resolution"]);
-    if (d.has_key("offset")) o.offset = py::extract<double>(d["offset"]);
-    if (d.has_key("planes")) o.planes = planes(d["planes"]);
-    if (d.has_key("align")) {
-        o.align = mss::parseAlign(py::extract<std::string>(d["align"]));
-        o.checkFrame = false;
-    }
-    if (d.has_key("protrusionSamples")) o.protrusionSamples = py::extract<int>(d["protrusionSamples"]);
-    return o;
+    return settings(d, mss::command::Compare).compare;
 }
 
 py::dict comparison(const mss::Comparison& c) {
@@ -508,9 +606,10 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("readNpy", readNpy, (py::arg("path"), py::arg("label") = -1));
     py::def("voxelizeMesh", voxelizeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("resolution")));
     py::def("meshInfo", meshInfo, (py::arg("vertices"), py::arg("triangles")));
-    py::def("generateMesh", generateMesh,
-            (py::arg("vertices"), py::arg("triangles"), py::arg("resolution"), py::arg("options"),
-             py::arg("supersample") = 1));
+    py::def("optionTable", optionTable, "The option table: a dict per row.");
+    py::def("parseOption", parseOption, (py::arg("name"), py::arg("command"), py::arg("text")),
+            "An option's value from its text, as the command line parses it.");
+    py::def("generateMesh", generateMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("options")));
     py::def("generateVoxels", generateVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options")));
     py::def("massMesh", massMesh,

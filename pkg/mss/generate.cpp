@@ -4,6 +4,7 @@
 #include "mss/edt.hpp"
 #include "mss/engine/optimized.hpp"
 #include "mss/engine/paper.hpp"
+#include "mss/options.hpp"
 
 #include <algorithm>
 #include <array>
@@ -174,30 +175,46 @@ enum class Starts { Cold, Warm, Both };
 /// refilled (greedy for the spheres lost, refinement of all under the constraint). Neither start wins always
 /// (clipped, independent grid: ellipsoid 10 spheres 0.0104 cold / 0.0081 warm; octahedron 40: 0.130 /
 /// 0.101; ellipsoid 40: 0.00134 / 0.00139; cube 40: 0.0753 / 0.0768).
+/// The engine's request: the generation's targets and parameters.
+engine::Request request(const GenerateOptions& o) {
+    engine::Request r;
+    r.nSpheres = o.nSpheres;
+    r.eta = o.eta;
+    r.dice = o.dice;
+    r.rMin = o.rMin;
+    r.maxIterations = o.maxIterations;
+    r.deltaMin = o.deltaMin;
+    r.keepSymmetry = o.keepSymmetry;
+    r.planes = o.planes;
+    return r;
+}
+
 std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
-                              const BoundVox& boundVox, Starts starts, Metrics& m) {
+                              const BoundVox& boundVox, Starts starts, Metrics& metrics) {
+    const engine::Request req = request(opt);
+    engine::Report m{metrics.iterations, metrics.symmetryPlanes, metrics.secondsSelect};
     double secondsRefine = 0.0;
     std::vector<Ball> balls;
     const auto t0 = Clock::now();
     if (opt.method == Method::Paper) {
-        balls = engine::runPaper(S, E, opt, m, boundVox);
+        balls = engine::runPaper(S, E, req, m, boundVox);
         m.secondsSelect = secondsSince(t0);
     } else if (boundVox && starts == Starts::Warm) {
         std::vector<Orbit> free;
         engine::SharedCandidates shared;
-        Metrics freeM = m;
-        engine::runOptimized(S, E, opt, BoundVox{}, freeM, secondsRefine, {}, &free, nullptr, &shared);
-        balls = engine::runOptimized(S, E, opt, boundVox, m, secondsRefine, free, nullptr, nullptr, &shared);
+        engine::Report freeM = m;
+        engine::runOptimized(S, E, req, BoundVox{}, freeM, secondsRefine, {}, &free, nullptr, &shared);
+        balls = engine::runOptimized(S, E, req, boundVox, m, secondsRefine, free, nullptr, nullptr, &shared);
         m.secondsSelect += freeM.secondsSelect;
     } else if (boundVox && starts == Starts::Both) {
-        Metrics warmM = m, coldM = m;
+        engine::Report warmM = m, coldM = m;
         std::vector<Orbit> free;
         engine::SharedCandidates shared; // the three runs share their candidates (torus 40: 0.13 s each)
-        engine::runOptimized(S, E, opt, BoundVox{}, warmM, secondsRefine, {}, &free, nullptr, &shared);
+        engine::runOptimized(S, E, req, BoundVox{}, warmM, secondsRefine, {}, &free, nullptr, &shared);
         long long warmMismatch = 0, coldMismatch = 0;
-        std::vector<Ball> warm = engine::runOptimized(S, E, opt, boundVox, warmM, secondsRefine, free,
+        std::vector<Ball> warm = engine::runOptimized(S, E, req, boundVox, warmM, secondsRefine, free,
                                                       nullptr, &warmMismatch, &shared);
-        std::vector<Ball> cold = engine::runOptimized(S, E, opt, boundVox, coldM, secondsRefine, {}, nullptr,
+        std::vector<Ball> cold = engine::runOptimized(S, E, req, boundVox, coldM, secondsRefine, {}, nullptr,
                                                       &coldMismatch, &shared);
         const double select = warmM.secondsSelect + coldM.secondsSelect;
         // with a quality target (problem (ii)) fewer spheres win first, else less mismatch
@@ -210,9 +227,12 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
         balls = useWarm ? std::move(warm) : std::move(cold);
         m.secondsSelect = select;
     } else {
-        balls = engine::runOptimized(S, E, opt, boundVox, m, secondsRefine);
+        balls = engine::runOptimized(S, E, req, boundVox, m, secondsRefine);
     }
-    m.secondsRefine = secondsRefine;
+    metrics.iterations = m.iterations;
+    metrics.symmetryPlanes = m.symmetryPlanes;
+    metrics.secondsSelect = m.secondsSelect;
+    metrics.secondsRefine = secondsRefine;
     return balls;
 }
 
@@ -399,30 +419,29 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
 } // namespace
 
 void validateOptions(const GenerateOptions& o) {
-    auto bad = [](const std::string& what, double v) {
-        std::ostringstream os;
-        os << "generate: " << what << ", got " << v;
-        throw std::invalid_argument(os.str());
+    // the ranges of the option table (mss/options.hpp), with its messages
+    auto check = [](const char* name, const OptionValue& v) {
+        try {
+            checkOption(*findOption(name, command::Generate), v);
+        } catch (const OptionError& e) {
+            throw OptionError("generate", e.option(), e.detail());
+        }
     };
-    if (o.nSpheres < 0) bad("sphere count must be >= 1 (or 0 for no limit)", o.nSpheres);
-    if (o.nSpheres > 65535) bad("sphere count must be at most 65535", o.nSpheres);
-    if (!(o.eta >= 0.0) || !(o.eta < 1.0)) bad("eta must be in [0, 1)", o.eta);
-    if (!(o.dice >= 0.0) || !(o.dice < 1.0)) bad("dice must be in [0, 1)", o.dice);
-    if (!(o.rMin >= 0.0) || !std::isfinite(o.rMin)) bad("rMin must be >= 0", o.rMin);
-    if (o.maxIterations < 1) bad("maxIterations must be >= 1", o.maxIterations);
-    if (!(o.deltaMin >= 0.0) || !std::isfinite(o.deltaMin)) bad("deltaMin must be >= 0", o.deltaMin);
+    if (o.nSpheres != 0) check("nSpheres", (long long)o.nSpheres); // 0: no limit
+    check("eta", o.eta);
+    check("dice", o.dice);
+    check("rMin", o.rMin);
+    check("maxIterations", (long long)o.maxIterations);
+    check("deltaMin", o.deltaMin);
     // more threads than libgomp can start end in "Thread creation failed" (2000) or overflow its stacks
-    // (65536)
-    if (o.threads < 0 || o.threads > kMaxThreads)
-        bad("threads must be in [0, " + std::to_string(kMaxThreads) + "]", o.threads);
-    if (o.maxProtrusion && !(*o.maxProtrusion >= 0.0))
-        bad("maxProtrusion must be >= 0 (world units; inf: unbounded)", *o.maxProtrusion);
+    check("threads", (long long)o.threads);
+    if (o.maxProtrusion) check("maxProtrusion", *o.maxProtrusion);
     if (o.clip && o.maxProtrusion && *o.maxProtrusion != 0.0)
-        bad("clip means maxProtrusion 0: give one of them", *o.maxProtrusion);
-    for (const Plane& p : o.planes) validatePlane(p, "generate");
+        throw OptionError("generate", "clip", " means maxProtrusion 0: give one of them");
+    check("planes", o.planes);
     if (o.nSpheres == 0 && o.eta == 0.0 && o.dice == 0.0 && o.rMin == 0.0)
         throw std::invalid_argument(
-            "generate: give at least one termination criterion (sphere count, eta, dice or rMin)");
+            "generate: give at least one termination criterion (nSpheres, eta, dice or rMin)");
 }
 
 double protrusionLimit(const GenerateOptions& o, double h) {

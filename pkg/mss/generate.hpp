@@ -4,6 +4,7 @@
 #include "mss/clip.hpp"
 #include "mss/grid.hpp"
 #include "mss/mesh.hpp"
+#include "mss/score.hpp"
 #include "mss/spheres.hpp"
 #include "mss/voxelize.hpp"
 
@@ -26,11 +27,9 @@ enum class Method {
     Paper,
 };
 
-/// Termination criteria (section 3.5), alone or combined; generation stops at the first one met.
-/// At least one of nSpheres, eta, dice, rMin must be given.
-/// The most OpenMP threads a generation may ask for (GenerateOptions::threads).
-constexpr int kMaxThreads = 1024;
-
+/// What a generation is asked for; the ranges and the command-line and Python spellings are the option
+/// table's (mss/options.hpp). Termination criteria (section 3.5), alone or combined: generation stops at the
+/// first one met; at least one of nSpheres, eta, dice, rMin must be given.
 struct GenerateOptions {
     int nSpheres = 0;  ///< at most this many spheres (problem (i), eq. 2); 0 = no limit
     double eta = 0.0;  ///< stop once the relative mismatch eq. 7 is <= eta (problem (ii), eq. 4); 0 = none
@@ -40,7 +39,7 @@ struct GenerateOptions {
     double deltaMin = 1.0;   ///< minimal distance between sphere centres, voxels (paper section 3.4, δmin)
     Method method = Method::Optimized;
     bool keepSymmetry = true; ///< optimized: detect mirror planes of the voxelised grain and keep them
-    int threads = 0; ///< OpenMP threads, 0..kMaxThreads; 0 = the default. The result does not depend on it.
+    int threads = 0;          ///< OpenMP threads; 0 = the default. The result does not depend on it.
     /// No sphere protrudes from the solid (paper section 3.5, exactly): a mesh's spheres get radii at most
     /// the exact distance from their centre to the surface, a sphere whose centre is outside is not placed; a
     /// voxel volume's spheres stay inside the union of its solid voxels (exact distance to the nearest
@@ -95,17 +94,6 @@ Result generate(const VoxelGrid& volume, const GenerateOptions& options);
 /// Voxelises the mesh (section 2.2, with @p supersample^3 samples per voxel) and generates spheres.
 Result generate(const TriangleMesh& mesh, const Resolution& resolution, const GenerateOptions& options,
                 int supersample = 1);
-
-/// Relative mismatch eq. 7 and Dice mismatch eq. 27 of two volumes on the same grid.
-struct Mismatch {
-    double eta = 0.0, dice = 0.0;
-    std::size_t target = 0, approx = 0, both = 0;
-};
-Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx);
-/// The same as mismatch(target, voxelizeSpheres(spheres, target.spec)), without the grid of the spheres: per
-/// row, the union of their runs (forBallRows, as voxelizeSpheres) against the target. O(rows of the balls +
-/// covered voxels), no memory per voxel.
-Mismatch mismatch(const VoxelGrid& target, const SphereSet& spheres);
 
 /// The protrusion bound that applies on a grid of voxel edge @p h: 0 with clip, else maxProtrusion, else @p
 /// h.

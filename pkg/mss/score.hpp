@@ -29,4 +29,15 @@ Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int res
 /// Scores spheres against a binary volume on the volume's own grid (extended to hold the spheres).
 Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres, const std::vector<Plane>& planes = {});
 
+/// Relative mismatch eq. 7 and Dice mismatch eq. 27 of two volumes on the same grid.
+struct Mismatch {
+    double eta = 0.0, dice = 0.0;
+    std::size_t target = 0, approx = 0, both = 0;
+};
+Mismatch mismatch(const VoxelGrid& target, const VoxelGrid& approx);
+/// The same as mismatch(target, voxelizeSpheres(spheres, target.spec)), without the grid of the spheres: per
+/// row, the union of their runs (forBallRows, as voxelizeSpheres) against the target. O(rows of the balls +
+/// covered voxels), no memory per voxel.
+Mismatch mismatch(const VoxelGrid& target, const SphereSet& spheres);
+
 } // namespace mss

@@ -22,7 +22,8 @@ import urllib.parse
 
 import numpy as np
 
-from ._files import atomicWrite, parseOrigin, requireRegularFile
+from . import _options
+from ._files import atomicWrite, requireRegularFile
 from ._generate import GENERATE_OPTIONS
 from ._results import MssResult
 from ._specimen import _VOLUME_EXT, readVolume, regions
@@ -229,6 +230,8 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
                 opts = {o: v for o, v in options.items() if o != 'resolution'}
                 tasks.append(GrainTask(k, opts, path=f, crop=np.asarray(vol), voxelSize=h,
                                        origin=org.tolist(), voxels=int(np.count_nonzero(vol))))
+            elif voxelSize is not None and 'resolution' not in options:  # a mesh's grid at that voxel edge
+                tasks.append(GrainTask(k, dict(options, voxelSize=h), path=f))
             else:
                 tasks.append(GrainTask(k, options, path=f))
         except (OSError, ValueError) as e:  # a bad file is recorded, the batch goes on
@@ -575,44 +578,20 @@ def main(argv=None):
                                 'assembly (yade-mss)')
     p.add_argument('inputs', nargs='+', help='a labelled volume (.npy, .tif; 0 is background), or mesh/volume '
                    'files, or directories of them')
-    p.add_argument('-o', '--output', required=True, help='the output directory (a rerun resumes in it)')
-    p.add_argument('--spheres', type=int, help='at most N spheres per grain')
-    p.add_argument('--dice', type=float, help='stop at Dice mismatch D <= X (eq. 27)')
-    p.add_argument('--eta', type=float, help='stop at relative mismatch eta <= X (eq. 7)')
-    p.add_argument('--rmin', type=float, help='no sphere of radius below R (world units)')
-    p.add_argument('--resolution', type=int, help='meshes: voxels along the shortest edge (default 100)')
-    p.add_argument('--clip', action='store_true', help='no sphere protrudes from its grain')
-    p.add_argument('--max-protrusion', type=float, default=None,
-                   help='no sphere reaches farther than H beyond its grain (world units; default one voxel; '
-                   'inf: unbounded)')
-    p.add_argument('--voxel-size', type=float, default=None, help='voxel edge of the volumes (default 1)')
-    p.add_argument('--origin', default=None, help='X,Y,Z: centre of voxel (0, 0, 0)')
-    p.add_argument('--workers', type=int, default=None, help='processes side by side (default: the cores other '
-                   'processes leave free, at least 1; never more than the grains)')
-    p.add_argument('--scheduler', default=None, help='tls://HOST:PORT (or tcp://) of a Dask scheduler: grains as its '
-                   'tasks. Without TLS anyone who reaches the port runs code as the workers\' user')
-    p.add_argument('--tls-ca-file', default=None, help='TLS: the CA certificate the cluster trusts (PEM)')
-    p.add_argument('--tls-cert', default=None, help='TLS: this client\'s certificate (PEM)')
-    p.add_argument('--tls-key', default=None, help='TLS: this client\'s private key (PEM)')
-    p.add_argument('--min-voxels', type=int, default=0, help='skip grains with fewer voxels')
-    p.add_argument('--exclude-border', action='store_true', help='skip grains cut by the volume\'s border')
-    p.add_argument('--labels', default=None, help='L1,L2,...: only these labels')
-    p.add_argument('--previews', action='store_true', help='draw each grain (mss preview) into report.html')
+    _options.addArguments(p, 'batch')
     a = p.parse_args(argv)
     _stopOnTerm()
-    gen = {k: v for k, v in (('nSpheres', a.spheres), ('dice', a.dice), ('eta', a.eta), ('rMin', a.rmin),
-                             ('resolution', a.resolution)) if v is not None}
-    if a.clip:
-        gen['clip'] = True
-    if a.max_protrusion is not None:
-        gen['maxProtrusion'] = a.max_protrusion
     try:
-        origin = parseOrigin(a.origin, 3)
-        labels = [int(x) for x in a.labels.split(',')] if a.labels else None
-        b = batch(a.inputs, a.output, workers=a.workers, scheduler=a.scheduler, minVoxels=a.min_voxels,
-                  security=clusterSecurity(None, a.tls_ca_file, a.tls_cert, a.tls_key),
-                  excludeBorder=a.exclude_border, labels=labels, voxelSize=a.voxel_size, origin=origin,
-                  previews=a.previews, **gen)
+        v = _options.parsed('batch', a)
+        own = ('output', 'workers', 'scheduler', 'tlsCaFile', 'tlsCert', 'tlsKey', 'minVoxels', 'excludeBorder',
+               'labels', 'previews', 'voxelSize', 'origin')
+        gen = {k: x for k, x in v.items() if k not in own}
+        labels = [int(x) for x in v['labels'].split(',')] if v.get('labels') else None
+        b = batch(a.inputs, v['output'], workers=v.get('workers'), scheduler=v.get('scheduler'),
+                  minVoxels=v.get('minVoxels', 0),
+                  security=clusterSecurity(None, v.get('tlsCaFile'), v.get('tlsCert'), v.get('tlsKey')),
+                  excludeBorder=v.get('excludeBorder', False), labels=labels, voxelSize=v.get('voxelSize'),
+                  origin=v.get('origin'), previews=v.get('previews', False), **gen)
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)

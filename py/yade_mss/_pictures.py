@@ -17,7 +17,8 @@ import time
 import numpy as np
 
 from . import _mss
-from ._files import atomicWrite, parseOrigin
+from . import _options
+from ._files import atomicWrite
 from ._generate import compareMany, generate
 from ._results import MssResult, readSpheres
 from ._sources import _Mesh, _source
@@ -267,40 +268,38 @@ def main(argv=None):
     pv = sub.add_parser('preview', help='a clump against its grain: three views and a section, as PNG')
     pv.add_argument('grain')
     pv.add_argument('spheres')
-    pv.add_argument('-o', '--output', required=True, help='the PNG to write')
-    pv.add_argument('--resolution', type=int, default=160, help='voxels along the grain\'s shortest edge (views)')
+    _options.addArguments(pv, 'preview')
     cv = sub.add_parser('curve', help='D and time against the sphere count, as PNG and CSV')
     cv.add_argument('grain')
-    cv.add_argument('--spheres', required=True, help='A:B, the range of sphere counts')
-    cv.add_argument('--points', type=int, default=12, help='counts in the range (log-spaced)')
-    cv.add_argument('--resolution', type=int, default=103, help='generation grid of a mesh')
-    cv.add_argument('--compare', nargs='*', default=[], help='sphere files of other generators, as points')
-    cv.add_argument('-o', '--output', required=True, help='the PNG; the CSV is written beside it')
-    cv.add_argument('--max-protrusion', type=float, default=None,
-                    help='no sphere farther than H beyond the grain (world units; default one voxel; inf: unbounded)')
-    for q in (pv, cv):
-        q.add_argument('--npy-voxel-size', type=float, default=None)
-        q.add_argument('--origin', default=None, help='X,Y,Z')
-        q.add_argument('--label', type=int, default=None)
+    _options.addArguments(cv, 'curve')
+    cv.add_argument('--spheres', dest='oldSpheres', default=None, help=argparse.SUPPRESS)  # the name before --counts
     a = p.parse_args(argv)
     try:
-        origin = parseOrigin(a.origin, 3)
+        v = _options.parsed(a.command, a)
+        grain = dict(voxelSize=v.get('voxelSize'), origin=v.get('origin'), label=v.get('label'))
         if a.command == 'preview':
-            row = preview(a.grain, a.spheres, a.output, a.resolution, voxelSize=a.npy_voxel_size, origin=origin,
-                          label=a.label, title=os.path.basename(a.spheres))
-            print('wrote       %s  (n %d, D %.4f, largest protrusion %.4g)' % (a.output, row['spheres'],
+            row = preview(a.grain, a.spheres, v['output'], v.get('resolution', _options.default('resolution', 'preview')),
+                          title=os.path.basename(a.spheres), **grain)
+            print('wrote       %s  (n %d, D %.4f, largest protrusion %.4g)' % (v['output'], row['spheres'],
                                                                             row['dice'], row['protrusion']))
         else:
+            counts = v.get('counts')
+            if a.oldSpheres is not None:
+                print('mss curve: warning: --spheres A:B is now --counts A:B', file=sys.stderr)
+                counts = counts or a.oldSpheres
+            if counts is None:
+                raise ValueError('curve: --counts A:B is required')
             try:
-                lo, hi = (int(x) for x in a.spheres.split(':'))
+                lo, hi = (int(x) for x in counts.split(':'))
             except ValueError:
-                raise ValueError('curve: --spheres takes A:B (two integers), got %r' % a.spheres)
-            if not 2 <= a.points <= 1000:
-                raise ValueError('curve: --points must be in [2, 1000], got %d' % a.points)
-            rows = curve(a.grain, lo, hi, a.output, a.points, a.compare, a.resolution, voxelSize=a.npy_voxel_size,
-                         origin=origin, label=a.label, maxProtrusion=a.max_protrusion)
+                raise ValueError('curve: --counts takes A:B (two integers), got %r' % counts)
+            points = v.get('points', _options.default('points', 'curve'))
+            out = v['output']
+            rows = curve(a.grain, lo, hi, out, points, v.get('compare', []),
+                         v.get('resolution', _options.default('resolution', 'curve')),
+                         maxProtrusion=v.get('maxProtrusion'), **grain)
             print('wrote       %s and %s.csv  (%d counts, D %.4f at n %d to %.4f at n %d)'
-                  % (a.output, os.path.splitext(a.output)[0], len(rows), rows[0]['D'], rows[0]['n'], rows[-1]['D'],
+                  % (out, os.path.splitext(out)[0], len(rows), rows[0]['D'], rows[0]['n'], rows[-1]['D'],
                      rows[-1]['n']))
     except (ValueError, RuntimeError) as e:
         print('mss %s: error: %s' % (a.command, e), file=sys.stderr)

@@ -50,7 +50,7 @@ check "--max-protrusion inf: unbounded, more than a voxel" \
   awk -v h="$h" '/^protrusion/{found = 1; if ($2 > 1.3 * h && $NF == "inf)") ok = 1} END{exit !(found && ok)}' "$TMP/binf.log"
 "$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --max-protrusion 0.5 -o "$TMP/b05.csv" > "$TMP/b05.log"
 check "--max-protrusion 0.5 world units" awk '/^protrusion/{exit !($2 <= 0.5 * 1.000001)}' "$TMP/b05.log"
-expect_error "negative bound" "maxProtrusion must be >= 0" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --max-protrusion -1 -o "$TMP/x.csv"
+expect_error "negative bound" "--max-protrusion must be >= 0" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --max-protrusion -1 -o "$TMP/x.csv"
 expect_error "--clip with a bound" "clip means maxProtrusion 0" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --clip --max-protrusion 2 -o "$TMP/x.csv"
 "$MSS" generate "$DATA/human_femur.stl" --spheres 15 --resolution 30 --plane 0,0,-90,0,0,1 -o "$TMP/plane.csv" > /dev/null
 check "no sphere crosses the plane z = -90" awk -F, 'NR > 1 && $3 - $4 < -90 - 1e-9 {bad = 1} END {exit bad}' "$TMP/plane.csv"
@@ -58,9 +58,9 @@ d_frag=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,-90
 d_whole=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" | awk '/^dice/{print $2}')
 check "compare --plane scores the fragment ($d_frag), not the whole grain ($d_whole)" \
   awk -v a="$d_frag" -v b="$d_whole" 'BEGIN{exit !(a < 0.15 && b > 0.2)}'
-expect_error "bad plane in compare" "expected PX,PY,PZ,NX,NY,NZ" "$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,1
+expect_error "bad plane in compare" "is not PX,PY,PZ,NX,NY,NZ" "$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,1
 expect_error "zero plane normal in compare" "non-zero normal" "$MSS" compare "$DATA/human_femur.stl" "$TMP/plane.csv" --plane 0,0,0,0,0,0
-expect_error "bad plane" "expected PX,PY,PZ,NX,NY,NZ" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --plane 1,2,3 -o "$TMP/x.csv"
+expect_error "bad plane" "is not PX,PY,PZ,NX,NY,NZ" "$MSS" generate "$DATA/human_femur.stl" --spheres 3 --plane 1,2,3 -o "$TMP/x.csv"
 "$MSS" generate "$DATA/stanford_bunny_open.stl" --spheres 5 --resolution 30 -o "$TMP/bunny.csv" > /dev/null 2> "$TMP/bunny.err"
 check "open mesh: a warning, and spheres" grep -q "not closed" "$TMP/bunny.err"
 
@@ -90,7 +90,7 @@ tail -n +2 "$C/FA_ellipsoid_N10_min.txt" | awk -F, '{printf "%10f,%10f,%10f,%10f
 check "one table, one row per file (3 rows + header)" [ "$(wc -l < "$TMP/table.csv")" -eq 4 ]
 check "CLUMP's MATLAB form reads as its Python form (same D)" \
   bash -c "[ \"\$(sed -n 2p $TMP/table.csv | cut -d, -f3)\" = \"\$(sed -n 3p $TMP/table.csv | cut -d, -f3)\" ]"
-expect_error "bad --align" "align must be none, centroid, bbox or principal" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$C/FA_ellipsoid_N10_min.txt" --align box
+expect_error "bad --align" "--align must be one of centroid, bbox, principal, none" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$C/FA_ellipsoid_N10_min.txt" --align box
 
 # batch: a labelled volume to an assembly, through the mss command
 "$MSS" batch "$DATA/two_grains_labels.npy" -o "$TMP/batch" --spheres 5 --voxel-size 0.001 --workers 1 > "$TMP/batch.log"
@@ -99,8 +99,8 @@ check "batch: assembly with two clumps" [ "$(grep -c '^#mss clump' "$TMP/batch/a
 expect_error "batch without -o" "required" "$MSS" batch "$DATA/two_grains_labels.npy" --spheres 5
 
 # the Python commands name a bad --origin
-expect_error "batch: bad origin" "--origin: expected X,Y,Z" "$MSS" batch "$DATA/two_grains_labels.npy" -o "$TMP/bo" --spheres 3 --origin 1,2
-expect_error "preview: bad origin" "--origin: expected X,Y,Z" "$MSS" preview "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" -o "$TMP/o.png" --origin 1,x,2
+expect_error "batch: bad origin" "--origin: .1,2. is not X,Y,Z" "$MSS" batch "$DATA/two_grains_labels.npy" -o "$TMP/bo" --spheres 3 --origin 1,2
+expect_error "preview: bad origin" "--origin: .1,x,2. is not X,Y,Z" "$MSS" preview "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" -o "$TMP/o.png" --origin 1,x,2
 
 # info
 "$MSS" info "$DATA/human_femur.stl" > "$TMP/info.log"
@@ -112,7 +112,7 @@ expect_error "missing input" "cannot open" "$MSS" generate "$TMP/nope.stl" --sph
 expect_error "unknown extension" "unknown mesh extension" "$MSS" info "$TMP/x.abc"
 : > "$TMP/empty.stl"
 expect_error "empty file" "empty" "$MSS" info "$TMP/empty.stl"
-expect_error "zero spheres" "--spheres must be >= 1" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 0 -o "$TMP/x.csv"
+expect_error "zero spheres" "--spheres must be in .1, 65535., got 0" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 0 -o "$TMP/x.csv"
 expect_error "no criterion" "termination criterion" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" -o "$TMP/x.csv"
 expect_error "resolution 0" "resolution must be >= 1" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 0 -o "$TMP/x.csv"
 expect_error "absurd resolution" "would need" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 200000 -o "$TMP/x.csv"
@@ -154,11 +154,11 @@ for lim in nan -1 1e12 inf; do
   expect_error "--memory-limit $lim (the bug: the guard off, or 'a limit of 0 GiB')" "memory-limit must be in" "$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 3 --resolution 20 --memory-limit "$lim" -o "$TMP/x.csv"
 done
 expect_error "compare --offset 1e300 (the bug: D 0, a perfect score)" "offset must be in .0, 1. voxel, got 1e+300" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/e.csv" --offset 1e300
-expect_error "curve --points 0" "points must be in" "$MSS" curve "$DATA/ellipsoid_2_1_1.stl" --spheres 2:4 --points 0 -o "$TMP/c.png"
+expect_error "curve --points 0" "points must be in" "$MSS" curve "$DATA/ellipsoid_2_1_1.stl" --counts 2:4 --points 0 -o "$TMP/c.png"
 printf 'solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n' > "$TMP/flat.stl"
 expect_error "a flat solid names its file (generate)" "flat.stl: voxelizeMesh: the solid is flat" "$MSS" generate "$TMP/flat.stl" --spheres 3 -o "$TMP/x.csv"
 expect_error "a flat solid names its file (compare)" "flat.stl: " "$MSS" compare "$TMP/flat.stl" "$TMP/e.csv"
-expect_error "--label on a mesh (the bug: ignored)" "label applies to labelled voxel volumes" "$MSS" generate "$DATA/cube.stl" --spheres 3 --label 2 -o "$TMP/x.csv"
+expect_error "--label on a mesh (the bug: ignored)" "--label applies to voxel volumes" "$MSS" generate "$DATA/cube.stl" --spheres 3 --label 2 -o "$TMP/x.csv"
 mkfifo "$TMP/pipe.npy" "$TMP/pipe.png"
 expect_error "a FIFO to batch (the bug: a hang)" "not a regular file (a FIFO)" timeout 60 "$MSS" batch "$TMP/pipe.npy" -o "$TMP/bo" --spheres 3
 expect_error "a FIFO to spheropolygon (the bug: a hang)" "not a regular file (a FIFO)" timeout 60 "$MSS" spheropolygon "$TMP/pipe.png" -o "$TMP/sp.json"

@@ -15,7 +15,7 @@ using namespace mss::testing;
 TEST(Refine, NeverRaisesTheMismatchAndRespectsTheBound) {
     const VoxelGrid S = ellipsoid(28, 12, 6, 6);
     const ScalarGrid E = distanceTransform(S);
-    GenerateOptions opt;
+    engine::Request opt;
     opt.nSpheres = 6;
     opt.keepSymmetry = false;
     const BoundVox bound = [](const Vec3& c) { return 13.5 - c.x(); }; // a wall at x = 13.5 voxels

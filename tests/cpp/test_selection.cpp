@@ -15,7 +15,7 @@ using namespace mss::testing;
 TEST(Selection, GreedyKeepsTheBudgetAndPruneTheTarget) {
     const VoxelGrid S = ellipsoid(28, 12, 6, 6);
     const ScalarGrid E = distanceTransform(S);
-    GenerateOptions opt;
+    engine::Request opt;
     opt.nSpheres = 5;
     Selection s(S, E, opt, BoundVox{});
     EXPECT_EQ(s.sym.planes(), 3);
@@ -27,7 +27,7 @@ TEST(Selection, GreedyKeepsTheBudgetAndPruneTheTarget) {
     EXPECT_EQ(balls.size(), s.placed);
     EXPECT_EQ(s.cov.mismatch(), bruteMismatch(S, balls));
     // problem (ii): more spheres than a loose Dice target needs; pruning drops some, the target stays met
-    GenerateOptions q;
+    engine::Request q;
     q.dice = 0.5;
     Selection t(S, E, q, BoundVox{});
     for (std::size_t i = 0; i < 8 && i < t.cands.size(); ++i) t.place(t.cands[i]);

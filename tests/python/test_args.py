@@ -149,7 +149,7 @@ class Archives(unittest.TestCase):
     def test_huge_integers_are_refused_with_a_message(self):
         # the bug: Python's OverflowError ('int too large to convert to C long'), not a message
         from yade_mss import readSpheres, regions, score, syntheticSpecimen
-        Generate.refused(self, ValueError, 'nSpheres must be in [1, 2147483647], got 10' + '0' * 29, nSpheres=10 ** 30)
+        Generate.refused(self, ValueError, 'nSpheres must be in [1, 65535], got 10' + '0' * 29, nSpheres=10 ** 30)
         Generate.refused(self, ValueError, 'resolution must be in [1, 2147483647]', nSpheres=3, resolution=10 ** 30)
         spheres = os.path.join(DATA, '..', 'corpus', 'files', 'two_clumps.txt')
         for v in (float('inf'), 10 ** 30, -10 ** 20):

@@ -63,7 +63,7 @@ class Curve(unittest.TestCase):
         mss = os.environ.get('MSS_BINARY', 'mss')
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, 'curve.png')
-            subprocess.run([mss, 'curve', FEMUR, '--spheres', '5:100', '-o', out, '--compare',
+            subprocess.run([mss, 'curve', FEMUR, '--counts', '5:100', '-o', out, '--compare',
                             os.path.join(DATA, 'clump', 'FA_femur_N70_min.txt')], check=True, capture_output=True)
             self.assertGreaterEqual(png(out).shape[1], 800)
             with open(os.path.join(d, 'curve.csv')) as f:

@@ -47,7 +47,7 @@ void repairSymmetry(Selection& s, bool tune) {
 /// D <= 0.04: 57 spheres where a run at 46 reaches it), because refinement lowers the mismatch of a set by a
 /// third and the greedy stops before it. So the budget grows from a few spheres by 15% at a time; after each
 /// step the new orbits and their neighbours are refined, and the target is checked on the refined set.
-void growToTarget(Selection& s, Metrics& m, double& secondsRefine) {
+void growToTarget(Selection& s, Report& m, double& secondsRefine) {
     const int cap = s.t.budget;
     // growth per step: 1.06 / 1.10 / 1.15 gave 35 / 36 / 37 spheres for D <= 0.05, 61 / 60 / 62 for 0.03 (a
     // run at a fixed count needs 37 and 66), in 0.91 / 0.72 / 0.51 s and 1.25 / 1.06 / 0.76 s
@@ -86,8 +86,8 @@ void fillAlone(Selection& s) {
 
 } // namespace
 
-std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
-                               const BoundVox& bound, Metrics& m, double& secondsRefine,
+std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Request& opt,
+                               const BoundVox& bound, Report& m, double& secondsRefine,
                                const std::vector<Orbit>& start, std::vector<Orbit>* orbitsOut,
                                long long* mismatchOut, SharedCandidates* shared) {
     Selection s(S, E, opt, bound, shared);

@@ -14,8 +14,8 @@ namespace mss::engine {
 /// @param orbitsOut if given, receives the orbits chosen; @p mismatchOut the final voxel mismatch
 /// @param secondsRefine time spent in refinement, added to
 /// @param shared candidates shared by runs on the same grain and options (see Selection)
-std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt,
-                               const BoundVox& bound, Metrics& m, double& secondsRefine,
+std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Request& opt,
+                               const BoundVox& bound, Report& m, double& secondsRefine,
                                const std::vector<Orbit>& start = {}, std::vector<Orbit>* orbitsOut = nullptr,
                                long long* mismatchOut = nullptr, SharedCandidates* shared = nullptr);
 

@@ -1,13 +1,15 @@
 #include "mss/engine/paper.hpp"
 #include "mss/edt.hpp"
 #include "mss/maxima.hpp"
+#include "mss/score.hpp"
+#include "mss/voxelize.hpp"
 
 #include <algorithm>
 #include <cstdint>
 
 namespace mss::engine {
 
-std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, Metrics& m,
+std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Request& opt, Report& m,
                            const BoundVox& bound) {
     const double h = S.spec.h;
     const double rMinVox = opt.rMin / h;

@@ -2,7 +2,8 @@
 #pragma once
 
 #include "mss/engine/ball.hpp"
-#include "mss/generate.hpp"
+#include "mss/engine/request.hpp"
+#include "mss/grid.hpp"
 
 #include <vector>
 
@@ -12,7 +13,7 @@ namespace mss::engine {
 /// iteration at the maxima of E* = 2E - E~ (eq. 25) with radius from E, the minimal distance rule (section
 /// 3.4) and the termination criteria (section 3.5). Under a sphere budget the largest values go first.
 /// @p bound: the constraint on radii (voxel units), or empty. Cost per iteration: one EDT of the grid.
-std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, Metrics& m,
+std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Request& opt, Report& m,
                            const BoundVox& bound);
 
 } // namespace mss::engine

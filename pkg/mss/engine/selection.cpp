@@ -10,7 +10,7 @@
 namespace mss::engine {
 
 namespace {
-Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const GenerateOptions& opt, bool& exact,
+Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const Request& opt, bool& exact,
                         SharedCandidates* shared) {
     if (shared && shared->filled) {
         exact = shared->exactSymmetry;
@@ -27,8 +27,8 @@ Symmetry detectSymmetry(const VoxelGrid& S, std::size_t solid, const GenerateOpt
 }
 } // namespace
 
-Selection::Selection(const VoxelGrid& S_, const ScalarGrid& E_, const GenerateOptions& opt_,
-                     const BoundVox& bound_, SharedCandidates* shared)
+Selection::Selection(const VoxelGrid& S_, const ScalarGrid& E_, const Request& opt_, const BoundVox& bound_,
+                     SharedCandidates* shared)
     : S(S_), E(E_), opt(opt_), bound(bound_), rMinVox(std::max(0.5, opt_.rMin / S_.spec.h)),
       cov(S_, opt_.nSpheres > 0 ? std::size_t(opt_.nSpheres) : 65535),
       sym(detectSymmetry(S_, cov.solid(), opt_, exactSymmetry, shared)), t{opt_.nSpheres > 0 ? opt_.nSpheres

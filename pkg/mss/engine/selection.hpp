@@ -2,8 +2,9 @@
 #pragma once
 
 #include "mss/engine/coverage.hpp"
+#include "mss/engine/request.hpp"
 #include "mss/engine/symmetry.hpp"
-#include "mss/generate.hpp"
+#include "mss/grid.hpp"
 
 #include <queue>
 #include <utility>
@@ -28,12 +29,12 @@ struct Selection {
     /// Detects the mirror symmetry of @p S (kept only for planes parallel to every constraint plane's normal)
     /// and takes the candidates of candidateOrbits(), or those in @p shared when it holds them (runs on the
     /// same S, E and options have the same candidates: the first run fills it, later runs copy them).
-    Selection(const VoxelGrid& S, const ScalarGrid& E, const GenerateOptions& opt, const BoundVox& bound,
+    Selection(const VoxelGrid& S, const ScalarGrid& E, const Request& opt, const BoundVox& bound,
               SharedCandidates* shared = nullptr);
 
     const VoxelGrid& S;
     const ScalarGrid& E;
-    const GenerateOptions& opt;
+    const Request& opt;
     const BoundVox bound; ///< a copy: a temporary may be passed (copies of a CachedBound share its cache)
     const double rMinVox; ///< smallest radius (voxels): rMin, and never under half a voxel
     Coverage cov;         ///< coverage of S by the chosen orbits' balls

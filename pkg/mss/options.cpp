@@ -1,0 +1,444 @@
+#include "mss/options.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+
+namespace mss {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kIntMax = 2147483647.0;
+constexpr double kInt64Max = 9223372036854775807.0;
+/// The largest memoryLimit (GiB): 1 PiB, far above any machine, far below a size_t's overflow.
+constexpr double kMaxMemoryGiB = 1048576.0;
+
+using T = OptionType;
+namespace c = command;
+constexpr unsigned kGrain = c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve;
+constexpr unsigned kGen = c::Generate | c::Batch; // a generation's own options
+
+// name, flag, python, type, default, low, high, lowOpen, highOpen, choices, unit, metavar, help, commands
+const std::vector<OptionSpec> kTable = {
+    // what is written
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "OUT",
+     "the sphere file: .csv (x,y,z,r), .txt (YADE's text clump: x y z r clumpId) or .vtk", c::Generate},
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "DIR",
+     "the output folder (a rerun resumes in it)", c::Batch},
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "PNG", "the picture to write",
+     c::Preview},
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
+     "the chart to write; its CSV is written beside it", c::Curve},
+    // termination (paper section 3.5): generation stops at the first met
+    {"nSpheres", "--spheres", true, T::Integer, "", 1, 65535, false, false, "", "", "N",
+     "at most this many spheres (problem (i) of the paper, eq. 2)", kGen},
+    {"eta", "--eta", true, T::Number, "", 0, 1, false, true, "", "", "X",
+     "stop once the relative mismatch (eq. 7) is at most this (problem (ii), eq. 4); 0: no such target",
+     kGen},
+    {"dice", "--dice", true, T::Number, "", 0, 1, false, true, "", "", "X",
+     "stop once the Dice mismatch (eq. 27) is at most this; 0: no such target", kGen},
+    {"rMin", "--rmin", true, T::Number, "", 0, kInf, false, true, "", "world units", "R",
+     "no sphere of a smaller radius; 0: no such bound", kGen},
+    {"maxIterations", "--max-iterations", true, T::Integer, "100", 1, kIntMax, false, false, "", "", "N",
+     "cap on the iterations (paper method) or rounds of refinement (optimized)", kGen},
+    // the grid
+    {"voxelSize", "--voxel-size", true, T::Number, "", 0, kInf, true, true, "", "world units", "H",
+     "voxel edge of the grid: a mesh's generation grid (instead of resolution), a voxel volume's own voxels "
+     "(default 1)",
+     kGrain},
+    {"resolution", "--resolution", true, T::Integer, "100", 1, kIntMax, false, false, "", "voxels", "N",
+     "a mesh's generation grid: this many voxels along the shortest bounding-box edge (the paper uses 205)",
+     c::Generate | c::Batch},
+    {"resolution", "--resolution", true, T::Integer, "100", 1, kIntMax, false, false, "", "voxels", "N",
+     "the scoring grid: this many voxels along the grain's shortest bounding-box edge", c::Compare},
+    {"resolution", "--resolution", true, T::Integer, "160", 1, kIntMax, false, false, "", "voxels", "N",
+     "the pictures' grid: this many voxels along the grain's shortest bounding-box edge", c::Preview},
+    {"resolution", "--resolution", true, T::Integer, "103", 1, kIntMax, false, false, "", "voxels", "N",
+     "a mesh's generation grid: this many voxels along the shortest bounding-box edge (scored on a grid "
+     "of 100, offset 0.37)",
+     c::Curve},
+    {"supersample", "--supersample", true, T::Integer, "1", 1, 16, false, false, "", "", "K",
+     "K^3 samples per voxel (K this) when voxelising a mesh (1: voxel centres)",
+     c::Generate | c::Batch | c::Compare},
+    {"memoryLimit", "--memory-limit", true, T::Number, "8", 0, kMaxMemoryGiB, true, false, "", "GiB", "GIB",
+     "refuse a mesh's grid whose working memory would exceed this", kGen},
+    {"origin", "--origin", true, T::Point, "", 0, 0, false, false, "", "world units", "X,Y,Z",
+     "a voxel volume: the world position of the centre of voxel (0, 0, 0) (default 0,0,0)", kGrain},
+    {"label", "--label", true, T::Integer, "", 0, kInt64Max, false, false, "", "", "L",
+     "a labelled voxel volume: the solid is the voxels of this label (required when the volume holds "
+     "several labels)",
+     c::Generate | c::Compare | c::Info | c::Preview | c::Curve},
+    // the method
+    {"method", "--method", true, T::Choice, "optimized", 0, 0, false, false, "optimized|paper", "", "M",
+     "optimized: MSS's candidates and a denser medial sampling, chosen greedily and tuned; paper: the "
+     "published procedure (maxima of E, then of 2E - E~, eq. 25)",
+     kGen},
+    {"deltaMin", "--delta-min", true, T::Number, "1", 0, kInf, false, true, "", "voxels", "D",
+     "paper method: least distance between sphere centres (section 3.4)", kGen},
+    {"keepSymmetry", "--no-symmetry", true, T::Flag, "true", 0, 0, false, false, "", "", "",
+     "detect the grain's mirror planes and keep them (optimized method)", kGen},
+    {"threads", "--threads", true, T::Integer, "0", 0, 1024, false, false, "", "", "T",
+     "OpenMP threads, 0: OpenMP's default; the result does not depend on it", c::Generate},
+    // the bound on protrusion (paper section 3.5)
+    {"clip", "--clip", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "no sphere protrudes from the grain (a mesh: the exact distance to its surface; a voxel volume: the "
+     "faces of its solid voxels)",
+     kGen},
+    {"maxProtrusion", "--max-protrusion", true, T::Number, "", 0, kInf, false, false, "", "world units", "H",
+     "no point of a sphere farther than this beyond the grain (the radius is at most the exact distance "
+     "from the centre to the surface plus this); default: one voxel of the generation grid, the paper's "
+     "tolerance; 0: as clip; inf: unbounded",
+     kGen | c::Curve},
+    {"refill", "--no-refill", true, T::Flag, "true", 0, 0, false, false, "", "", "",
+     "with clip or a protrusion bound: choose the spheres under it, regaining the coverage it costs (off: "
+     "generate freely, then shrink the radii)",
+     kGen},
+    {"planes", "--plane", true, T::Planes, "", 0, 0, false, false, "", "world units", "PX,PY,PZ,NX,NY,NZ",
+     "planes no sphere crosses, each a point and a normal (spheres stay on the normal's side; the flag may "
+     "repeat); planes that cut the grain make the target its part on their side (a fragment)",
+     c::Generate | c::Compare},
+    // comparing
+    {"offset", "--offset", true, T::Number, "0.37", -kInf, kInf, true, true, "", "voxels", "F",
+     "shift of the scoring grid against the grain's bounding box", c::Compare},
+    {"align", "--align", true, T::Choice, "", 0, 0, false, false, "centroid|bbox|principal|none", "", "MODE",
+     "register the spheres first (centroid, bbox, principal); none: as written, even in another frame; "
+     "default: as written, a set in another frame refused",
+     c::Compare},
+    {"clumpId", "--clump", true, T::Integer, "", 0, kInt64Max, false, false, "", "", "ID",
+     "the clump with this id, of a YADE text file of several", c::Compare},
+    {"csv", "--csv", false, T::Text, "", 0, 0, false, false, "", "", "OUT", "also write the rows as CSV",
+     c::Compare},
+    // pictures
+    {"preview", "--preview", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
+     "also draw the clump against the grain (as mss preview)", c::Generate},
+    {"previews", "--previews", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "draw each grain (as mss preview) into report.html", c::Batch},
+    {"counts", "--counts", true, T::Text, "", 0, 0, false, false, "", "", "A:B",
+     "the range of sphere counts (log-spaced, both ends included)", c::Curve},
+    {"points", "--points", true, T::Integer, "12", 2, 1000, false, false, "", "", "N",
+     "sphere counts in the range", c::Curve},
+    {"compare", "--compare", true, T::Files, "", 0, 0, false, false, "", "", "SPHERES",
+     "sphere files of other generators, drawn as points", c::Curve},
+    // a batch
+    {"workers", "--workers", true, T::Integer, "", 1, 1024, false, false, "", "", "N",
+     "processes side by side (default: the cores other processes leave free, at least 1; never more than "
+     "the grains)",
+     c::Batch},
+    {"scheduler", "--scheduler", true, T::Text, "", 0, 0, false, false, "", "", "URL",
+     "tls://HOST:PORT (or tcp://) of a Dask scheduler: grains as its tasks. Without TLS anyone who reaches "
+     "the port runs code as the workers' user",
+     c::Batch},
+    {"tlsCaFile", "--tls-ca-file", false, T::Text, "", 0, 0, false, false, "", "", "PEM",
+     "TLS: the CA certificate the cluster trusts", c::Batch},
+    {"tlsCert", "--tls-cert", false, T::Text, "", 0, 0, false, false, "", "", "PEM",
+     "TLS: this client's certificate", c::Batch},
+    {"tlsKey", "--tls-key", false, T::Text, "", 0, 0, false, false, "", "", "PEM",
+     "TLS: this client's private key", c::Batch},
+    {"minVoxels", "--min-voxels", true, T::Integer, "0", 0, kInt64Max, false, false, "", "voxels", "N",
+     "skip grains of fewer voxels", c::Batch},
+    {"excludeBorder", "--exclude-border", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "skip grains cut by the volume's border", c::Batch},
+    {"labels", "--labels", false, T::Text, "", 0, 0, false, false, "", "", "L1,L2,...",
+     "only these labels of a labelled volume", c::Batch},
+};
+
+std::string numberText(double v) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    std::ostringstream os;
+    os.precision(15);
+    os << v;
+    return os.str();
+}
+
+/// Edit distance, for "did you mean".
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diag = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+std::string commandName(unsigned cmd) {
+    switch (cmd) {
+    case c::Generate:
+        return "generate";
+    case c::Compare:
+        return "compare";
+    case c::Info:
+        return "info";
+    case c::Batch:
+        return "batch";
+    case c::Preview:
+        return "preview";
+    case c::Curve:
+        return "curve";
+    default:
+        return "options";
+    }
+}
+
+std::vector<double> numbers(const std::string& text) {
+    std::vector<double> out;
+    std::string t = text;
+    for (char& ch : t)
+        if (ch == ',') ch = ' ';
+    std::istringstream is(t);
+    std::string word;
+    while (is >> word) {
+        char* end = nullptr;
+        const double v = std::strtod(word.c_str(), &end);
+        if (end == word.c_str() || *end != '\0') return {};
+        out.push_back(v);
+    }
+    return out;
+}
+
+} // namespace
+
+const std::vector<OptionSpec>& optionTable() {
+    return kTable;
+}
+
+const OptionSpec* findOption(const std::string& name, unsigned cmd) {
+    for (const OptionSpec& s : kTable)
+        if (name == s.name && (cmd == 0 || (s.commands & cmd))) return &s;
+    return nullptr;
+}
+
+std::string optionRange(const OptionSpec& s) {
+    if (s.type != T::Integer && s.type != T::Number) return "";
+    const bool lowEnd = std::isfinite(s.low), highEnd = std::isfinite(s.high) && s.high < kInt64Max &&
+                                                        !(s.type == T::Integer && s.high >= kIntMax);
+    if (lowEnd && highEnd)
+        return "in " + std::string(s.lowOpen ? "(" : "[") + numberText(s.low) + ", " + numberText(s.high) +
+               (s.highOpen ? ")" : "]");
+    // an open end at infinity: infinity itself is refused
+    if (lowEnd) return (s.lowOpen ? "> " : ">= ") + numberText(s.low) + (s.highOpen ? " and finite" : "");
+    if (highEnd) return (s.highOpen ? "< " : "<= ") + numberText(s.high);
+    return "";
+}
+
+OptionValue parseOption(const OptionSpec& s, const std::string& text) {
+    const std::string where = "options";
+    auto bad = [&](const std::string& what) {
+        return OptionError(where, s.name, ": '" + text + "' " + what);
+    };
+    switch (s.type) {
+    case T::Integer: {
+        errno = 0;
+        char* end = nullptr;
+        const long long v = std::strtoll(text.c_str(), &end, 10);
+        if (text.empty() || end == text.c_str() || *end != '\0' || errno == ERANGE)
+            throw bad("is not an integer");
+        checkOption(s, v);
+        return v;
+    }
+    case T::Number: {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || end == text.c_str() || *end != '\0') throw bad("is not a number");
+        checkOption(s, v);
+        return v;
+    }
+    case T::Flag:
+        if (text == "true" || text == "1" || text == "yes") return true;
+        if (text == "false" || text == "0" || text == "no") return false;
+        throw bad("is not true or false");
+    case T::Choice:
+        checkOption(s, text);
+        return text;
+    case T::Text:
+        if (text.empty()) throw bad("is empty");
+        return text;
+    case T::Point: {
+        const std::vector<double> v = numbers(text);
+        if (v.size() != 3) throw bad("is not X,Y,Z (3 numbers)");
+        const Vec3 p(v[0], v[1], v[2]);
+        checkOption(s, p);
+        return p;
+    }
+    case T::Planes: {
+        const std::vector<double> v = numbers(text);
+        if (v.size() != 6) throw bad("is not PX,PY,PZ,NX,NY,NZ (6 numbers)");
+        Plane p;
+        p.point = Vec3(v[0], v[1], v[2]);
+        p.normal = Vec3(v[3], v[4], v[5]);
+        std::vector<Plane> planes{p};
+        checkOption(s, planes);
+        return planes;
+    }
+    case T::Files:
+        return std::vector<std::string>{text};
+    }
+    throw bad("has a type the table does not know");
+}
+
+void checkOption(const OptionSpec& s, const OptionValue& value) {
+    const std::string where = "options";
+    auto fail = [&](const std::string& detail) { throw OptionError(where, s.name, detail); };
+    auto range = [&](double v, const std::string& shown) {
+        const bool ok = (s.lowOpen ? v > s.low : v >= s.low) && (s.highOpen ? v < s.high : v <= s.high);
+        if (!ok) fail(" must be " + optionRange(s) + ", got " + shown);
+    };
+    switch (s.type) {
+    case T::Integer:
+        if (const long long* v = std::get_if<long long>(&value)) return range(double(*v), std::to_string(*v));
+        fail(" must be an integer");
+        break;
+    case T::Number:
+        if (const double* v = std::get_if<double>(&value)) return range(*v, numberText(*v));
+        if (const long long* v = std::get_if<long long>(&value)) return range(double(*v), std::to_string(*v));
+        fail(" must be a number");
+        break;
+    case T::Flag:
+        if (!std::holds_alternative<bool>(value)) fail(" must be true or false");
+        break;
+    case T::Choice: {
+        const std::string* v = std::get_if<std::string>(&value);
+        if (!v) fail(" must be text");
+        std::string all = s.choices;
+        std::istringstream is(all);
+        std::string word, listed;
+        while (std::getline(is, word, '|')) {
+            if (word == *v) return;
+            listed += (listed.empty() ? "" : ", ") + word;
+        }
+        fail(" must be one of " + listed + ", got '" + *v + "'");
+        break;
+    }
+    case T::Text:
+        if (!std::holds_alternative<std::string>(value)) fail(" must be text");
+        break;
+    case T::Point: {
+        const Vec3* v = std::get_if<Vec3>(&value);
+        if (!v) fail(" must be 3 numbers");
+        if (!v->allFinite()) fail(" must be 3 finite numbers");
+        break;
+    }
+    case T::Planes: {
+        const auto* v = std::get_if<std::vector<Plane>>(&value);
+        if (!v) fail(" must be a list of planes (point and normal)");
+        for (const Plane& p : *v) try {
+                validatePlane(p, s.name);
+            } catch (const std::invalid_argument& e) { // "planes: a constraint plane needs ..."
+                const std::string what = e.what();
+                fail(": " + what.substr(what.find(": ") + 2));
+            }
+        break;
+    }
+    case T::Files:
+        if (!std::holds_alternative<std::vector<std::string>>(value)) fail(" must be a list of files");
+        break;
+    }
+}
+
+namespace {
+
+double asNumber(const OptionValue& v) {
+    return std::holds_alternative<long long>(v) ? double(std::get<long long>(v)) : std::get<double>(v);
+}
+
+int asInt(const OptionValue& v) {
+    return int(std::get<long long>(v));
+}
+
+/// Puts one checked value where the core takes it; the front ends' own options (output, workers, ...) are
+/// checked, not kept.
+void apply(Settings& st, const std::string& name, const OptionValue& v) {
+    GenerateOptions& g = st.generate;
+    if (name == "nSpheres")
+        g.nSpheres = asInt(v);
+    else if (name == "eta")
+        g.eta = asNumber(v);
+    else if (name == "dice")
+        g.dice = asNumber(v);
+    else if (name == "rMin")
+        g.rMin = asNumber(v);
+    else if (name == "maxIterations")
+        g.maxIterations = asInt(v);
+    else if (name == "deltaMin")
+        g.deltaMin = asNumber(v);
+    else if (name == "keepSymmetry")
+        g.keepSymmetry = std::get<bool>(v);
+    else if (name == "threads")
+        g.threads = asInt(v);
+    else if (name == "clip")
+        g.clip = std::get<bool>(v);
+    else if (name == "refill")
+        g.refill = std::get<bool>(v);
+    else if (name == "maxProtrusion")
+        g.maxProtrusion = asNumber(v);
+    else if (name == "method")
+        g.method = std::get<std::string>(v) == "paper" ? Method::Paper : Method::Optimized;
+    else if (name == "planes")
+        g.planes = st.compare.planes = std::get<std::vector<Plane>>(v);
+    else if (name == "voxelSize")
+        st.voxelSize = asNumber(v);
+    else if (name == "resolution")
+        st.resolution.resolution = st.compare.resolution = asInt(v);
+    else if (name == "supersample")
+        st.supersample = st.compare.supersample = asInt(v);
+    else if (name == "memoryLimit")
+        st.resolution.memoryLimit = static_cast<std::size_t>(asNumber(v) * 1073741824.0);
+    else if (name == "origin")
+        st.origin = std::get<Vec3>(v), st.originGiven = true;
+    else if (name == "label")
+        st.label = std::get<long long>(v);
+    else if (name == "offset")
+        st.compare.offset = asNumber(v);
+    else if (name == "align") {
+        st.compare.align = parseAlign(std::get<std::string>(v));
+        st.compare.checkFrame = false; // an explicit none scores the set as written
+    } else if (name == "clumpId")
+        st.clumpId = std::get<long long>(v);
+}
+
+} // namespace
+
+Settings settingsFrom(const OptionValues& values, unsigned cmd) {
+    const std::string where = commandName(cmd);
+    Settings st;
+    for (const OptionSpec& s : kTable) // the table's defaults first
+        if ((s.commands & cmd) && *s.fallback && !values.count(s.name))
+            apply(st, s.name, parseOption(s, s.fallback));
+    for (const auto& [name, value] : values) {
+        const OptionSpec* s = findOption(name, cmd);
+        if (!s) {
+            std::string best;
+            std::size_t bestD = 4; // suggest only what is close
+            for (const OptionSpec& o : kTable)
+                if (o.commands & cmd) {
+                    const std::size_t d = editDistance(name, o.name);
+                    if (d < bestD) bestD = d, best = o.name;
+                }
+            throw OptionError(where, "'" + name + "'",
+                              " is not an option of " + where +
+                                  (best.empty() ? "" : " (did you mean '" + best + "'?)"));
+        }
+        try {
+            checkOption(*s, value);
+        } catch (const OptionError& e) {
+            throw OptionError(where, e.option(), e.detail());
+        }
+        apply(st, name, value);
+    }
+    if (values.count("voxelSize") && values.count("resolution") &&
+        (cmd & (command::Generate | command::Batch)))
+        throw OptionError(where, "voxelSize", " and resolution both given: give one of them");
+    if (st.voxelSize > 0) st.resolution.voxelSize = st.voxelSize, st.resolution.resolution = 0;
+    return st;
+}
+
+} // namespace mss
