@@ -5,7 +5,7 @@
 # For each run: n, D on an independent grid (mss compare: 100 voxels along the shortest edge, offset by 0.37
 # voxel from the centred placement, so no result is scored on the voxels it was fitted to), D on the generation
 # grid, wall time end to end (read STL .. write spheres) and per phase, peak memory per voxel of the grid.
-# Times are the fastest of REPEAT runs (default 3).
+# Times are the fastest of REPEAT runs (default 3). Each run is also a row of bench/results/paper_table.csv.
 # usage: [REPEAT=N] bench/paper_table.sh [THREADS]   (build first: scripts/setup.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,6 +14,7 @@ THREADS=${1:-2}
 REPEAT=${REPEAT:-3}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
+source bench/lib.sh
 TIME=""
 [ -x /usr/bin/time ] && TIME="/usr/bin/time -f %M -o $OUT/mem"
 
@@ -49,6 +50,8 @@ run() { # mesh label mode n [extra generate options]
   read -r tread tvox tedt tsel tref ttot <<<"$secs"
   printf '%-10s %-9s %4s %9.5f %9.5f %6s %7.3f %7.3f %7.3f %7.3f %7.3f %7.3f %8s\n' "$label" "$mode" "$n" "$dind" "$dgen" "$prot" \
     "$ttot" "$tread" "$tvox" "$tedt" "$tsel" "$tref" "$bpv"
+  bench_row paper_table.csv grain,mode,n,dice_independent,dice_generation,protrusion_voxels,seconds_total \
+    "$label" "$mode" "$n" "$dind" "$dgen" "$prot" "$ttot"
 }
 for mode in bounded unbounded clip paper; do
   run tests/data/ellipsoid_2_1_1.stl ellipsoid "$mode" 10

@@ -3,13 +3,14 @@
 # exit included; median of 5 after an untimed run, 2 threads; beside them the time mss reports, STL read to
 # spheres written) against the issue's targets, generation under load
 # (bench/load.sh), and how cost grows with grid size and sphere count (bench/cost_growth.py). The machine's
-# load is printed first.
+# load is printed first; each end-to-end median is also a row of bench/results/speed.csv.
 # usage: bash bench/speed.sh   (after bash scripts/setup.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 MSS=./build/mss
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
+source bench/lib.sh
 echo "load: $(cat /proc/loadavg)"
 median() { # label target args...: median of 5 end-to-end times, after one untimed run
   local label=$1 target=$2
@@ -30,6 +31,8 @@ median() { # label target args...: median of 5 end-to-end times, after one untim
   printf '%-34s median %6.3f s   target %5s s   (runs: %s; in-process median %.3f s)\n' "$label" \
     "$(printf '%s\n' "${ts[@]}" | sort -g | sed -n 3p)" "$target" "${ts[*]}" \
     "$(printf '%s\n' "${own[@]}" | sort -g | sed -n 3p)"
+  bench_row speed.csv case,median_s,target_s,in_process_median_s "$label" \
+    "$(printf '%s\n' "${ts[@]}" | sort -g | sed -n 3p)" "$target" "$(printf '%s\n' "${own[@]}" | sort -g | sed -n 3p)"
 }
 D=tests/data
 median "femur 70, resolution 103" 0.12 $D/human_femur.stl --spheres 70 --resolution 103

@@ -35,8 +35,11 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
 
     :param source: a labelled volume (.npy or .tif file, or an integer array; 0 is background), or the output
         directory of a finished ``mss batch`` run (then nothing is generated)
-    :param voxelSize, origin: the volume's voxel edge and the centre of its voxel (0, 0, 0), world units
-    :param minVoxels, excludeBorder, labels: which grains (as ``mss batch``)
+    :param float voxelSize: the volume's voxel edge, world units (default 1)
+    :param origin: the world position of the centre of its voxel (0, 0, 0), 3 numbers
+    :param int minVoxels: skip grains of fewer voxels (as ``mss batch --min-voxels``)
+    :param bool excludeBorder: skip grains cut by the volume's border
+    :param labels: only these labels, a list of integers
     :param options: :func:`generate` keywords (nSpheres, dice, ...) and ``utils.sphere`` ones (material, color,
         mask, ...); unknown ones raise TypeError naming the closest
     :return: {label (or file name): (clumpId, [memberIds])}, in label order

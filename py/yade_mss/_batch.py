@@ -404,14 +404,23 @@ class _LocalPool(object):
             conn.close()
 
 
+@_options.documented('batch')
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
           voxelSize=None, origin=None, progress=True, previews=False, security=None, **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
-    assembly; see the module. *options*: :func:`generate`'s keywords (nSpheres, dice, eta, rMin, resolution for
-    meshes, clip, ...). With *previews*, each grain's preview (mss preview) is drawn where it is generated and
-    shown in report.html (about a second a grain). *security*: a ``distributed.Security`` for a TLS scheduler
-    (``tls://``); anyone who can reach a scheduler without it runs code as its workers (Dask moves pickles).
-    :return: :class:`Batch`"""
+    assembly, as ``mss batch`` does (the options are the same, spelled for Python).
+
+    :param inputs: a labelled volume (.npy or .tif file, or an integer array; 0 is background), or mesh and
+        volume files and folders of them, one grain each
+    :param outdir: the output folder (a rerun resumes in it); None: nothing is written
+    :param labels: only these labels of a labelled volume, a list of integers
+    :param bool progress: a progress bar on a terminal, a line per grain otherwise
+    :param security: a ``distributed.Security`` for a TLS scheduler (``tls://``); anyone who can reach a
+        scheduler without it runs code as its workers (Dask moves pickles)
+    OPTIONS
+    :param options: :func:`generate`'s keywords (nSpheres, dice, eta, rMin, resolution for meshes, clip, ...)
+    :return: :class:`Batch`
+    """
     from ._keywords import split
     gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
                                                                              'threads')])

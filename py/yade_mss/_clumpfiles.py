@@ -18,7 +18,8 @@ def writeClumps(path, clumpIds=None):
     writes, at full precision) and, per clump, a ``#mss clump`` line with its mass, centre of mass, inertia
     tensor (world axes) and density, as the clump has them now. Written atomically.
 
-    :param clumpIds: default every clump in the scene
+    :param path: the file to write
+    :param clumpIds: the clumps to write (default: every clump in the scene)
     :return: (number of clumps, number of spheres)
     """
     utils, O, me = _yade()
@@ -88,6 +89,7 @@ def readClumps(path, **body):
     the mass properties written for it scaled to the density of the material used now (a file without them:
     those of the union of its spheres, overlaps counted once).
 
+    :param path: the file to read
     :param body: keywords of ``utils.sphere`` (material, color, mask, fixed, ...)
     :return: list of (clumpId, [memberIds]) in the order of the file; nothing is added if the file is bad
     """

@@ -10,7 +10,12 @@ from . import _mss
 
 
 class MassProperties(object):
-    """Volume, centroid and inertia tensor (about the centroid, world axes) of a solid of unit density."""
+    """Volume, centroid and inertia tensor (about the centroid, world axes) of a solid of unit density.
+
+    :param float volume: the volume (world units cubed)
+    :param centroid: the centre of mass, 3 numbers
+    :param inertia: the inertia tensor about the centroid for unit density, 3x3 (world axes)
+    """
 
     def __init__(self, volume, centroid, inertia):
         self.volume = float(volume)
@@ -29,7 +34,13 @@ class MassProperties(object):
         return w, v
 
     def transformed(self, scale=1.0, rotation=None, center=None):
-        """The same solid scaled about its centroid, rotated by the matrix *rotation*, moved to *center*."""
+        """The same solid scaled about its centroid, rotated, moved.
+
+        :param float scale: length factor (volume grows as scale^3, inertia as scale^5)
+        :param rotation: 3x3 rotation matrix (default: none)
+        :param center: the new centroid, 3 numbers (default: where it is)
+        :return: :class:`MassProperties`
+        """
         R = np.eye(3) if rotation is None else np.asarray(rotation, dtype=float)
         c = self.centroid if center is None else np.asarray(center, dtype=float)
         return MassProperties(self.volume * scale ** 3, c, scale ** 5 * R.dot(self.inertia).dot(R.T))
@@ -40,6 +51,13 @@ class MassProperties(object):
 
 class MssResult(object):
     """A sphere set and where it came from: what :func:`generate` returns and :func:`mssClump` accepts.
+
+    :param centers: sphere centres, (n, 3), world units
+    :param radii: sphere radii, (n,), finite and > 0
+    :param dict metrics: figures of the generation (see ``metrics`` below)
+    :param dict grid: the generation grid (dims, voxelSize, origin), or None
+    :param targetMass: :class:`MassProperties` of the target, or None
+    :param str source: what it was made from (a file name, 'array')
 
     :ivar centers: sphere centres, numpy array (n, 3), world units
     :ivar radii: sphere radii, numpy array (n,)
@@ -74,7 +92,11 @@ class MssResult(object):
         return '<MssResult %d spheres from %s, dice %s>' % (len(self), self.source or '?', self.metrics.get('dice', '?'))
 
     def unionMass(self, resolution=200):
-        """:class:`MassProperties` of the union of the spheres (overlaps counted once), unit density."""
+        """:class:`MassProperties` of the union of the spheres (overlaps counted once), unit density.
+
+        :param int resolution: voxels along the union's shortest edge for the parts where spheres overlap
+            (the rest is exact)
+        """
         from ._args import integer
         resolution = integer('MssResult.unionMass', 'resolution', resolution, 2)
         if self._unionMass is None or self._unionMass[0] != resolution:
@@ -83,14 +105,20 @@ class MssResult(object):
         return self._unionMass[1]
 
     def boundingRadius(self, center=None):
-        """Radius of the smallest ball about *center* (default: the union's centre of mass) holding every sphere."""
+        """Radius of the smallest ball about a centre holding every sphere.
+
+        :param center: the centre, 3 numbers (default: the union's centre of mass)
+        """
         c = self.unionMass().centroid if center is None else np.asarray(center, dtype=float)
         return float(np.max(np.linalg.norm(self.centers - c, axis=1) + self.radii))
 
     def preview(self, path, grain=None, **kw):
         """Draws these spheres against the grain (default: the one they were generated from) into a PNG; see
-        ``yade_mss._pictures.preview`` (three views, a section, n, D and the largest protrusion).
+        ``mss preview`` (three views, a section, n, D and the largest protrusion).
 
+        :param path: the PNG to write
+        :param grain: the grain (a mesh or voxel file, an array, (vertices, triangles)); default: the source
+        :param kw: ``mss preview``'s options (resolution, voxelSize, origin, label, title)
         :return: the comparison row (dice, protrusion, ...)
         """
         from ._pictures import preview
@@ -102,7 +130,11 @@ class MssResult(object):
     def save(self, path, compress=True):
         """Writes the result by extension: ``.npz`` (everything, for :meth:`load`), or the sphere files of the
         command line: ``.csv`` (x,y,z,r), ``.txt`` (YADE text clump, ``ymport.textClumps``), ``.vtk`` (ParaView).
-        Written atomically."""
+        Written atomically.
+
+        :param path: the file to write
+        :param bool compress: ``.npz``: compressed
+        """
         path = os.fspath(path)
         ext = os.path.splitext(path)[1].lower()
         if ext in ('.csv', '.txt', '.vtk'):
@@ -119,7 +151,11 @@ class MssResult(object):
 
     @staticmethod
     def load(path):
-        """Reads a result written by :meth:`save` (.npz)."""
+        """Reads a result written by :meth:`save` (.npz).
+
+        :param path: the .npz file (a sphere file is refused: :func:`readSpheres` reads those)
+        :return: :class:`MssResult`
+        """
         ext = os.path.splitext(os.fspath(path))[1].lower()
         if ext in ('.csv', '.txt', '.vtk'):
             raise ValueError('MssResult.load: %s: a sphere file, not a saved result (.npz): read it with '
@@ -162,6 +198,7 @@ def readSpheres(path, clumpId=None):
     """Reads a sphere file (CLUMP's ``x,y,z,r`` CSV, a YADE text clump ``x y z r id``, our .csv/.txt) as an
     :class:`MssResult` without a target (use ``mass='union'`` with it).
 
+    :param path: the sphere file
     :param int clumpId: of a YADE text file holding several clumps, the one to read; such a file is refused
         without it (clumps are never merged silently). :func:`readClumps` reads them all, as clumps.
     """

@@ -113,7 +113,15 @@ def _plane(p):
 def massProperties(source, voxelSize=None, origin=None, label=None, planes=()):
     """:class:`MassProperties` (unit density) of a mesh (exact, divergence theorem) or voxels (exact voxel sums).
     With ``planes`` (as in :func:`generate`): of the part on their allowed side, a fragment (a mesh cut and capped
-    exactly; voxels whose centre is on that side)."""
+    exactly; voxels whose centre is on that side).
+
+    :param source: a mesh file, voxel file, array or (vertices, triangles), as :func:`generate` takes
+    :param float voxelSize: a voxel volume's voxel edge (world units; default 1)
+    :param origin: a voxel volume: the centre of voxel (0, 0, 0), 3 numbers
+    :param int label: a labelled volume: the grain's label
+    :param planes: planes as in :func:`generate`, ((px, py, pz), (nx, ny, nz)) each
+    :return: :class:`MassProperties`
+    """
     s = _source(source, voxelSize, origin, label)
     cuts = [_plane(p) for p in planes]
     if isinstance(s, _Mesh):

@@ -59,7 +59,12 @@ class Region(object):
 
 def regions(labels, only=None):
     """The labels present (non-zero), each as a :class:`Region`, in increasing label order: one pass over the
-    volume (``scipy.ndimage.find_objects``), then each label counted in its own box."""
+    volume (``scipy.ndimage.find_objects``), then each label counted in its own box.
+
+    :param labels: a 3-D array of integers >= 0 (0 is background), or of booleans
+    :param only: these labels only, a list of integers (default: all)
+    :return: list of :class:`Region` (label, box, voxels, touchesBorder)
+    """
     from scipy import ndimage
     labels = np.asarray(labels)
     if labels.ndim != 3 or not (labels.dtype == bool or np.issubdtype(labels.dtype, np.integer)):
@@ -87,8 +92,12 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
     """A labelled volume of random, non-overlapping, randomly oriented irregular grains (each the union of two
     or three ellipsoids), some cut by the volume's border: for tests and benchmarks.
 
+    :param shape: the volume's size, 3 integers (voxels)
+    :param int grains: how many grains to place
     :param size: range of the ellipsoids' semi-axes, voxels
-    :param gap: least number of empty voxels between two grains
+    :param int seed: random seed
+    :param int gap: least number of empty voxels between two grains
+    :param int maxTries: placements tried before giving up on more grains
     :return: int32 array, labels 1..n (n may fall short of *grains* if they do not fit)
     """
     func = 'syntheticSpecimen'

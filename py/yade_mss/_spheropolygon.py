@@ -73,8 +73,13 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
     :param image: 2-D array (non-zero: the particle) or a .npy/.png file
     :param int vertices: N
     :param float radius: the spheroradius r (world units); None: the one of least error among *radii*
-        (fractions of the particle's size; default 0.0025 to 0.02)
+    :param float pixelSize: a pixel's edge, world units
+    :param origin: the world position of the centre of pixel [0, 0], 2 numbers
     :param label: of a labelled image, the particle to describe
+    :param radii: the spheroradii tried without *radius*, fractions of the particle's size (default 0.0025 to
+        0.02)
+    :param float minRadius: with vertexRadii: no radius below this (world units; default the spheroradius)
+    :param float regionTurning: with regionVertices: the turning (degrees) that makes a region (default 90)
     :param str init: 'circle', 'boundary' or 'curvature' (section 3.1), or 'auto' (default): boundary and
         curvature both, the better kept
     :param bool inset: start the vertices one spheroradius inside the boundary (beyond the paper)
@@ -134,7 +139,15 @@ def boundaryRegions(image, minTurning=90.0, pixelSize=1.0, origin=(0.0, 0.0), la
     """The convex and concave regions of a particle's boundary (as regionVertices uses them): a list of dicts
     with first, last, coreFirst, coreLast (the stretch where the middle half of the turning is done: a vertex
     whose nearest boundary point lies there is in the region), centre (indices into the smoothed boundary),
-    turning (degrees; > 0 convex), and that smoothed boundary as an (n, 2) array."""
+    turning (degrees; > 0 convex), and that smoothed boundary as an (n, 2) array.
+
+    :param image: 2-D array (non-zero: the particle) or a .npy/.png file
+    :param float minTurning: the least turning of a region, degrees
+    :param float pixelSize: a pixel's edge, world units
+    :param origin: the world position of the centre of pixel [0, 0], 2 numbers
+    :param label: of a labelled image, the particle
+    :return: (list of region dicts, (n, 2) array)
+    """
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     m = (a == label) if label is not None else (a != 0)
     data = np.ascontiguousarray(m.T.astype(np.uint8)).tobytes()
@@ -146,7 +159,12 @@ def boundaryRegions(image, minTurning=90.0, pixelSize=1.0, origin=(0.0, 0.0), la
 
 
 def spheropolygons(image, **kw):
-    """One spheropolygon per label of a labelled image: {label: result}."""
+    """One spheropolygon per label of a labelled image.
+
+    :param image: a labelled 2-D array (0: background) or a .npy file
+    :param kw: :func:`spheropolygon`'s keywords
+    :return: {label: result}
+    """
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     return {int(l): spheropolygon(a, label=l, **kw) for l in np.unique(a[a != 0])}
 
@@ -156,7 +174,18 @@ def ochart(image, outdir, vertices=(4, 6, 10, 15, 20, 30), radii=(0.005, 0.01, 0
     """Choosing N and r (section 3.2): the error for each (N, r), the normalised cost T ~ N / sqrt(r) (eq. 7)
     and O = T x error (eq. 8), written as ``ochart.csv`` and three contour charts (``ochart.png``: Fig. 4) in
     *outdir*, the global and the best non-trivial minimum of O marked. *radii* are fractions of the particle's
-    size (the paper's normalised r). :return: the rows"""
+    size (the paper's normalised r).
+
+    :param image: 2-D array (non-zero: the particle) or a .npy/.png file
+    :param outdir: the folder to write into
+    :param vertices: the vertex counts N swept
+    :param radii: the spheroradii swept, fractions of the particle's size
+    :param float pixelSize: a pixel's edge, world units
+    :param origin: the world position of the centre of pixel [0, 0], 2 numbers
+    :param label: of a labelled image, the particle
+    :param options: :func:`spheropolygon`'s keywords
+    :return: the rows
+    """
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     mask = (a == label) if label is not None else (a != 0)
     idx = np.argwhere(mask)

@@ -14,7 +14,10 @@ from ._results import MssResult
 
 
 class MssTemplate(object):
-    """A grain as a clump template, generated once and reused for a packing.
+    """A grain as a clump template, generated once and reused for a packing (:func:`mssTemplate` makes one).
+
+    :param result: the :class:`MssResult` of the grain
+    :param float scale: the size factor applied to the result's units
 
     :ivar result: the :class:`MssResult`
     :ivar scale: the size factor applied to the file's units
@@ -51,8 +54,13 @@ class MssTemplate(object):
             len(self.result), self.equivalentRadius, self.boundingRadius)
 
     def plan(self, center, rotation, scale=1.0, mass='target'):
-        """The plan of this grain as a clump whose union's centre of mass (the template's origin) goes to
-        *center*, turned by the matrix *rotation* and scaled by *scale* on top of the template's scale."""
+        """The plan of this grain as a clump (what :meth:`place` builds), without building it.
+
+        :param center: where the union's centre of mass (the template's origin) goes, 3 numbers
+        :param rotation: 3x3 rotation matrix (numpy)
+        :param float scale: a size factor on top of the template's scale
+        :param str mass: 'target' (the grain's mass properties) or 'union' (the spheres' union's)
+        """
         t = self.result
         mass = mass if t.targetMass is not None else 'union'
         props = t.targetMass if mass == 'target' else t.unionMass()
@@ -61,8 +69,12 @@ class MssTemplate(object):
         return _plans('MssTemplate.place', t, mass, [(c, rotation, s)])[0]
 
     def plans(self, centers, rotations, mass='target'):
-        """:meth:`plan` for k placements at once, at the template's scale: *centers* (k, 3), *rotations*
-        (k, 3, 3)."""
+        """:meth:`plan` for k placements at once, at the template's scale.
+
+        :param centers: (k, 3) numpy array
+        :param rotations: (k, 3, 3) numpy array of rotation matrices
+        :param str mass: 'target' or 'union', as in :meth:`plan`
+        """
         t = self.result
         mass = mass if t.targetMass is not None else 'union'
         props = t.targetMass if mass == 'target' else t.unionMass()
@@ -74,8 +86,15 @@ class MssTemplate(object):
         return base.placedMany(c0, s, np.asarray(rotations, dtype=float), C)
 
     def place(self, center, rotation, scale=1.0, mass='target', **body):
-        """Builds this grain as a clump (see :meth:`plan`); *body*: ``utils.sphere`` keywords.
-        :return: (clumpId, [memberIds])"""
+        """Builds this grain as a clump in the scene.
+
+        :param center: where the union's centre of mass goes, 3 numbers
+        :param rotation: 3x3 rotation matrix (numpy)
+        :param float scale: a size factor on top of the template's scale
+        :param str mass: 'target' or 'union', as in :meth:`plan`
+        :param body: ``utils.sphere`` keywords (material, color, mask, fixed, ...)
+        :return: (clumpId, [memberIds])
+        """
         return _build('MssTemplate.place', [self.plan(center, rotation, scale, _mass('MssTemplate.place', mass))],
                       _Members('MssTemplate.place', body), _offsetWarning)[0]
 
@@ -83,6 +102,8 @@ class MssTemplate(object):
 def mssTemplate(source, scale=1.0, **options):
     """Generates a grain once as a template for packings; see :class:`MssTemplate`.
 
+    :param source: what :func:`generate` takes, or an :class:`MssResult`
+    :param float scale: a size factor (the file's units times this)
     :param options: every keyword of :func:`generate` (unknown ones raise TypeError before any work)
     """
     gen, = split('mssTemplate', options, GENERATE_OPTIONS, extra=('source', 'scale'))
@@ -172,10 +193,16 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
     uniformly random orientation; grains are placed largest first where their bounding balls overlap no other.
 
     :param templates: :class:`MssTemplate` objects, or sources to make them from with the generate options
+    :param minCorner: the box's lower corner, 3 numbers
+    :param maxCorner: the box's upper corner, 3 numbers
     :param int num: number of clumps (-1: as many as fit; required with a size distribution)
     :param bool periodic: place in a periodic cell of the box (minimum image: grains may cross its faces), as
         ``makeClumpCloud(periodic=True)``; set ``O.periodic`` and ``O.cell`` to the box to simulate it
     :param int seed: random seed (-1: random)
+    :param psdSizes: a size distribution's sizes (diameters of the sphere of the grain's volume), with psdCumm
+    :param psdCumm: its cumulative fractions (by number; by mass with distributeMass), one per size
+    :param bool distributeMass: psdCumm are fractions of the mass, not of the number
+    :param str mass: 'target' (each grain's exact mass properties) or 'union' (its spheres' union's)
     :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
     :return: list of (clumpId, [memberIds])
     """
@@ -246,7 +273,10 @@ def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target
 
     :param templates: :class:`MssTemplate` objects (or sources, with generate options)
     :param amounts: fraction of the free spheres replaced by each template (sum at most 1)
+    :param str fit: 'inside' (each clump's bounding ball is the sphere it replaces) or 'volume' (YADE's rule:
+        the clump has the sphere's volume)
     :param seed: random seed for which spheres and the orientations (uniform)
+    :param str mass: 'target' (each grain's exact mass properties) or 'union' (its spheres' union's)
     :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
     :return: list of (clumpId, [memberIds])
     """
