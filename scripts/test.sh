@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set-up, then every test:
 #  1. ctest on the release build: C++ unit tests, CLI and bad-input corpus, Python (plain and inside real YADE),
-#     the examples (short runs), replays of the fuzz corpus;
+#     the examples (short runs), replays of the fuzz corpus; then the manual (scripts/docs.sh);
 #  2. the C++ tests, CLI, corpus and fuzz replays again under AddressSanitizer + UndefinedBehaviorSanitizer;
 #  3. every fuzz target (libFuzzer, clang) for MSS_FUZZ_SECONDS (default 45) each, from its seed corpus, inputs up
 #     to 1 MB, with the format's words (fuzz/dict/) where there is a dictionary.
@@ -10,6 +10,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 MSS_STRICT=${MSS_STRICT:-ON} bash scripts/setup.sh
 (cd build && ctest --output-on-failure -j"$(nproc)")
+echo "== the manual (Sphinx, warnings as errors; opened in headless Chromium)"
+bash scripts/docs.sh
 [ "${MSS_QUICK:-0}" = "1" ] && exit 0
 
 echo "== sanitizers (ASan + UBSan); not strict: GCC 12 reports false maybe-uninitialized warnings in libstdc++ under ASan"

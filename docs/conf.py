@@ -1,0 +1,34 @@
+# Sphinx configuration of the yade-mss manual; built by scripts/docs.sh (warnings are errors).
+import os
+import sys
+
+project = 'yade-mss'
+author = 'the yade-mss developers'
+copyright = '2026, ' + author
+extensions = ['sphinx.ext.autodoc', 'sphinx.ext.mathjax']
+xml = os.environ.get('MSS_DOXYGEN_XML')
+if xml:  # the C++ API from the public headers (doxygen's XML, through breathe)
+    extensions.append('breathe')
+    breathe_projects = {'mss': xml}
+    breathe_default_project = 'mss'
+    breathe_default_members = ('members',)
+exclude_patterns = ['_build']
+html_theme = 'alabaster'
+html_theme_options = {'description': 'multi-sphere clumps for DEM', 'fixed_sidebar': True}
+html_static_path = []
+autodoc_member_order = 'bysource'
+autodoc_default_options = {'members': True, 'undoc-members': False}
+# mathjax is fetched by the reader's browser; the pages read without it
+mathjax_path = 'https://cdn.jsdelivr.net/npm/mathjax@3/es5/tex-mml-chtml.js'
+nitpicky = False
+sys.path.insert(0, os.path.dirname(__file__))
+
+
+def _yref(name, rawtext, text, lineno, inliner, options={}, content=[]):
+    """YADE's own docs link their classes with :yref:; here it is YADE's name in code font."""
+    from docutils import nodes
+    return [nodes.literal(rawtext, text)], []
+
+
+def setup(app):
+    app.add_role('yref', _yref)
