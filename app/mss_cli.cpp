@@ -1,11 +1,13 @@
 // mss: command-line front end of the yade-mss core.
 #include "mss.hpp"
-#include "mss/atomic_file.hpp"
-#include "mss/cores.hpp"
+#include "mss/core/mesh_query.hpp"
+#include "mss/io/atomic_file.hpp"
+#include "mss/platform/cores.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -47,6 +49,22 @@ std::string flagOf(const std::string& name) {
     if (!s) return name;
     const std::string f = s->flag;
     return f.substr(f.rfind(',') + 1);
+}
+
+/// A core message with the options it names ("the option label") spelled as the command line spells them.
+std::string spelled(std::string message) {
+    for (const mss::OptionSpec& s : mss::optionTable()) {
+        const std::string named = std::string("the option ") + s.name;
+        for (std::size_t at = message.find(named); at != std::string::npos; at = message.find(named, at)) {
+            const std::size_t end = at + named.size();
+            if (end < message.size() && std::isalnum(static_cast<unsigned char>(message[end]))) {
+                at = end; // a longer name ("labels")
+                continue;
+            }
+            message.replace(at, named.size(), flagOf(s.name));
+        }
+    }
+    return message;
 }
 
 /// The values given to command @p cmd, each parsed as the table's row says. @throws mss::OptionError
@@ -146,8 +164,15 @@ template <class F> auto namingInput(const std::string& in, F&& f) -> decltype(f(
     }
 }
 
+/// Whether @p path is a voxel volume (the format table's); one the core does not read is refused by name.
 bool isVoxelFile(const std::string& path) {
-    return mss::fileExtension(path) == ".npy";
+    const mss::FileFormat* f = mss::findFormat(path, mss::FileKind::Voxels);
+    if (f && !f->readByCore)
+        throw std::invalid_argument(path + ": " + f->extension +
+                                    " stacks are read by the Python package (mss batch, mssClump, "
+                                    "generate()); this command reads " +
+                                    mss::formatList(mss::FileKind::Voxels) + " volumes");
+    return f != nullptr;
 }
 
 mss::VoxelGrid readVoxels(const mss::Settings& st, const std::string& path) {
@@ -181,13 +206,14 @@ void printMetrics(const mss::Result& r) {
 
 int cmdGenerate(const Args& a) {
     if (a.positional.size() != 1) throw std::invalid_argument("generate needs one INPUT file");
-    if (!a.has("output")) throw std::invalid_argument("generate needs -o OUT (.csv, .txt or .vtk)");
+    const std::string written = mss::formatList(mss::FileKind::Spheres, true);
+    if (!a.has("output")) throw std::invalid_argument("generate needs -o OUT (" + written + ")");
     const std::string in = a.positional[0], out = a.text("output");
     {
-        const std::string ext = mss::fileExtension(out);
-        if (ext != ".csv" && ext != ".txt" && ext != ".vtk")
-            throw std::invalid_argument(out + ": unknown output extension '" + ext +
-                                        "' (expected .csv, .txt or .vtk)");
+        const mss::FileFormat* f = mss::findFormat(out, mss::FileKind::Spheres);
+        if (!f || !f->formatSpheres)
+            throw std::invalid_argument(out + ": unknown output extension '" + mss::fileExtension(out) +
+                                        "' (expected " + written + ")");
     }
     const mss::Settings st = mss::settingsFrom(values(a, mss::command::Generate), mss::command::Generate);
     const mss::GenerateOptions& o = st.generate;
@@ -647,7 +673,7 @@ int main(int argc, char** argv) {
         std::cerr << "mss " << cmd << ": error: " << flagOf(e.option()) << e.detail() << "\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "mss " << cmd << ": error: " << e.what() << "\n";
+        std::cerr << "mss " << cmd << ": error: " << spelled(e.what()) << "\n";
         return 1;
     }
 }

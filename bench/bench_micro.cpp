@@ -1,6 +1,9 @@
 // Micro-benchmarks of the EDT and the voxeliser on the femur (paper benchmark 2).
 // Reports voxels per second as items_per_second. Run: build/mss_bench [--benchmark_filter=Edt]
 #include "mss.hpp"
+#include "mss/core/edt.hpp"
+#include "mss/core/maxima.hpp"
+#include "mss/core/mesh_query.hpp"
 
 #include <benchmark/benchmark.h>
 #ifdef _OPENMP

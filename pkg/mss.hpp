@@ -1,17 +1,19 @@
-// yade-mss public API: the table of contents.
+// yade-mss public API: the table of contents. These headers, and only these, are installed (include/mss/);
+// the implementation lives in pkg/mss/ subfolders by layer: core/ (geometry: grids, meshes, distances, the
+// distance transform, mass properties), generation/ (the pipeline, the option table, scoring, and engine/),
+// io/ (readers and writers, one file a format, and the table of formats), platform/ (threads, memory),
+// spheropolygon/.
 #pragma once
 
-#include "mss/clip.hpp"          // distances to meshes, winding numbers, constraint planes
-#include "mss/compare.hpp"       // comparing any generator's spheres with a grain: frames, one table row
-#include "mss/edt.hpp"           // exact Euclidean distance transform (eq. 8)
+#include "mss/compare.hpp"       // comparing any generator's spheres with a grain
 #include "mss/generate.hpp"      // the generator (sections 3.3-3.5)
-#include "mss/grid.hpp"          // voxel grids
+#include "mss/grid.hpp"          // voxel grids: world and voxel coordinates
+#include "mss/io.hpp"            // files: the format table, readers and writers
 #include "mss/mass.hpp"          // mass properties of meshes, voxels, sphere unions
-#include "mss/maxima.hpp"        // local maxima and sub-voxel refinement (eq. 11-24)
-#include "mss/mesh.hpp"          // triangle meshes and their files
-#include "mss/npy.hpp"           // .npy voxel volumes
+#include "mss/mesh.hpp"          // triangle meshes: checks, defects
 #include "mss/options.hpp"       // the option table every front end is made from
+#include "mss/planes.hpp"        // planes no sphere crosses: fragments, walls
 #include "mss/score.hpp"         // scoring sphere sets (eq. 7, 27)
-#include "mss/spheres.hpp"       // sphere sets and their files
+#include "mss/spheres.hpp"       // sphere sets
 #include "mss/spheropolygon.hpp" // 2-D: spheropolygons from particle images (the second paper)
-#include "mss/voxelize.hpp"      // voxelisation (section 2.2)
+#include "mss/voxelize.hpp"      // voxelisation (section 2.2) and grid resolution

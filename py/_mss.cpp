@@ -233,6 +233,24 @@ py::object parseOption(const std::string& name, const std::string& command, cons
     return files;
 }
 
+/// The format table (mss/io.hpp) as a list of dicts: extension, kind, description, read (by the core),
+/// written.
+py::list fileFormats() {
+    py::list out;
+    for (const mss::FileFormat& f : mss::fileFormats()) {
+        py::dict d;
+        d["extension"] = f.extension;
+        d["kind"] = f.kind == mss::FileKind::Mesh     ? "mesh"
+                    : f.kind == mss::FileKind::Voxels ? "voxels"
+                                                      : "spheres";
+        d["description"] = f.description;
+        d["readByCore"] = f.readByCore;
+        d["written"] = f.formatSpheres != nullptr;
+        out.append(d);
+    }
+    return out;
+}
+
 /// The option table (mss/options.hpp) as a list of dicts, for the facade's parsers and docstrings.
 py::list optionTable() {
     static const std::pair<unsigned, const char*> kCommands[] = {
@@ -607,6 +625,7 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("voxelizeMesh", voxelizeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("resolution")));
     py::def("meshInfo", meshInfo, (py::arg("vertices"), py::arg("triangles")));
     py::def("optionTable", optionTable, "The option table: a dict per row.");
+    py::def("fileFormats", fileFormats, "The format table: a dict per row.");
     py::def("parseOption", parseOption, (py::arg("name"), py::arg("command"), py::arg("text")),
             "An option's value from its text, as the command line parses it.");
     py::def("generateMesh", generateMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("options")));

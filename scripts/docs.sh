@@ -16,7 +16,7 @@ rm -rf "$XML"
 mkdir -p "$XML"
 doxygen - > "$BUILD/doxygen.log" 2>&1 <<DOXY || { tail -20 "$BUILD/doxygen.log"; exit 1; }
 PROJECT_NAME = mss
-INPUT = pkg/mss/generate.hpp pkg/mss/options.hpp pkg/mss/score.hpp pkg/mss/compare.hpp pkg/mss/mass.hpp
+INPUT = pkg/mss/generate.hpp pkg/mss/options.hpp pkg/mss/score.hpp pkg/mss/compare.hpp pkg/mss/mass.hpp pkg/mss/io.hpp pkg/mss/planes.hpp
 GENERATE_XML = YES
 GENERATE_HTML = NO
 GENERATE_LATEX = NO

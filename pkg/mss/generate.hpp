@@ -1,9 +1,9 @@
 // The MSS generator: a voxelised grain in, a sphere set out (MSS paper sections 3.3-3.5).
 #pragma once
 
-#include "mss/clip.hpp"
 #include "mss/grid.hpp"
 #include "mss/mesh.hpp"
+#include "mss/planes.hpp"
 #include "mss/score.hpp"
 #include "mss/spheres.hpp"
 #include "mss/voxelize.hpp"

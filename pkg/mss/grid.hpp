@@ -8,13 +8,47 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "mss/big_vector.hpp"
-
 namespace mss {
+
+namespace detail {
+/// Blocks of this many bytes or more are mapped on their own (platform/big_vector.cpp).
+constexpr std::size_t kBigBlock = std::size_t(2) << 20;
+/// A block of @p bytes (>= kBigBlock) aligned to 2 MiB, on transparent huge pages where the system has them.
+void* allocateBig(std::size_t bytes);
+/// Gives back a block of allocateBig().
+void freeBig(void* p, std::size_t bytes) noexcept;
+} // namespace detail
+
+/// The allocator of grids' values: large blocks on huge pages (platform/big_vector.hpp says why), others from
+/// std::allocator.
+template <class T> struct BigAllocator {
+    using value_type = T;
+    BigAllocator() noexcept = default;
+    template <class U> BigAllocator(const BigAllocator<U>&) noexcept {}
+    T* allocate(std::size_t n) {
+        if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_array_new_length();
+        if (n * sizeof(T) >= detail::kBigBlock) return static_cast<T*>(detail::allocateBig(n * sizeof(T)));
+        return std::allocator<T>().allocate(n);
+    }
+    void deallocate(T* p, std::size_t n) noexcept {
+        if (n * sizeof(T) >= detail::kBigBlock)
+            detail::freeBig(p, n * sizeof(T));
+        else
+            std::allocator<T>().deallocate(p, n);
+    }
+    template <class U> bool operator==(const BigAllocator<U>&) const noexcept { return true; }
+    template <class U> bool operator!=(const BigAllocator<U>&) const noexcept { return false; }
+};
+
+/// A std::vector whose large blocks lie on huge pages (see BigAllocator).
+template <class T> using BigVector = std::vector<T, BigAllocator<T>>;
 
 using Vec3 = Eigen::Vector3d;
 

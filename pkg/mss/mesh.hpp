@@ -42,15 +42,4 @@ MeshInfo analyzeMesh(const TriangleMesh& mesh);
 /// oriented like the rest. Simple, not pretty: for volumes and tests, not for display.
 TriangleMesh capHoles(const TriangleMesh& mesh);
 
-/// Reads a mesh file by extension: .stl (ASCII or binary), .obj, .off, .ply (ASCII or binary). Our own
-/// readers, not CGAL's: fuzzing found CGAL 5.5's OFF and PLY readers reserving gigabytes on a header's say-so
-/// and running into undefined behaviour on malformed files; ours check every count against the file size.
-/// Polygons with more than three corners are split into triangle fans; STL corners are merged into vertices.
-/// @throws std::invalid_argument naming the file and the problem (missing, unreadable, unknown extension,
-///         malformed, no triangles, non-finite coordinates).
-TriangleMesh readMesh(const std::string& path);
-
-/// Lower-cased extension of @p path including the dot (".stl"), or "" if none.
-std::string fileExtension(const std::string& path);
-
 } // namespace mss

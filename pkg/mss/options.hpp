@@ -4,9 +4,9 @@
 // front end drifts from it.
 #pragma once
 
-#include "mss/clip.hpp"
 #include "mss/compare.hpp"
 #include "mss/generate.hpp"
+#include "mss/planes.hpp"
 #include "mss/voxelize.hpp"
 
 #include <map>

@@ -1,9 +1,9 @@
 // Scoring any sphere set against a target on a grid of its own (MSS paper section 4.1).
 #pragma once
 
-#include "mss/clip.hpp"
 #include "mss/grid.hpp"
 #include "mss/mesh.hpp"
+#include "mss/planes.hpp"
 #include "mss/spheres.hpp"
 
 namespace mss {

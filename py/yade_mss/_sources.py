@@ -9,7 +9,8 @@ from . import _mss
 from ._files import cppPath, requireRegularFile
 from ._results import MassProperties
 
-_MESH_EXT = ('.stl', '.obj', '.off', '.ply')
+# the format table's (pkg/mss/io/formats.cpp)
+_MESH_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'mesh')
 
 
 def _flat(a):

@@ -9,11 +9,12 @@ import os
 
 import numpy as np
 
+from . import _mss
 from ._args import INT64_MAX, integer, number
 from ._clumps import randomRotation
 from ._files import requireRegularFile
 
-_VOLUME_EXT = ('.npy', '.tif', '.tiff')
+_VOLUME_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'voxels')  # the format table's
 
 
 def readVolume(path):

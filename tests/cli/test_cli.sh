@@ -80,7 +80,7 @@ C="$DATA/clump"
 d=$(awk '/^dice/{print $2}' "$TMP/fa.log")
 check "CLUMP Favier VTK of the femur reads and scores D 0.604 +- 0.02 ($d)" awk -v d="$d" 'BEGIN{exit !(d > 0.584 && d < 0.624)}'
 check "compare reports the largest protrusion" grep -qE '^protrusion +[0-9.]+' "$TMP/fa.log"
-expect_error "CLUMP Euclidean femur as written: another frame, --align suggested" "register it with --align bbox" \
+expect_error "CLUMP Euclidean femur as written: another frame, --align suggested" "register it with --align (bbox, centroid or principal)" \
   "$MSS" compare "$DATA/human_femur.stl" "$C/EU_femur_N70_div150_rMin4_ov0.95.txt"
 d=$("$MSS" compare "$DATA/human_femur.stl" "$C/EU_femur_N70_div150_rMin4_ov0.95.txt" --align bbox | awk '/^dice/{print $2}')
 check "--align bbox: D <= 0.085 ($d)" awk -v d="$d" 'BEGIN{exit !(d > 0 && d <= 0.085)}'

@@ -2,7 +2,7 @@
 // ...).
 #pragma once
 
-#include "mss/engine/ball.hpp"
+#include "mss/generation/engine/ball.hpp"
 
 #include <vector>
 

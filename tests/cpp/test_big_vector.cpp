@@ -1,5 +1,5 @@
-#include "mss/big_vector.hpp"
 #include "mss/grid.hpp"
+#include "mss/platform/big_vector.hpp"
 
 #include <gtest/gtest.h>
 

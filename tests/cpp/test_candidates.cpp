@@ -1,7 +1,7 @@
 // pkg/mss/engine/candidates: E's maxima and ridge as candidate orbits.
 #include "engine_fixtures.hpp"
-#include "mss/edt.hpp"
-#include "mss/engine/candidates.hpp"
+#include "mss/core/edt.hpp"
+#include "mss/generation/engine/candidates.hpp"
 
 #include <gtest/gtest.h>
 

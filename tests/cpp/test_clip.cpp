@@ -1,6 +1,7 @@
-#include "mss/clip.hpp"
-#include "mss/edt.hpp"
+#include "mss/core/edt.hpp"
+#include "mss/core/mesh_query.hpp"
 #include "mss/generate.hpp"
+#include "mss/io.hpp"
 #include "mss/score.hpp"
 
 #include <gtest/gtest.h>

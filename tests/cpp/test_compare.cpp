@@ -1,5 +1,6 @@
 // Comparing sphere sets with a grain (pkg/mss/compare): frames, alignment, protrusion, mass errors.
 #include "mss/compare.hpp"
+#include "mss/io.hpp"
 #include "mss/spheres.hpp"
 
 #include <gtest/gtest.h>

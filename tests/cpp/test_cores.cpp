@@ -1,5 +1,5 @@
 // pkg/mss/cores: how busy the cores are, and the thread count that follows.
-#include "mss/cores.hpp"
+#include "mss/platform/cores.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // pkg/mss/engine/coverage: exact mismatch gains against brute force.
 #include "engine_fixtures.hpp"
-#include "mss/engine/coverage.hpp"
-#include "mss/engine/symmetry.hpp"
+#include "mss/generation/engine/coverage.hpp"
+#include "mss/generation/engine/symmetry.hpp"
 
 #include <gtest/gtest.h>
 

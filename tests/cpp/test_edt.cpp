@@ -1,4 +1,4 @@
-#include "mss/edt.hpp"
+#include "mss/core/edt.hpp"
 
 #include <gtest/gtest.h>
 

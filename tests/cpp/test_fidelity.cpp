@@ -1,8 +1,9 @@
 // Fidelity (issue 11): the protrusion bound, problem (ii), and no dependence on how a grain sits in the grid.
-#include "mss/clip.hpp"
 #include "mss/compare.hpp"
-#include "mss/edt.hpp"
+#include "mss/core/edt.hpp"
+#include "mss/core/mesh_query.hpp"
 #include "mss/generate.hpp"
+#include "mss/io.hpp"
 #include "mss/score.hpp"
 
 #include <gtest/gtest.h>

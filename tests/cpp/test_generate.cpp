@@ -1,4 +1,5 @@
 #include "mss/generate.hpp"
+#include "mss/io.hpp"
 #include "mss/score.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
-#include "mss/index_table.hpp"
+#include "mss/core/index_table.hpp"
+#include "mss/io.hpp"
+#include "mss/io/mesh_readers.hpp"
 #include "mss/mesh.hpp"
-#include "mss/mesh_readers.hpp"
-#include "mss/npy.hpp"
 #include "mss/spheres.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
-#include "mss/clip.hpp"
+#include "mss/core/mesh_query.hpp"
+#include "mss/io.hpp"
 #include "mss/mass.hpp"
 #include "mss/voxelize.hpp"
 

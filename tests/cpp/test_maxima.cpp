@@ -1,4 +1,4 @@
-#include "mss/maxima.hpp"
+#include "mss/core/maxima.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
 // pkg/mss/engine/selection: greedy selection and pruning.
 #include "engine_fixtures.hpp"
-#include "mss/edt.hpp"
-#include "mss/engine/refine.hpp"
-#include "mss/engine/selection.hpp"
+#include "mss/core/edt.hpp"
+#include "mss/generation/engine/refine.hpp"
+#include "mss/generation/engine/selection.hpp"
 
 #include <gtest/gtest.h>
 

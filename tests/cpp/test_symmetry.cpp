@@ -1,6 +1,6 @@
 // pkg/mss/engine/symmetry: mirror planes and orbits.
 #include "engine_fixtures.hpp"
-#include "mss/engine/symmetry.hpp"
+#include "mss/generation/engine/symmetry.hpp"
 
 #include <gtest/gtest.h>
 

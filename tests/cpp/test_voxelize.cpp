@@ -1,4 +1,5 @@
 #include "mss/generate.hpp"
+#include "mss/io.hpp"
 #include "mss/mesh.hpp"
 #include "mss/voxelize.hpp"
 

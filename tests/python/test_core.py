@@ -241,7 +241,7 @@ class Comparisons(unittest.TestCase):
         eu = os.path.join(DATA, 'clump', 'EU_femur_N70_div150_rMin4_ov0.95.txt')
         with self.assertRaises(ValueError) as ctx:
             compareMany(FEMUR, [eu])
-        self.assertIn("align=", str(ctx.exception))
+        self.assertIn("the option align (bbox, centroid or principal)", str(ctx.exception))
         row = compareMany(FEMUR, [eu], align='bbox')[0]
         self.assertLessEqual(row['dice'], 0.085)
         self.assertGreater(np.linalg.norm(row['translation']), 100)

@@ -186,3 +186,17 @@ class Docstrings(unittest.TestCase):
                     if not re.search(r':param (\S+ )?%s:' % re.escape(p), f.__doc__ or ''):
                         missing.append('%s(%s)' % (label, p))
         self.assertEqual(missing, [])
+
+
+class FormatTable(unittest.TestCase):
+    def test_the_python_extension_lists_are_the_format_tables(self):
+        from yade_mss import _sources, _specimen
+        table = _mss.fileFormats()
+        self.assertEqual(set(_sources._MESH_EXT), {f['extension'] for f in table if f['kind'] == 'mesh'})
+        self.assertEqual(set(_specimen._VOLUME_EXT), {f['extension'] for f in table if f['kind'] == 'voxels'})
+
+    def test_the_command_line_names_the_tables_formats(self):
+        out = subprocess.run([MSS, 'generate', os.path.join(DATA, 'cube.stl'), '--spheres', '3', '-o', '/tmp/x.bad'],
+                             capture_output=True, text=True, timeout=120)
+        written = [f['extension'] for f in _mss.fileFormats() if f['written']]
+        self.assertIn('(expected %s or %s)' % (', '.join(written[:-1]), written[-1]), out.stderr)

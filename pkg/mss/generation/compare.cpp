@@ -1,0 +1,232 @@
+#include "mss/compare.hpp"
+#include "mss/core/edt.hpp"
+#include "mss/core/mesh_query.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+
+namespace mss {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Unit vectors spread evenly over the sphere (Fibonacci spiral).
+std::vector<Vec3> spherePoints(int n) {
+    std::vector<Vec3> out;
+    const double golden = kPi * (3.0 - std::sqrt(5.0));
+    for (int i = 0; i < n; ++i) {
+        const double z = 1.0 - (2.0 * i + 1.0) / n, rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+        out.emplace_back(rho * std::cos(golden * i), rho * std::sin(golden * i), z);
+    }
+    return out;
+}
+
+/// Share of the spheres' volume inside the box [lo, hi], from 8^3 samples per sphere.
+double insideBoxShare(const SphereSet& s, const Vec3& lo, const Vec3& hi) {
+    double inside = 0.0, total = 0.0;
+    for (std::size_t q = 0; q < s.size(); ++q) {
+        const double r = s.radii[q], w = r * r * r;
+        int in = 0, all = 0;
+        for (int k = 0; k < 8; ++k)
+            for (int j = 0; j < 8; ++j)
+                for (int i = 0; i < 8; ++i) {
+                    const Vec3 u((i + 0.5) / 4 - 1, (j + 0.5) / 4 - 1, (k + 0.5) / 4 - 1);
+                    if (u.squaredNorm() > 1) continue;
+                    const Vec3 p = s.centers[q] + r * u;
+                    ++all;
+                    in += (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+                }
+        inside += w * in / std::max(all, 1);
+        total += w;
+    }
+    return total > 0 ? inside / total : 0.0;
+}
+
+void sphereBox(const SphereSet& s, Vec3& lo, Vec3& hi) {
+    lo = Vec3::Constant(1e300);
+    hi = Vec3::Constant(-1e300);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        lo = lo.cwiseMin(s.centers[i] - Vec3::Constant(s.radii[i]));
+        hi = hi.cwiseMax(s.centers[i] + Vec3::Constant(s.radii[i]));
+    }
+}
+
+/// The four proper rotations taking the spheres' principal axes onto the grain's (signs of the axes).
+std::vector<RigidTransform> principalCandidates(const MassProperties& grain, const MassProperties& union_) {
+    Vec3 mg, mu;
+    Eigen::Matrix3d Vg, Vu;
+    grain.principal(mg, Vg);
+    union_.principal(mu, Vu);
+    std::vector<RigidTransform> out;
+    for (int signs = 0; signs < 8; ++signs) {
+        const Vec3 d((signs & 1) ? -1 : 1, (signs & 2) ? -1 : 1, (signs & 4) ? -1 : 1);
+        const Eigen::Matrix3d R = Vg * d.asDiagonal() * Vu.transpose();
+        if (R.determinant() < 0) continue;
+        RigidTransform t;
+        t.rotation = R;
+        t.translation = grain.centroid - R * union_.centroid;
+        out.push_back(t);
+    }
+    return out;
+}
+
+/// Registers @p spheres to the grain as @p mode says; @p score gives D for the principal axes' sign choice.
+RigidTransform alignment(Align mode, const SphereSet& spheres, const MassProperties& grain, const Vec3& lo,
+                         const Vec3& hi, const std::function<double(const SphereSet&)>& dice) {
+    RigidTransform t;
+    if (mode == Align::None) return t;
+    if (mode == Align::BoundingBox) {
+        Vec3 slo, shi;
+        sphereBox(spheres, slo, shi);
+        t.translation = 0.5 * (lo + hi) - 0.5 * (slo + shi);
+        return t;
+    }
+    const MassProperties u = sphereUnionMassProperties(spheres, 200);
+    if (mode == Align::Centroid) {
+        t.translation = grain.centroid - u.centroid;
+        return t;
+    }
+    double best = 2.0;
+    for (const RigidTransform& c : principalCandidates(grain, u)) {
+        const double d = dice(transformSpheres(spheres, c));
+        if (d < best) {
+            best = d;
+            t = c;
+        }
+    }
+    return t;
+}
+
+/// The figures common to both kinds of target, once the spheres sit in the grain's frame.
+void massFigures(Comparison& c, const SphereSet& s, const MassProperties& grain, const Vec3& lo,
+                 const Vec3& hi) {
+    const MassProperties u = sphereUnionMassProperties(s, 200);
+    c.spheres = s.size();
+    c.smallestRadius = *std::min_element(s.radii.begin(), s.radii.end());
+    c.massError = (u.volume - grain.volume) / grain.volume;
+    c.centroidError = (u.centroid - grain.centroid).norm() / (hi - lo).norm();
+    c.inertiaError = (u.inertia - grain.inertia).norm() / grain.inertia.norm();
+}
+
+void checkFrame(const Comparison& c, const CompareOptions& o) {
+    if (!o.checkFrame || o.align != Align::None || c.insideBox >= 0.5) return;
+    std::ostringstream os;
+    if (std::isfinite(c.insideBox))
+        os << "compare: only " << std::round(1000.0 * c.insideBox) / 10.0 << "% of the spheres' volume lies";
+    else // "-nan%" said nothing
+        os << "compare: the spheres' volume could not be located (coordinates too large to sample), none of "
+              "it";
+    os << " inside the grain's bounding box: the file is in another frame? "
+          "register it with the option align (bbox, centroid or principal)";
+    throw std::invalid_argument(os.str());
+}
+
+} // namespace
+
+Align parseAlign(const std::string& name) {
+    if (name == "none") return Align::None;
+    if (name == "centroid") return Align::Centroid;
+    if (name == "bbox") return Align::BoundingBox;
+    if (name == "principal") return Align::Principal;
+    throw std::invalid_argument("align must be none, centroid, bbox or principal, got '" + name + "'");
+}
+
+SphereSet transformSpheres(const SphereSet& s, const RigidTransform& t) {
+    SphereSet out = s;
+    for (Vec3& c : out.centers) c = t.rotation * c + t.translation;
+    return out;
+}
+
+Comparison compareSpheres(const TriangleMesh& target, const SphereSet& spheres, const CompareOptions& o) {
+    validateMesh(target, "compare");
+    validateSpheres(spheres, "compare");
+    const TriangleMesh part = o.planes.empty() ? TriangleMesh() : clipMeshByPlanes(target, o.planes);
+    if (!o.planes.empty() && part.triangles.empty())
+        throw std::invalid_argument("compare: no part of the grain lies on the allowed side of the planes");
+    const TriangleMesh& grainMesh = o.planes.empty() ? target : part;
+    const MeshInfo info = analyzeMesh(grainMesh);
+    const MassProperties grain = meshMassProperties(grainMesh);
+    Comparison c;
+    c.insideBox = insideBoxShare(spheres, info.lower, info.upper);
+    checkFrame(c, o);
+    auto dice = [&](const SphereSet& s) {
+        return scoreSpheres(target, s, o.resolution, o.offset, o.supersample, o.planes).dice;
+    };
+    c.transform = alignment(o.align, spheres, grain, info.lower, info.upper, dice);
+    const SphereSet s = transformSpheres(spheres, c.transform);
+    c.score = scoreSpheres(target, s, o.resolution, o.offset, o.supersample, o.planes);
+    massFigures(c, s, grain, info.lower, info.upper);
+    const MeshQuery q(grainMesh);
+    const std::vector<Vec3> dirs = spherePoints(std::max(o.protrusionSamples, 1));
+    c.sphereProtrusion.assign(s.size(), 0.0);
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        const Vec3& x = s.centers[i];
+        const double r = s.radii[i];
+        if (q.inside(x) && q.distance(x) >= r) continue; // the whole ball is inside
+        for (const Vec3& d : dirs) {
+            const Vec3 p = x + r * d;
+            if (!q.inside(p)) c.sphereProtrusion[i] = std::max(c.sphereProtrusion[i], q.distance(p));
+        }
+        c.protrusion = std::max(c.protrusion, c.sphereProtrusion[i]);
+    }
+    return c;
+}
+
+Comparison compareSpheres(const VoxelGrid& target, const SphereSet& spheres, const CompareOptions& o) {
+    validateSpheres(spheres, "compare");
+    const VoxelGrid part = o.planes.empty() ? VoxelGrid() : cutVoxelsByPlanes(target, o.planes);
+    const VoxelGrid& grainVoxels = o.planes.empty() ? target : part;
+    if (countSolid(grainVoxels) == 0)
+        throw std::invalid_argument("compare: the target volume has no solid voxel on the allowed side");
+    const MassProperties grain = voxelMassProperties(grainVoxels);
+    const GridSpec& g = target.spec;
+    Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+    for (int k = 0; k < g.dims[2]; ++k)
+        for (int j = 0; j < g.dims[1]; ++j)
+            for (int i = 0; i < g.dims[0]; ++i)
+                if (grainVoxels(i, j, k)) {
+                    lo = lo.cwiseMin(g.voxelCenter(i, j, k) - Vec3::Constant(0.5 * g.h));
+                    hi = hi.cwiseMax(g.voxelCenter(i, j, k) + Vec3::Constant(0.5 * g.h));
+                }
+    Comparison c;
+    c.insideBox = insideBoxShare(spheres, lo, hi);
+    checkFrame(c, o);
+    auto dice = [&](const SphereSet& s) { return scoreSpheres(target, s, o.planes).dice; };
+    c.transform = alignment(o.align, spheres, grain, lo, hi, dice);
+    const SphereSet s = transformSpheres(spheres, c.transform);
+    c.score = scoreSpheres(target, s, o.planes);
+    massFigures(c, s, grain, lo, hi);
+    // distance of each background voxel to the nearest solid voxel centre: the EDT of the complement
+    VoxelGrid background(g, 0);
+    for (std::size_t q = 0; q < background.size(); ++q) background.data[q] = grainVoxels.data[q] ? 0 : 1;
+    const ScalarGrid away = distanceTransform(background);
+    const std::vector<Vec3> dirs = spherePoints(std::max(o.protrusionSamples, 1));
+    c.sphereProtrusion.assign(s.size(), 0.0);
+    for (std::size_t i = 0; i < s.size(); ++i)
+        for (const Vec3& d : dirs) {
+            const Vec3 v = g.toVoxel(s.centers[i] + s.radii[i] * d);
+            const std::array<int, 3> n{int(std::lround(v.x())), int(std::lround(v.y())),
+                                       int(std::lround(v.z()))};
+            double e;
+            if (g.contains(n[0], n[1], n[2])) {
+                if (grainVoxels(n[0], n[1], n[2])) continue;
+                e = away(n[0], n[1], n[2]);
+            } else { // beyond the volume: at least as far as its border
+                const Vec3 clamped(std::clamp(v.x(), 0.0, g.dims[0] - 1.0),
+                                   std::clamp(v.y(), 0.0, g.dims[1] - 1.0),
+                                   std::clamp(v.z(), 0.0, g.dims[2] - 1.0));
+                e = (v - clamped).norm() + away(int(clamped.x()), int(clamped.y()), int(clamped.z()));
+            }
+            c.sphereProtrusion[i] = std::max(c.sphereProtrusion[i], (e - 0.5) * g.h);
+            c.protrusion = std::max(c.protrusion, c.sphereProtrusion[i]);
+        }
+    return c;
+}
+
+} // namespace mss

@@ -1,0 +1,79 @@
+// Files: every format read or written, in one table (io/formats.cpp), and the readers and writers by
+// extension. A new format is one reader or writer file in io/ and one row of the table.
+#pragma once
+
+#include "mss/grid.hpp"
+#include "mss/mesh.hpp"
+#include "mss/spheres.hpp"
+
+#include <string>
+#include <vector>
+
+namespace mss {
+
+/// What a file holds.
+enum class FileKind { Mesh, Voxels, Spheres };
+
+/// One row of the format table.
+struct FileFormat {
+    const char* extension; ///< lower case, with the dot: ".stl"
+    FileKind kind;
+    const char* description;
+    /// Mesh: the reader (a regular file of this extension, not empty), else null.
+    TriangleMesh (*readMesh)(const std::string& path);
+    /// Spheres: the text of a sphere set in this format (writeSpheres writes it atomically), else null.
+    std::string (*formatSpheres)(const SphereSet& spheres);
+    /// Whether the core reads it (a voxel stack in .tif is read by the Python package, with tifffile).
+    bool readByCore;
+};
+
+/// The table: every format of every kind.
+const std::vector<FileFormat>& fileFormats();
+
+/// The row of @p path's extension among formats of @p kind, or null.
+const FileFormat* findFormat(const std::string& path, FileKind kind);
+
+/// The extensions of @p kind as a list for messages (".stl, .obj, .off or .ply"); @p writable: only those
+/// written.
+std::string formatList(FileKind kind, bool writable = false);
+
+/// Lower-cased extension of @p path including the dot (".stl"), or "" if none.
+std::string fileExtension(const std::string& path);
+
+/// Reads a mesh file by extension: .stl (ASCII or binary), .obj, .off, .ply (ASCII or binary). Our own
+/// readers, not CGAL's: fuzzing found CGAL 5.5's OFF and PLY readers reserving gigabytes on a header's say-so
+/// and running into undefined behaviour on malformed files; ours check every count against the file size.
+/// Polygons with more than three corners are split into triangle fans; STL corners are merged into vertices.
+/// @throws std::invalid_argument naming the file and the problem (missing, unreadable, unknown extension,
+///         malformed, no triangles, non-finite coordinates).
+TriangleMesh readMesh(const std::string& path);
+
+/// Writes spheres by extension: .csv ("x,y,z,r" header and rows), .txt (YADE text clump "x y z r clumpId",
+/// the format of ymport.textClumps), .vtk (legacy VTK polydata, points with a "radius" scalar, for ParaView's
+/// glyphs). Full precision (17 significant digits). Written to a temporary file and renamed, so an
+/// interrupted run never leaves a half-written file. @throws std::invalid_argument on an unknown extension or
+/// unwritable path.
+void writeSpheres(const SphereSet& s, const std::string& path);
+
+/// Reads spheres from CSV (x,y,z,r with optional header; CLUMP's output, Python %.18e or MATLAB %10f, CRLF
+/// too), a legacy VTK file (readVtkSpheres), or a YADE text clump file
+/// (whitespace-separated x y z r [clumpId], '#' comments). An integer fifth column is the clump id: a file of
+/// several clumps is refused unless @p clumpId (>= 0) chooses one, so that clumps are never merged silently.
+/// Other extra columns are ignored.
+/// @throws std::invalid_argument naming the file and line of the problem, or the clump ids present.
+SphereSet readSpheres(const std::string& path, long long clumpId = -1);
+
+/// Reads a legacy VTK file (ASCII or BINARY) of POLYDATA points with a point array named radius (SCALARS or
+/// FIELD; CLUMP's outputVTK= and our own .vtk), cells ignored. readSpheres calls it for a file that starts
+/// with "# vtk". @throws std::invalid_argument saying what the file lacks (other datasets, no radius array).
+SphereSet readVtkSpheres(const std::string& path);
+
+/// Reads a 3-D boolean or integer .npy array as a binary volume: voxel (i, j, k) is a[i, j, k], so numpy's
+/// first axis is x. With @p label >= 0 a voxel is solid when it equals the label (a labelled CT volume), else
+/// when it is non-zero. The grid gets voxel size @p voxelSize and voxel (0, 0, 0) centred at @p origin.
+/// @throws std::invalid_argument naming the file and the problem (not .npy, truncated, not 3-D, empty,
+///         floating point or other unsupported dtype, label absent).
+VoxelGrid readNpy(const std::string& path, double voxelSize = 1.0, const Vec3& origin = Vec3::Zero(),
+                  long long label = -1);
+
+} // namespace mss

@@ -1,0 +1,55 @@
+// The text helpers the mesh readers share (mesh_readers.hpp).
+#include "mss/io/mesh_readers.hpp"
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+
+namespace mss::detail {
+
+void addPolygon(TriangleMesh& mesh, const std::vector<long long>& poly, const std::string& path,
+                const std::string& where) {
+    if (poly.size() < 3) fail(path, where + ": a face needs at least 3 vertices");
+    for (long long c : poly)
+        if (c < 0 || c >= static_cast<long long>(mesh.vertices.size()))
+            fail(path, where + ": a face refers to vertex " + std::to_string(c) + " of " +
+                           std::to_string(mesh.vertices.size()));
+    for (std::size_t c = 2; c < poly.size(); ++c)
+        mesh.triangles.push_back(
+            {static_cast<int>(poly[0]), static_cast<int>(poly[c - 1]), static_cast<int>(poly[c])});
+}
+
+bool parseDouble(std::string_view w, double& v) {
+    return parseDouble(w.data(), w.data() + w.size(), v);
+}
+
+bool parseInt(std::string_view w, long long& v) {
+    const char* b = w.data() + (!w.empty() && w[0] == '+');
+    const auto r = std::from_chars(b, w.data() + w.size(), v);
+    return !w.empty() && r.ec == std::errc() && r.ptr == w.data() + w.size();
+}
+
+std::vector<std::string_view> words(std::string_view line) {
+    std::vector<std::string_view> out;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        const std::size_t b = i;
+        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+        if (i > b) out.push_back(line.substr(b, i - b));
+    }
+    return out;
+}
+
+Vec3 vertexOf(const std::vector<std::string_view>& w, std::size_t first, const std::string& path,
+              const std::string& at) {
+    double x, y, z;
+    if (w.size() < first + 3 || !parseDouble(w[first], x) || !parseDouble(w[first + 1], y) ||
+        !parseDouble(w[first + 2], z))
+        fail(path, at + ": a vertex needs three numbers");
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+        fail(path, at + ": non-finite coordinate");
+    return Vec3(x, y, z);
+}
+
+} // namespace mss::detail

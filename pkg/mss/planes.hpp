@@ -1,0 +1,43 @@
+// Planes no sphere crosses (system walls, a fragmentation plane): the grain cut by them, spheres clipped.
+#pragma once
+
+#include "mss/grid.hpp"
+#include "mss/mesh.hpp"
+#include "mss/spheres.hpp"
+
+#include <memory>
+#include <vector>
+
+namespace mss {
+
+/// A plane no sphere may cross: spheres stay on the side the normal points to, {x : (x - point) . n >= 0}.
+struct Plane {
+    Vec3 point = Vec3::Zero();
+    Vec3 normal = Vec3::UnitZ();
+};
+
+/// Throws std::invalid_argument for a plane with a non-finite point or a zero or non-finite normal.
+void validatePlane(const Plane& p, const char* where);
+
+/// Signed distance from @p x to the plane, positive on the allowed side.
+double planeDistance(const Plane& p, const Vec3& x);
+
+/// The part of a closed mesh on the allowed side of every plane, closed again: each triangle is clipped
+/// (Sutherland-Hodgman) and each cut is capped by a fan of triangles over its cut segments, from a point of
+/// the plane (a signed fan, exact for the integrals of meshMassProperties whatever the cut's shape: holes and
+/// several loops included). The result is a triangle soup with the input's orientation, empty when nothing
+/// is left. @throws std::invalid_argument on a bad plane.
+TriangleMesh clipMeshByPlanes(const TriangleMesh& mesh, const std::vector<Plane>& planes);
+
+/// The voxels of @p volume whose centre lies on the allowed side of every plane (a fragment at voxel
+/// accuracy). @throws std::invalid_argument on a bad plane.
+VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& planes);
+
+/// Clips a sphere set: each radius becomes at most the exact distance from its centre to the mesh surface
+/// (when @p mesh is given) and to every plane; a sphere whose centre is outside the mesh (generalised winding
+/// number < 1/2) or beyond a plane, or whose radius would fall below @p rMin, is removed.
+/// @param changed if given, receives the number of spheres shrunk or removed.
+SphereSet clipSpheres(const SphereSet& spheres, const TriangleMesh* mesh, const std::vector<Plane>& planes,
+                      double rMin = 0.0, std::size_t* changed = nullptr);
+
+} // namespace mss
