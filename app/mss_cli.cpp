@@ -520,14 +520,14 @@ constexpr const char* kSpread = "MSS_SPREAD_THREADS";
 /// OpenMP's waiting and thread count for this run, through the environment that libgomp reads when it
 /// starts, unless the user chose (OMP_WAIT_POLICY). @return whether it set them.
 /// Spinning OpenMP threads collapse when the cores are shared: femur 70 spheres, 2 threads, 3 busy
-/// processes on 2 cores: 1.5-2.2 s, against 0.66 s on 1 thread and 0.46-0.63 s with passive waiting
+/// processes on 2 cores: 2-3x as long as on 1 thread, and 3x as long as with passive waiting
 /// (bench/load.sh). But passive waiting wakes each thread through the kernel at every parallel region, and
-/// refinement runs thousands of short ones: idle, 2 passive threads took 0.30 s, as long as one thread,
-/// and threads that spin 10000 rounds before they sleep 0.23 s. So a short spin (OMP_WAIT_POLICY=ACTIVE,
-/// GOMP_SPINCOUNT=10000) when every thread finds a free core now, else OMP_WAIT_POLICY=PASSIVE.
-/// Without --threads (and OMP_NUM_THREADS), a run on busy cores also starts only as many threads as cores
-/// are free, at least one: 2 passive threads among 3 busy processes on 2 cores took 0.56-1.08 s against
-/// 0.62-0.64 s on one (results do not depend on the thread count).
+/// refinement runs thousands of short ones: idle, 2 passive threads took as long as one thread, and
+/// threads that spin 10000 rounds before they sleep about a quarter less. So a short spin
+/// (OMP_WAIT_POLICY=ACTIVE, GOMP_SPINCOUNT=10000) when every thread finds a free core now, else
+/// OMP_WAIT_POLICY=PASSIVE. Without --threads (and OMP_NUM_THREADS), a run on busy cores also starts only as
+/// many threads as cores are free, at least one: 2 passive threads among 3 busy processes on 2 cores took up
+/// to 1.7x as long as one (results do not depend on the thread count).
 bool chooseOpenMp(int argc, char** argv) {
     if (std::getenv("OMP_WAIT_POLICY") || argc < 1) return false;
     const CoreUse u = coreUse(argc, argv);
@@ -546,22 +546,22 @@ bool chooseOpenMp(int argc, char** argv) {
 }
 
 // malloc's settings: its own blocks on transparent huge pages too, and blocks under 32 MB from its heap,
-// kept for reuse: a fresh 4 KiB page costs a fault of 10-15 us under this VM's kernel (copying the
-// ellipsoid's 20480 triangles, 1.5 MB, took 5.7 ms, and building the mesh hierarchy 19 ms; 7-9 ms so). The
-// heap grows 8 MB at a time (top_pad): grown by the default 128 KiB, its new pages seldom made a whole 2 MiB
-// range of the mapping, and took 4 KiB pages (ellipsoid 10: 1500-1900 faults a run -> 900-1250). The large
-// arrays are on huge pages in the library (BigAllocator).
+// kept for reuse: a fresh 4 KiB page costs a fault under a virtual machine's kernel (building the
+// ellipsoid's mesh hierarchy about 2x faster so). The heap grows 8 MB at a time (top_pad): grown by the
+// default 128 KiB, its new pages seldom made a whole 2 MiB range of the mapping, and took 4 KiB pages (a
+// third fewer faults a run so). The large arrays are on huge pages in the library (BigAllocator).
 constexpr std::size_t kMmapThreshold = std::size_t(32) << 20, kTrimThreshold = std::size_t(256) << 20,
                       kTopPad = std::size_t(8) << 20;
 
 #if MSS_EARLY_ENV
 /// Linked statically (CMakeLists.txt), libgomp reads its environment in a constructor of default priority,
 /// after this one: the settings are made here, in this process (running itself again with them, as the
-/// dynamically linked build does, cost ~3 ms a run). malloc's three through mallopt(); glibc reads
-/// GLIBC_TUNABLES before any code of ours runs, so the huge pages of glibc.malloc.hugetlb=1 are given to the
-/// heap's first 16 MB here, grown and marked at once (femur and ellipsoid runs fit in them; beyond, the heap
-/// grows on small pages). A malloc tunable the user set is left as set. Unlike the dynamic build, the malloc
-/// settings are made also where the user chose OpenMP's waiting (that build then does not run itself again).
+/// dynamically linked build does, cost a few per cent of a small run). malloc's three through mallopt();
+/// glibc reads GLIBC_TUNABLES before any code of ours runs, so the huge pages of glibc.malloc.hugetlb=1 are
+/// given to the heap's first 16 MB here, grown and marked at once (femur and ellipsoid runs fit in them;
+/// beyond, the heap grows on small pages). A malloc tunable the user set is left as set. Unlike the dynamic
+/// build, the malloc settings are made also where the user chose OpenMP's waiting (that build then does not
+/// run itself again).
 __attribute__((constructor(101))) void earlySettings(int argc, char** argv, char**) {
     chooseOpenMp(argc, argv);
     // as the dynamic build's GLIBC_TUNABLES: each setting unless the user gave that tunable

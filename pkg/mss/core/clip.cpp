@@ -213,8 +213,8 @@ struct MeshQuery::Impl {
     /// Squared distance from p to a node's slab, a lower bound of the distance to its triangles: tighter than
     /// the box where the surface lies oblique to the axes. From deep inside a smooth grain most boxes reach
     /// nearer than their triangles: with boxes alone a query tested 222 triangles in 234 nodes on the femur
-    /// (70 spheres) and 1554 in 1727 on the ellipsoid, with slabs 84 in 123 and 183 in 324 (ellipsoid 10:
-    /// 0.20 -> 0.14 s, femur 70 0.235 -> 0.18 s, the same distances). Shrunk by a relative 1e-12 so that
+    /// (70 spheres) and 1554 in 1727 on the ellipsoid, with slabs 84 in 123 and 183 in 324 (whole runs 25-30%
+    /// faster, the same distances). Shrunk by a relative 1e-12 so that
     /// rounding never drops a node that holds the nearest triangle.
     static double squaredDistanceToSlab(const Vec3& p, const Box& b) {
         const double s = b.normal.dot(p);
@@ -227,7 +227,7 @@ struct MeshQuery::Impl {
     /// leaves of at most 4) and puts the triangles in its order: O(T log T), on an index permutation. The
     /// tree's shape depends on the triangle count alone (median splits), so a subtree's node numbers are
     /// known before its left sibling is built: the top subtrees are built as parallel tasks (the query's
-    /// construction on 2 threads: femur 5.0 -> 3.1 ms, ellipsoid 6.6 -> 4.1 ms), the same tree whatever the
+    /// construction about 1.6x faster on 2 threads), the same tree whatever the
     /// threads.
     void buildBoxes() {
         const int n = int(tris.size());

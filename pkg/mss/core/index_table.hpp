@@ -1,6 +1,6 @@
 // An open-addressing table of indices into a caller's list of distinct keys: the STL reader's vertex merging
-// and the candidates' positions seen (both took a node of a std::unordered_map / set per key before: femur
-// read 7.9-8.2 -> 6.8-7.1 ms, its candidates 1.4 ms less).
+// and the candidates' positions seen (a std::unordered_map / set takes a node per key: with this table the
+// femur's read is about 15% faster).
 #pragma once
 
 #include <cstddef>

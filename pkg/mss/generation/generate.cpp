@@ -86,8 +86,8 @@ std::function<bool(const Vec3&, double)> boundAtLeast(const ClearanceAbove& abov
 }
 
 /// A lock held for a hash lookup: std::mutex puts a waiting thread to sleep in the kernel at once, and the
-/// optimiser's threads look the bound up in bursts together (femur 70: 0.1385 -> 0.134 s with the trial
-/// bounds looked up in parallel). After a while it yields, in case the holder lost its core (shared CPUs).
+/// optimiser's threads look the bound up in bursts together (a few per cent of a run with the trial bounds
+/// looked up in parallel). After a while it yields, in case the holder lost its core (shared CPUs).
 class SpinLock {
 public:
     void lock() {
@@ -112,10 +112,9 @@ private:
 /// The constraint in voxel units of @p S, remembering its answers: the optimiser asks again and again at the
 /// same points (moves back and forth). Exact at every point asked: an interpolation of the clearance between
 /// voxel centres (from E, or from exact values there) with the final clipping putting right what it gets
-/// wrong was tried and was 1.5-2x faster but lost fidelity (femur 70, bounded: D 0.0281 exact, 0.0349 from
-/// E - 1/2, 0.0301 from exact values at voxel centres, which is also slower: exact queries on the medial
-/// surface, where much of the surface is nearly equidistant, cost ~130 us each with CGAL's tree, 9 us with
-/// MeshQuery's own since).
+/// wrong was tried and was 1.5-2x faster but lost fidelity (femur 70, bounded: D 24% higher from E - 1/2, 7%
+/// higher from exact values at voxel centres, which is also slower: exact queries on the medial surface,
+/// where much of the surface is nearly equidistant, are the dearest).
 class CachedBound {
 public:
     /// @p atLeast: boundAtLeast(), or empty
@@ -125,8 +124,8 @@ public:
     /// min(r, bound(v)): the answer remembered, or else where the cheaper test shows that the bound does not
     /// bind, r without the exact clearance. The greedy's candidates lie on E's ridge, whose radius E is at
     /// most about a voxel beyond the surface: under the default bound of a voxel 22 of the femur's 2490 were
-    /// cut (median margin 0.79 voxel), and an exact query from the medial surface costs ~7 us there, ~40 us
-    /// on the ellipsoid's axis (a ring of triangles all nearly as near).
+    /// cut (median margin 0.79 voxel), and an exact query from the medial surface is dear there, and dearer
+    /// still on the ellipsoid's axis (a ring of triangles all nearly as near).
     double clamp(const Vec3& v, double r) const {
         if (const double* b = find(v)) return std::min(r, *b);
         if (atLeast_ && atLeast_(g_.toWorld(v), r * g_.h)) return r;
@@ -210,7 +209,8 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
     } else if (boundVox && starts == Starts::Both) {
         engine::Report warmM = m, coldM = m;
         std::vector<Orbit> free;
-        engine::SharedCandidates shared; // the three runs share their candidates (torus 40: 0.13 s each)
+        engine::SharedCandidates
+            shared; // the three runs share their candidates (on the torus a large part of each run)
         engine::runOptimized(S, E, req, BoundVox{}, warmM, secondsRefine, {}, &free, nullptr, &shared);
         long long warmMismatch = 0, coldMismatch = 0;
         std::vector<Ball> warm = engine::runOptimized(S, E, req, boundVox, warmM, secondsRefine, free,
@@ -243,9 +243,9 @@ std::vector<Ball> chooseBalls(const VoxelGrid& S, const ScalarGrid& E, const Gen
 /// of other processes now (at least one; the host's own spinning threads do not count: they are the team), or
 /// where /proc cannot tell, dynamic team sizes. A waiting thread spins by default, and the optimiser's many
 /// short parallel regions made two processes of 2 threads on 2 cores each take 17x longer than alone (the
-/// fidelity tests under ctest -j2: 54.7 s; dynamic or passive: 3.2 s). Dynamic sizes follow the one-minute
-/// load average, which lags a load that has just begun: femur 70 under an active policy with 3 busy
-/// processes took 0.69-1.41 s with them, against 0.40 s on one thread.
+/// fidelity tests under ctest -j2). Dynamic sizes follow the one-minute load average, which lags a load that
+/// has just begun: femur 70 under an active policy with 3 busy processes took 2-3.5x as long with them as on
+/// one thread.
 class OmpScope {
 public:
     explicit OmpScope(int threads) {
@@ -367,7 +367,7 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     // Clipping (and any bound under a voxel) on larger grains: the warm start alone. Clipped at resolution
     // 103, its mismatch on the generation grid was the lower of the two on 8 of 10 grains and at most 1.0%
     // above the cold start's on the others (cube 30 0.3%, octahedron 40 1.0%; torus 40: 7% below), and it
-    // saves a third of the time (femur 70: 0.41 -> 0.29 s, torus 40: 2.9 -> 2.0-2.2 s).
+    // saves about a third of the time (femur 70, torus 40).
     const bool small = countSolid(S) < kSmallGrain;
     const Starts starts = !opt.planes.empty() || small ? Starts::Both : (H < h ? Starts::Warm : Starts::Cold);
     const std::vector<Ball> balls = chooseBalls(S, E, opt, boundVox, starts, m);
@@ -375,8 +375,8 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     r.grid = S.spec;
     const double rMin = std::max(opt.rMin, 1e-9 * h);
     // The clearance at each centre, once and in parallel: the final clipping and the largest protrusion
-    // both ask for it, and an exact query costs 5-110 us (femur 70: with the final mismatch's counting by
-    // slice, the steps after the optimiser 4.2 -> 1.3 ms).
+    // both ask for it, and an exact query is dear (with the final mismatch's counting by slice, the steps
+    // after the optimiser about 3x faster).
     std::vector<Vec3> centres(balls.size());
     for (std::size_t q = 0; q < balls.size(); ++q) centres[q] = S.spec.toWorld(balls[q].c);
     std::vector<double> clear(balls.size());

@@ -30,8 +30,8 @@ constexpr std::size_t kHuge = std::size_t(2) << 20;
 #if defined(__linux__)
 /// The block's mapping: up to its last 4 KiB page, or up to a whole huge page where the part of the block
 /// beyond its last whole huge page is at least half of one. The kernel gives a huge page only to a whole 2
-/// MiB range, and each 4 KiB page of such a tail faulted on its own (~11 us each on this VM's kernel: femur
-/// 70 at resolution 103, ~400 of a run's ~1500 faults were the tails of its four grids); a tail of less than
+/// MiB range, and each 4 KiB page of such a tail faulted on its own (femur 70 at resolution 103: about a
+/// quarter of a run's faults were the tails of its four grids); a tail of less than
 /// half stays on small pages, so that no block holds more than a MiB it does not use.
 std::size_t mappedLength(std::size_t bytes) {
     static const std::size_t page = std::size_t(sysconf(_SC_PAGESIZE));
@@ -51,8 +51,8 @@ void prefaultHugePages(void* p, std::size_t len) {
     // The tail beyond the last whole huge page (under half of one: BigAllocator) has small pages; they are
     // populated in the kernel, in two halves on the threads (MADV_POPULATE_WRITE, Linux 5.14; elsewhere they
     // fault on first touch as before). Faulted one by one in the caller's serial fill, the tails of E, S and
-    // the coverage counts were 550 faults of ~12 us (femur at resolution 103; voxelising it 7.2 -> 4.9 ms,
-    // its EDT 14.4 -> 13.3 ms).
+    // the coverage counts were hundreds of faults (populated here, the femur's voxelisation is about a third
+    // faster, its EDT about 8%).
     const std::size_t tail = len - std::size_t(pages) * kPage;
     const long long tasks = pages + (tail > 0 ? 2 : 0);
     // the block is fresh from mmap: its bytes are zero, so writing a zero changes nothing but the mapping

@@ -10,8 +10,8 @@ namespace mss {
 namespace detail {
 /// Writes a zero into every 2 MiB page of the fresh, zero-filled block [p, p + len), on the OpenMP threads
 /// (big_vector.cpp). Why: the first touch of memory the virtual machine's host has not yet backed costs
-/// ~1.1-1.9 ms a MB here (64 MB: 93-121 ms serially, 68-70 ms on two threads), and a generation's arrays are
-/// all fresh; touched in the caller's serial fill, the faults queue up one by one.
+/// about a millisecond or two a MB on a virtual machine (two threads: about a third less than serially), and
+/// a generation's arrays are all fresh; touched in the caller's serial fill, the faults queue up one by one.
 void prefaultHugePages(void* p, std::size_t len);
 /// A block of exactly @p len mapped bytes given back on this thread while a BigBlockReuse is alive on it, or
 /// null (big_vector.cpp).
@@ -23,10 +23,10 @@ bool keepForReuse(void* p, std::size_t len);
 
 /// While one of these is alive on a thread, large blocks given back on that thread are kept and handed out
 /// again to an allocation of the same size on it, instead of unmapped and mapped afresh; the thread's last
-/// one to end unmaps them. Why: fresh memory costs the kernel's zeroing and a fault per huge page (1.7 ms a
-/// MB where the virtual machine's host has to back it anew, 0.08 where not), and a generation under a bound
-/// runs the optimiser two or three times on one grain, each with a coverage of 3 bytes a voxel (torus 40
-/// --clip: 55 MB each, clear_page 11% of the run's CPU). generate() holds one.
+/// one to end unmaps them. Why: fresh memory costs the kernel's zeroing and a fault per huge page (20x more
+/// where the virtual machine's host has to back it anew than where not), and a generation under a bound runs
+/// the optimiser two or three times on one grain, each with a coverage of 3 bytes a voxel (torus 40 clipped:
+/// the kernel's page clearing was a tenth of the run's CPU). generate() holds one.
 class BigBlockReuse {
 public:
     BigBlockReuse();

@@ -22,8 +22,8 @@ std::uint64_t mix(const std::array<int, 3>& v) {
 
 /// Whether each voxel i = 1 .. nx - 2 of the row of E at @p c (neighbour rows in y at @p ym, @p yp, in z at
 /// @p zm, @p zp) lies on the medial surface of E (ridge or sheet), into @p on[i]: every voxel of the row
-/// tested without a branch, so that the compiler vectorises it (the femur's 2.8 million voxels: 3.6 -> 2.8
-/// ms on 2 threads), with the same float operations as one voxel at a time.
+/// tested without a branch, so that the compiler vectorises it (about 20% faster on the femur), with the same
+/// float operations as one voxel at a time.
 void ridgeRow(const float* c, const float* ym, const float* yp, const float* zm, const float* zp, int nx,
               std::uint8_t* on) {
     // |grad E| < 0.9 (central differences span two voxels: squared length < 1.8^2); the octahedron's edge
@@ -49,7 +49,7 @@ void ridgeRow(const float* c, const float* ym, const float* yp, const float* zm,
 /// the sample is uniform in space (every k-th voxel in voxel order aliased with the grid: an axis-aligned
 /// tetrahedron got candidates on some of its edges' sheets and not on others). One pass collects the
 /// ridge as 4-byte voxel indices (the femur's 78,000: 0.3 MB), then the thinning filters them (a second
-/// pass of the ridge test over the grid cost more than the list: 3.0 ms of the femur's 4.7).
+/// pass of the ridge test over the grid cost more than the list: nearly two thirds of the step).
 std::vector<std::array<int, 3>> medialRidge(const ScalarGrid& E, std::size_t maxKeep, std::size_t& total) {
     const auto& d = E.spec.dims;
     std::vector<std::vector<std::uint32_t>> slices(std::size_t(std::max(d[2], 1)));
@@ -86,8 +86,8 @@ std::vector<Orbit> candidateOrbits(const ScalarGrid& E, const Symmetry& sym, dou
                                    std::size_t* ridgeCount) {
     std::vector<Orbit> cands;
     cands.reserve(16384);
-    // positions seen, on an eighth of a voxel (a tree took 1 ms more on the femur's 10,000 than
-    // std::unordered_set, which took 1.4 ms more than this table)
+    // positions seen, on an eighth of a voxel (a tree was slower than std::unordered_set, which was slower
+    // than this table)
     std::vector<std::array<int, 3>> seen;
     seen.reserve(16384);
     mss::detail::IndexTable table(16384);

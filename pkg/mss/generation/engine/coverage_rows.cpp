@@ -21,8 +21,8 @@ using mss::detail::floorInt;
 /// faster on an AMD EPYC). The same floating-point operations in the same order as forBallRows (no FMA: AVX2
 /// alone is enabled), so the same rows, the same ends and the same integer sums as Coverage::gainRows. Why:
 /// the gain is most of selection and refinement (femur 70 on one thread: a third of the run, ~10^4 balls of
-/// ~1100 rows each, each row a square root and two dependent loads); four rows at a time halved it (0.44 ->
-/// 0.36 s). Several radii at once, since refinement's trials come in groups about one centre (a move, the
+/// ~1100 rows each, each row a square root and two dependent loads); four rows at a time made it about 20%
+/// faster. Several radii at once, since refinement's trials come in groups about one centre (a move, the
 /// move touching the bound, the move sliding along the surface; the radius up and down: femur 70, 10515
 /// trials about 5599 centres), and the ends of nearby radii lie on the same cache lines of the prefix.
 __attribute__((target("avx2"))) void gainsAvx2(const Vec3& c, const double* radii, int n,

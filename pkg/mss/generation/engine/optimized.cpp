@@ -49,8 +49,8 @@ void repairSymmetry(Selection& s, bool tune) {
 /// step the new orbits and their neighbours are refined, and the target is checked on the refined set.
 void growToTarget(Selection& s, Report& m, double& secondsRefine) {
     const int cap = s.t.budget;
-    // growth per step: 1.06 / 1.10 / 1.15 gave 35 / 36 / 37 spheres for D <= 0.05, 61 / 60 / 62 for 0.03 (a
-    // run at a fixed count needs 37 and 66), in 0.91 / 0.72 / 0.51 s and 1.25 / 1.06 / 0.76 s
+    // growth per step: 1.06 and 1.10 gave about as many spheres as 1.15 for a D target (all fewer than a run
+    // at a fixed count needs) and took up to 1.8x as long
     constexpr double kGrowth = 1.15;
     int budget = std::min(cap, 4);
     while (true) {
@@ -101,9 +101,9 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Re
         s.greedy();
         // The repair at once where the first greedy round leaves the budget short: the trade is then
         // refined with the rest, once. After the main loop it cost a refinement of its own and, since the
-        // main loop had not filled the budget, a second round of it (ellipsoid 10: 0.112 -> 0.087 s, D
-        // 0.00666 -> 0.00605; octahedron 30: 0.062 -> 0.044 s, 0.0392 -> 0.0391; ellipsoid 40: 0.236 ->
-        // 0.207 s, 0.00081 -> 0.00075). A trade refused here is tried again, refined, after the main loop.
+        // main loop had not filled the budget, a second round of it: here it is 10-30% faster and D is as low
+        // or lower (ellipsoid 10: 9% lower). A trade refused here is tried again, refined, after the main
+        // loop.
         if (m.iterations == 0) repairSymmetry(s, false);
         m.secondsSelect += secondsSince(t0);
         const auto t1 = Clock::now();
