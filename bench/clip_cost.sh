@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What clipping (no sphere protrudes, issue 4) costs in shape fidelity: for each grain and sphere count, D on an
+# What clipping (no sphere protrudes) costs in shape fidelity: for each grain and sphere count, D on an
 # independent grid (mss compare: 100 voxels along the shortest edge, offset 0.37 voxel) unbounded
 # (--max-protrusion inf), bounded by one voxel (the default), with
 # --clip (spheres chosen under the constraint: "refill"), with --clip --no-refill (the unclipped spheres shrunk

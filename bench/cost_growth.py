@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""How generation cost grows (issue 12, item 4): wall time (STL read to spheres written, median of REPEAT runs)
+"""How generation cost grows: wall time (STL read to spheres written, median of REPEAT runs)
 and peak memory of `mss generate` on the femur against the grid size (resolution 50, 100, 205, 400 voxels along
 the shortest edge, 70 spheres) and against the sphere count (10 to 1000 at resolution 100), with the exponent of
 a least-squares power law fitted to each (time ~ voxels^a, time ~ n^b).

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Fidelity figures (issue 11), through the mss command line, scored on an independent grid (mss compare:
+"""Fidelity figures, through the mss command line, scored on an independent grid (mss compare:
 100 voxels along the shortest edge, offset 0.37 voxel):
 
 1. the regular tetrahedron inscribed in [-1/2, 1/2]^3 at 30 spheres in several orientations (axis-aligned,

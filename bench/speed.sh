@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Every speed figure of issue 12 in one run: end-to-end times (the command's whole run, process start and
+# The speed figures in one run: end-to-end times (the command's whole run, process start and
 # exit included; median of 5 after an untimed run, 2 threads; beside them the time mss reports, STL read to
-# spheres written) against the issue's targets, generation under load
+# spheres written) against their targets, generation under load
 # (bench/load.sh), and how cost grows with grid size and sphere count (bench/cost_growth.py). The machine's
 # load is printed first; each end-to-end median is also a row of bench/results/speed.csv.
 # usage: bash bench/speed.sh   (after bash scripts/setup.sh)

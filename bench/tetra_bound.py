@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""How low can D go for the regular tetrahedron at 30 spheres under the one-voxel bound? (issue 11, item 3)
+"""How low can D go for the regular tetrahedron at 30 spheres under the one-voxel bound?
 
 An experiment outside the engine, to tell the optimiser's shortfall from the bound's. The tetrahedron inscribed in
 [-1/2, 1/2]^3 (axis-aligned, generation resolution 103: one voxel h = 1/103) is a convex polytope, so a sphere

@@ -2,7 +2,7 @@
 
 Run: yade -n -x bench/yade_clumps.py [--counts 2000,20000] [--rounds 3] [--spheres 10]
 Prints one table per clump count (medians over rounds that alternate ours and YADE's in the same process) and
-appends one row per count to bench/results/yade_clumps.csv (date, commit, load, figures). The bars (issue 29):
+appends one row per count to bench/results/yade_clumps.csv (date, commit, load, figures). The targets:
 mssClump from a result <= 1.3x appendClumped of the same spheres (sphere bodies included); mssClumpCloud
 <= 1.3x SpherePack.makeClumpCloud + toSimulation; restoreClumpProperties <= 50 us a clump. The restore's floor
 is printed beside it: only the YADE calls any restore through YADE's Python API must make (each member's radius,

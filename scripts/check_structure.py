@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The structure bars of the code base (issue: the engine as named parts): no function or lambda in pkg/ or
+"""The structure bars of the code base (the engine as named parts): no function or lambda in pkg/ or
 app/ over 120 lines, no source file in pkg/ over 600 lines, py/yade_mss/__init__.py at most 150 lines.
 Prints the longest functions; exit status 1 when a bar is broken. Run from the repository root."""
 import glob

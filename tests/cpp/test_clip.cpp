@@ -277,7 +277,7 @@ TEST(Clip, RefillRegainsCoverage) {
     EXPECT_LT(refilled, shrunk);
 }
 
-// Issue 4's figure, femur 70 spheres on the paper's grid, scored on an independent grid. The paper's MSS
+// The clipped figure, femur 70 spheres on the paper's grid, scored on an independent grid. The paper's MSS
 // clipped and refilled stays within 10% of its unclipped D. The optimized method's unclipped spheres protrude
 // by up to a voxel to halve the lens under each cap (README, "Clipping: what it costs"), so its clipped D is
 // about twice its unclipped D: that ratio is guarded here, with the refill never worse than shrinking alone.

@@ -1,4 +1,4 @@
-// Fidelity (issue 11): the protrusion bound, problem (ii), and no dependence on how a grain sits in the grid.
+// Fidelity: the protrusion bound, problem (ii), and no dependence on how a grain sits in the grid.
 #include "mss/compare.hpp"
 #include "mss/core/edt.hpp"
 #include "mss/core/mesh_query.hpp"

@@ -12,7 +12,7 @@ namespace mss {
 /// Clearance of a point in a voxel volume: the exact distance from @p c (continuous voxel coordinates of
 /// @p solid's grid) to the nearest background voxel's cube [b - 1/2, b + 1/2]^3, cells outside the grid
 /// counting as background; -1 when the voxel holding @p c is background. A ball of that radius around @p c
-/// stays in the union of the solid voxels' cubes (issue 4 item 2, voxel accuracy). @p edt: the distance
+/// stays in the union of the solid voxels' cubes (voxel accuracy). @p edt: the distance
 /// transform of
 /// @p solid (eq. 8, distance to the nearest background centre), which confines the search to a shell: every
 /// background centre is at least E(v) - |c - v| from c, and the nearest cube within E(v) + |c - v|, so only
