@@ -47,7 +47,7 @@ def table(header, rows, widths=None):
 
 def cliReference(table_rows):
     out = ['Command-line reference', '======================', '',
-           'Made from the option table (``pkg/mss/options.cpp``), as ``mss COMMAND --help`` is: each option has '
+           'Made from the option table (``pkg/mss/generation/options.cpp``), as ``mss COMMAND --help`` is: each option has '
            'one name and one meaning in every command that takes it; the Python keyword is the same option in '
            ':func:`yade_mss.generate`, :func:`yade_mss.compareMany` and :func:`yade_mss.batch`.', '']
     for cmd, usage, text in COMMANDS:

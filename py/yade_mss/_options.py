@@ -1,4 +1,4 @@
-"""The option table (pkg/mss/options.cpp, through the binding) as the Python front ends use it: the checks of
+"""The option table (pkg/mss/generation/options.cpp, through the binding) as the Python front ends use it: the checks of
 keyword arguments, the ``mss batch`` / ``preview`` / ``curve`` parsers and the ``:param`` lines of the public
 functions' docstrings are all made from it, so they cannot drift from the command line's."""
 

@@ -1,4 +1,4 @@
-// pkg/mss/engine/candidates: E's maxima and ridge as candidate orbits.
+// pkg/mss/generation/engine/candidates: E's maxima and ridge as candidate orbits.
 #include "engine_fixtures.hpp"
 #include "mss/core/edt.hpp"
 #include "mss/generation/engine/candidates.hpp"

@@ -1,4 +1,4 @@
-// Comparing sphere sets with a grain (pkg/mss/compare): frames, alignment, protrusion, mass errors.
+// Comparing sphere sets with a grain (pkg/mss/generation/compare.cpp): frames, alignment, protrusion, mass errors.
 #include "mss/compare.hpp"
 #include "mss/io.hpp"
 #include "mss/spheres.hpp"
@@ -33,7 +33,7 @@ TEST(Compare, ClumpFavierFemurScoresAsMeasuredIndependently) {
 TEST(Compare, AnotherFrameIsRefusedAndAlignmentRecoversIt) {
     const TriangleMesh femur = readMesh(kData + "/human_femur.stl");
     const SphereSet eu = readSpheres(kData + "/clump/EU_femur_N70_div150_rMin4_ov0.95.txt");
-    expectError([&] { compareSpheres(femur, eu, {}); }, "--align bbox");
+    expectError([&] { compareSpheres(femur, eu, {}); }, "register it with the option align (bbox");
     CompareOptions o;
     o.align = Align::BoundingBox;
     const Comparison c = compareSpheres(femur, eu, o);

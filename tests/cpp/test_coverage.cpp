@@ -1,4 +1,4 @@
-// pkg/mss/engine/coverage: exact mismatch gains against brute force.
+// pkg/mss/generation/engine/coverage: exact mismatch gains against brute force.
 #include "engine_fixtures.hpp"
 #include "mss/generation/engine/coverage.hpp"
 #include "mss/generation/engine/symmetry.hpp"

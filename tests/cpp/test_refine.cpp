@@ -1,4 +1,4 @@
-// pkg/mss/engine/refine: coordinate-descent refinement.
+// pkg/mss/generation/engine/refine: coordinate-descent refinement.
 #include "engine_fixtures.hpp"
 #include "mss/core/edt.hpp"
 #include "mss/generation/engine/refine.hpp"

@@ -1,4 +1,4 @@
-// pkg/mss/engine/selection: greedy selection and pruning.
+// pkg/mss/generation/engine/selection: greedy selection and pruning.
 #include "engine_fixtures.hpp"
 #include "mss/core/edt.hpp"
 #include "mss/generation/engine/refine.hpp"

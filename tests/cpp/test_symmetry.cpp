@@ -1,4 +1,4 @@
-// pkg/mss/engine/symmetry: mirror planes and orbits.
+// pkg/mss/generation/engine/symmetry: mirror planes and orbits.
 #include "engine_fixtures.hpp"
 #include "mss/generation/engine/symmetry.hpp"
 
