@@ -23,7 +23,9 @@ COMMANDS = (('generate', 'mss generate INPUT -o OUT [options]', 'Spheres for a m
             ('preview', 'mss preview GRAIN SPHERES -o OUT.png [options]', 'A clump against its grain: three views '
              'and a section.'),
             ('curve', 'mss curve GRAIN --counts A:B -o OUT.png [options]', 'D and the generation time against the '
-             'sphere count, as a chart and a CSV.'))
+             'sphere count, as a chart and a CSV.'),
+            ('spheropolygon', 'mss spheropolygon IMAGE -o OUT.json [options]', '2-D particle images (.npy, .png) '
+             'to spheropolygons (the second paper), with the O-chart.'))
 
 
 def esc(text):

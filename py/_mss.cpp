@@ -152,6 +152,11 @@ mss::OptionValue optionValue(const mss::OptionSpec& spec, const py::object& v) {
     }
     case T::Point:
         return vec3(v, spec.name);
+    case T::Point2: {
+        const std::vector<double> xy = doubles(v, spec.name);
+        if (xy.size() != 2) throw bad(" must be 2 numbers");
+        return mss::Vec3(xy[0], xy[1], 0.0);
+    }
     case T::Planes:
         return planes(v);
     case T::Files: {
@@ -193,6 +198,8 @@ const char* typeWord(mss::OptionType t) {
         return "str";
     case mss::OptionType::Point:
         return "point";
+    case mss::OptionType::Point2:
+        return "point2";
     case mss::OptionType::Planes:
         return "planes";
     case mss::OptionType::Files:
@@ -203,9 +210,13 @@ const char* typeWord(mss::OptionType t) {
 
 unsigned commandBit(const std::string& name) {
     static const std::pair<const char*, unsigned> kCommands[] = {
-        {"generate", mss::command::Generate}, {"compare", mss::command::Compare},
-        {"info", mss::command::Info},         {"batch", mss::command::Batch},
-        {"preview", mss::command::Preview},   {"curve", mss::command::Curve}};
+        {"generate", mss::command::Generate},
+        {"compare", mss::command::Compare},
+        {"info", mss::command::Info},
+        {"batch", mss::command::Batch},
+        {"preview", mss::command::Preview},
+        {"curve", mss::command::Curve},
+        {"spheropolygon", mss::command::Spheropolygon}};
     for (const auto& [word, bit] : kCommands)
         if (name == word) return bit;
     throw std::invalid_argument("options: no command '" + name + "'");
@@ -220,7 +231,9 @@ py::object parseOption(const std::string& name, const std::string& command, cons
     if (const long long* i = std::get_if<long long>(&v)) return py::object(*i);
     if (const double* x = std::get_if<double>(&v)) return py::object(*x);
     if (const std::string* t = std::get_if<std::string>(&v)) return py::object(*t);
-    if (const mss::Vec3* p = std::get_if<mss::Vec3>(&v)) return py::make_tuple(p->x(), p->y(), p->z());
+    if (const mss::Vec3* p = std::get_if<mss::Vec3>(&v))
+        return spec->type == mss::OptionType::Point2 ? py::make_tuple(p->x(), p->y())
+                                                     : py::make_tuple(p->x(), p->y(), p->z());
     if (const auto* ps = std::get_if<std::vector<mss::Plane>>(&v)) {
         py::list out;
         for (const mss::Plane& q : *ps)
@@ -254,9 +267,13 @@ py::list fileFormats() {
 /// The option table (mss/options.hpp) as a list of dicts, for the facade's parsers and docstrings.
 py::list optionTable() {
     static const std::pair<unsigned, const char*> kCommands[] = {
-        {mss::command::Generate, "generate"}, {mss::command::Compare, "compare"},
-        {mss::command::Info, "info"},         {mss::command::Batch, "batch"},
-        {mss::command::Preview, "preview"},   {mss::command::Curve, "curve"}};
+        {mss::command::Generate, "generate"},
+        {mss::command::Compare, "compare"},
+        {mss::command::Info, "info"},
+        {mss::command::Batch, "batch"},
+        {mss::command::Preview, "preview"},
+        {mss::command::Curve, "curve"},
+        {mss::command::Spheropolygon, "spheropolygon"}};
     py::list out;
     for (const mss::OptionSpec& s : mss::optionTable()) {
         py::dict d;

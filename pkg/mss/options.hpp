@@ -25,6 +25,7 @@ enum class OptionType {
     Choice,  ///< one of the words in choices ("optimized|paper")
     Text,    ///< a word or a path
     Point,   ///< X,Y,Z (world units)
+    Point2,  ///< X,Y (world units; held as X,Y,0)
     Planes,  ///< PX,PY,PZ,NX,NY,NZ, repeatable: a point and a normal each
     Files,   ///< several paths
 };
@@ -32,7 +33,8 @@ enum class OptionType {
 /// The commands an option belongs to (bits of OptionSpec::commands). The command line's `mss COMMAND` and
 /// the Python function of the same name (compare: compareMany) take the same options.
 namespace command {
-constexpr unsigned Generate = 1, Compare = 2, Info = 4, Batch = 8, Preview = 16, Curve = 32;
+constexpr unsigned Generate = 1, Compare = 2, Info = 4, Batch = 8, Preview = 16, Curve = 32,
+                   Spheropolygon = 64;
 }
 
 /// One row of the table.

@@ -88,16 +88,3 @@ class cppPath(object):
                 shown = self.path.encode('utf-8', 'backslashreplace').decode('utf-8')
                 raise ValueError(str(error).replace(self.link, shown)) from None
         return False
-
-
-def parseOrigin(text, n):
-    """``--origin X,Y,Z`` (or X,Y for images) -> n floats; ValueError naming the option otherwise."""
-    if text is None:
-        return None
-    try:
-        v = [float(x) for x in text.split(',')]
-    except ValueError:
-        v = []
-    if len(v) != n or not all(x == x and abs(x) != float('inf') for x in v):
-        raise ValueError('--origin: expected %s (finite numbers), got %r' % (','.join('XYZ'[:n]), text))
-    return v

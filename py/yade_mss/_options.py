@@ -10,7 +10,7 @@ from ._args import INT64_MAX, flag, integer, number, vector3
 TABLE = tuple(_mss.optionTable())
 
 _PYTHON_TYPES = {'int': 'int ', 'float': 'float ', 'bool': 'bool ', 'choice': 'str ', 'str': 'str ', 'point': '',
-                 'planes': '', 'files': ''}
+                 'point2': '', 'planes': '', 'files': ''}
 
 
 def rows(command):
@@ -65,6 +65,10 @@ def check(func, command, name, value):
         return value
     if t == 'point':
         return [float(x) for x in vector3(func, name, value)]
+    if t == 'point2':
+        if isinstance(value, (str, bytes)) or not hasattr(value, '__len__') or len(value) != 2:
+            raise TypeError('%s: %s must be 2 numbers, got %r' % (func, name, value))
+        return [number(func, name, x) for x in value]
     if t == 'planes':
         return _planes(func, value)
     if t == 'files':
@@ -85,6 +89,8 @@ def _paramLine(r, indent):
         extra.insert(0, ' or '.join("'%s'" % c for c in r['choices'].split('|')))
     if r['type'] == 'point':
         extra.insert(0, '(x, y, z)')
+    if r['type'] == 'point2':
+        extra.insert(0, '(x, y)')
     if r['type'] == 'planes':
         extra.insert(0, '[((px, py, pz), (nx, ny, nz)), ...]')
     if r['default']:

@@ -16,7 +16,8 @@ import time
 import numpy as np
 
 from . import _mss
-from ._files import atomicWrite, parseOrigin, requireRegularFile
+from . import _options
+from ._files import atomicWrite, requireRegularFile
 
 _DEFAULT_RADII = (0.0025, 0.004, 0.006, 0.01, 0.02)  # fractions of the particle's size
 
@@ -324,58 +325,45 @@ def main(argv=None):
     p = argparse.ArgumentParser(prog='mss spheropolygon', description='2-D particle images to spheropolygons '
                                 '(Dobrohotoff et al. 2012)')
     p.add_argument('image', help='.npy (non-zero: particle; labels: one spheropolygon each) or .png (dark: particle)')
-    p.add_argument('-o', '--output', required=True, help='the JSON to write')
-    p.add_argument('--vertices', type=int, default=30)
-    p.add_argument('--radius', type=float, default=None, help='spheroradius (world units); default: the least error')
-    p.add_argument('--init', default='auto', choices=('auto', 'circle', 'boundary', 'curvature'))
-    p.add_argument('--threshold', type=float, default=None, help='PNG: grey level under which a pixel is particle')
-    p.add_argument('--pixel-size', type=float, default=1.0)
-    p.add_argument('--origin', default='0,0', help='X,Y of pixel [0, 0]')
-    p.add_argument('--ochart', default=None, help='a folder: the (N, r) sweep as CSV and the three charts')
-    p.add_argument('--preview', default=None, help='a PNG of the result over the image')
-    p.add_argument('--vertex-radii', action='store_true',
-                   help='a spheroradius per vertex (3N parameters), none below --min-radius')
-    p.add_argument('--min-radius', type=float, default=None,
-                   help='with --vertex-radii: the least radius (world units; default the spheroradius)')
-    p.add_argument('--region-vertices', action='store_true',
-                   help='at least one vertex in every convex or concave region of the boundary')
-    p.add_argument('--region-turning', type=float, default=None,
-                   help='degrees a stretch of the boundary must turn to be a region (default 90)')
+    _options.addArguments(p, 'spheropolygon')
     a = p.parse_args(argv)
     try:
-        img = readImage(a.image, a.threshold)
-        origin = parseOrigin(a.origin, 2)
+        v = _options.parsed('spheropolygon', a)
+        opt = {r['name']: v.get(r['name'], _options.default(r['name'], 'spheropolygon'))
+               for r in _options.rows('spheropolygon')}
+        img = readImage(a.image, opt['threshold'])
+        origin = tuple(opt['origin'])
         labels = [None] if img.dtype == bool or len(np.unique(img[img != 0])) <= 1 else \
             [int(l) for l in np.unique(img[img != 0])]
         out = {}
         for l in labels:
-            r = spheropolygon(img, a.vertices, a.radius, a.pixel_size, origin, label=l, init=a.init,
-                              vertexRadii=a.vertex_radii, minRadius=a.min_radius,
-                              regionVertices=a.region_vertices, regionTurning=a.region_turning)
+            r = spheropolygon(img, opt['vertices'], opt['radius'], opt['pixelSize'], origin, label=l,
+                              init=opt['init'], vertexRadii=opt['vertexRadii'], minRadius=opt['minRadius'],
+                              regionVertices=opt['regionVertices'], regionTurning=opt['regionTurning'])
             keep = ('spheroradius', 'vertices', 'radii', 'errorPixels', 'error', 'iterations', 'roundness', 'area',
                     'perimeter', 'init', 'regions', 'regionsFilled', 'regionsMissed')
             out['particle' if l is None else str(l)] = {k: r[k] for k in keep if k in r}
             print('%-10s N %d  r %s  error %.2f%% (%d pixels)  roundness %.3f  %d iterations%s'
-                  % ('particle' if l is None else 'label %d' % l, a.vertices,
+                  % ('particle' if l is None else 'label %d' % l, opt['vertices'],
                      '%.4g' % r['spheroradius'] if 'radii' not in r else
                      '%.4g to %.4g' % (min(r['radii']), max(r['radii'])), 100 * r['error'],
                      r['errorPixels'], r['roundness'], r['iterations'],
                      '  regions %d (%d filled, %d without a vertex)' % (r['regions'], r['regionsFilled'],
                                                                       r['regionsMissed'])
                      if 'regions' in r else ''))
-            if a.preview:
-                base, ext = os.path.splitext(a.preview)
-                previewSpheropolygon(img != 0 if l is None else img == l, r, a.preview if l is None else
-                                     '%s_%d%s' % (base, l, ext), a.pixel_size, origin)
+            if opt['preview']:
+                base, ext = os.path.splitext(opt['preview'])
+                previewSpheropolygon(img != 0 if l is None else img == l, r, opt['preview'] if l is None else
+                                     '%s_%d%s' % (base, l, ext), opt['pixelSize'], origin)
         result = out['particle'] if labels == [None] else out
         def dump(tmp):
             with open(tmp, 'w') as f:
                 json.dump(result, f, indent=1)
-        atomicWrite(a.output, dump, 'spheropolygon')
-        if a.ochart:
-            rows = ochart(img, a.ochart, pixelSize=a.pixel_size, origin=origin,
+        atomicWrite(opt['output'], dump, 'spheropolygon')
+        if opt['ochart']:
+            rows = ochart(img, opt['ochart'], pixelSize=opt['pixelSize'], origin=origin,
                           label=None if labels == [None] else labels[0])
-            print('ochart     %d (N, r) pairs: %s' % (len(rows), os.path.join(a.ochart, 'ochart.csv')))
+            print('ochart     %d (N, r) pairs: %s' % (len(rows), os.path.join(opt['ochart'], 'ochart.csv')))
     except (ValueError, RuntimeError, OSError) as e:
         print('mss spheropolygon: error: %s' % e, file=sys.stderr)
         return 1

@@ -15,7 +15,7 @@ from yade_mss._generate import GENERATE_OPTIONS
 
 MSS = os.environ.get('MSS_BINARY', 'mss')
 DATA = os.environ.get('MSS_TEST_DATA', os.path.join(os.path.dirname(__file__), '..', 'data'))
-COMMANDS = ('generate', 'compare', 'info', 'batch', 'preview', 'curve')
+COMMANDS = ('generate', 'compare', 'info', 'batch', 'preview', 'curve', 'spheropolygon')
 
 
 def helpFlags(command):
@@ -67,7 +67,8 @@ class Table(unittest.TestCase):
     def test_one_name_one_flag_one_type(self):
         byName, byFlag = {}, {}
         for r in _options.TABLE:
-            byName.setdefault(r['name'], set()).add((r['flag'], r['type'], r['unit'], r['python']))
+            kind = 'point' if r['type'] == 'point2' else r['type']  # a point in 2-D or 3-D: the same option
+            byName.setdefault(r['name'], set()).add((r['flag'], kind, r['unit'], r['python']))
             if r['flag']:
                 byFlag.setdefault(r['flag'], set()).add(r['name'])
         for name, kinds in byName.items():
@@ -120,12 +121,14 @@ class PythonFunctions(unittest.TestCase):
 
     def test_pictures_take_the_table_defaults(self):
         from yade_mss import _pictures
-        for f, command in ((_pictures.preview, 'preview'), (_pictures.curve, 'curve')):
+        for f, command in ((_pictures.preview, 'preview'), (_pictures.curve, 'curve'),
+                           (yade_mss.spheropolygon, 'spheropolygon')):
             params = inspect.signature(f).parameters
             for r in _options.rows(command):
                 if r['python'] and r['name'] in params:
                     with self.subTest(function=command, keyword=r['name']):
-                        self.assertIn(params[r['name']].default, (None, (), _options.default(r['name'], command)))
+                        d = _options.default(r['name'], command)
+                        self.assertIn(params[r['name']].default, (None, (), d, tuple(d) if isinstance(d, list) else d))
 
     def test_docstrings_document_every_keyword_from_the_table(self):
         for f, command, own in self.FUNCTIONS:

@@ -142,6 +142,36 @@ const std::vector<OptionSpec> kTable = {
      "skip grains of fewer voxels", c::Batch},
     {"excludeBorder", "--exclude-border", true, T::Flag, "false", 0, 0, false, false, "", "", "",
      "skip grains cut by the volume's border", c::Batch},
+    // spheropolygons (2-D, the second paper)
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "JSON", "the JSON to write",
+     c::Spheropolygon},
+    {"vertices", "--vertices", true, T::Integer, "30", 3, 10000, false, false, "", "", "N",
+     "vertices of the spheropolygon", c::Spheropolygon},
+    {"radius", "--radius", true, T::Number, "", 0, kInf, true, true, "", "world units", "R",
+     "the spheroradius; default: the one of least error", c::Spheropolygon},
+    {"init", "--init", true, T::Choice, "auto", 0, 0, false, false, "auto|circle|boundary|curvature", "",
+     "INIT", "where the vertices start (section 3.1); auto: boundary and curvature both, the better kept",
+     c::Spheropolygon},
+    {"threshold", "--threshold", false, T::Number, "", -kInf, kInf, true, true, "", "", "G",
+     "a PNG: the grey level under which a pixel is particle (default: halfway)", c::Spheropolygon},
+    {"pixelSize", "--pixel-size", true, T::Number, "1", 0, kInf, true, true, "", "world units", "H",
+     "a pixel's edge", c::Spheropolygon},
+    {"origin", "--origin", true, T::Point2, "0,0", 0, 0, false, false, "", "world units", "X,Y",
+     "the world position of the centre of pixel [0, 0]", c::Spheropolygon},
+    {"ochart", "--ochart", false, T::Text, "", 0, 0, false, false, "", "", "DIR",
+     "also sweep N and r into this folder: the error, the cost and O as CSV and the three charts (Fig. 4)",
+     c::Spheropolygon},
+    {"preview", "--preview", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
+     "also draw the result over the image", c::Spheropolygon},
+    {"vertexRadii", "--vertex-radii", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "a spheroradius per vertex (3N parameters), none below minRadius", c::Spheropolygon},
+    {"minRadius", "--min-radius", true, T::Number, "", 0, kInf, false, true, "", "world units", "R",
+     "with vertexRadii: the least radius (default: the spheroradius)", c::Spheropolygon},
+    {"regionVertices", "--region-vertices", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "at least one vertex in every convex or concave region of the boundary", c::Spheropolygon},
+    {"regionTurning", "--region-turning", true, T::Number, "", 0, 360, true, false, "", "degrees", "DEG",
+     "with regionVertices: how far a stretch of the boundary must turn to be a region (default 90)",
+     c::Spheropolygon},
     {"labels", "--labels", false, T::Text, "", 0, 0, false, false, "", "", "L1,L2,...",
      "only these labels of a labelled volume", c::Batch},
 };
@@ -184,6 +214,8 @@ std::string commandName(unsigned cmd) {
         return "preview";
     case c::Curve:
         return "curve";
+    case c::Spheropolygon:
+        return "spheropolygon";
     default:
         return "options";
     }
@@ -269,6 +301,13 @@ OptionValue parseOption(const OptionSpec& s, const std::string& text) {
         checkOption(s, p);
         return p;
     }
+    case T::Point2: {
+        const std::vector<double> v = numbers(text);
+        if (v.size() != 2) throw bad("is not X,Y (2 numbers)");
+        const Vec3 p(v[0], v[1], 0.0);
+        checkOption(s, p);
+        return p;
+    }
     case T::Planes: {
         const std::vector<double> v = numbers(text);
         if (v.size() != 6) throw bad("is not PX,PY,PZ,NX,NY,NZ (6 numbers)");
@@ -325,6 +364,12 @@ void checkOption(const OptionSpec& s, const OptionValue& value) {
         const Vec3* v = std::get_if<Vec3>(&value);
         if (!v) fail(" must be 3 numbers");
         if (!v->allFinite()) fail(" must be 3 finite numbers");
+        break;
+    }
+    case T::Point2: {
+        const Vec3* v = std::get_if<Vec3>(&value);
+        if (!v) fail(" must be 2 numbers");
+        if (!v->allFinite()) fail(" must be 2 finite numbers");
         break;
     }
     case T::Planes: {
