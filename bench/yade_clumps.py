@@ -1,8 +1,9 @@
 """What building and restoring clumps costs in YADE, against YADE's own calls on the same spheres.
 
-Run: yade -n -x bench/yade_clumps.py [--counts 2000,20000] [--rounds 3] [--spheres 10]
-Prints one table per clump count (medians over rounds that alternate ours and YADE's in the same process) and
-appends one row per count to bench/results/yade_clumps.csv (date, commit, load, figures). The targets:
+Run: yade -n -x bench/yade_clumps.py [--counts 2000,20000] [--rounds 5] [--spheres 10]
+Prints one table per clump count (medians over rounds that alternate ours and YADE's in the same process; the
+ratios are medians of each round's) and appends one row per count to bench/results/yade_clumps.csv (date, commit,
+machine, load, figures). The targets:
 mssClump from a result <= 1.3x appendClumped of the same spheres (sphere bodies included); mssClumpCloud
 <= 1.3x SpherePack.makeClumpCloud + toSimulation; restoreClumpProperties <= 50 us a clump. The restore's floor
 is printed beside it: only the YADE calls any restore through YADE's Python API must make (each member's radius,
@@ -34,7 +35,7 @@ DATA = os.environ.get('MSS_DATA', os.path.join(HERE, '..', 'tests', 'data'))
 def options():
     p = argparse.ArgumentParser(prog='yade -n -x bench/yade_clumps.py')
     p.add_argument('--counts', default='2000,20000', help='clump counts, comma-separated')
-    p.add_argument('--rounds', type=int, default=3, help='alternating rounds (medians are printed)')
+    p.add_argument('--rounds', type=int, default=5, help='alternating rounds (medians are printed)')
     p.add_argument('--spheres', type=int, default=10, help='spheres a clump')
     a = p.parse_args(sys.argv[1:])
     try:
@@ -145,6 +146,17 @@ def commit():
         return 'unknown'
 
 
+def machine():
+    """Cores and CPU model, as bench/lib.sh writes them."""
+    model = 'unknown CPU'
+    with open('/proc/cpuinfo') as f:
+        for line in f:
+            if line.startswith('model name'):
+                model = ' '.join(line.split(':', 1)[1].replace(',', ' ').split())
+                break
+    return '%d cores %s' % (os.cpu_count(), model)
+
+
 def main():
     a = options()
     if not os.path.isfile(os.path.join(HERE, 'yade_clumps.py')):
@@ -171,24 +183,28 @@ def main():
             m['restore'].append(rs)
             m['floor'].append(restoreFloor(r, at))
         med = {k: float(np.median(v)) for k, v in m.items()}
+        # the ratios: the median of each round's (its pair timed back to back), so that a slow spell of the
+        # machine between rounds does not enter them
+        ratio = float(np.median([o / p for o, p in zip(m['ours'], m['plain'])]))
+        cloudRatio = float(np.median([o / y for o, y in zip(m['ocloud'], m['ycloud'])]))
         load = os.getloadavg()[0]
         print('\n%d clumps of %d spheres, %d rounds, load %.2f (medians; per clump)' % (n, len(r), a.rounds, load))
         print('  appendClumped of utils.sphere bodies   %8.1f us' % (1e6 * med['plain'] / n))
         print('  mssClump from a result                 %8.1f us   %.2fx (bar 1.3x)   rounds: %s' % (
-            1e6 * med['ours'] / n, med['ours'] / med['plain'],
+            1e6 * med['ours'] / n, ratio,
             ' '.join('%.2fx' % (o / p) for o, p in zip(m['ours'], m['plain']))))
         print('  makeClumpCloud + toSimulation          %8.1f us' % (1e6 * med['ycloud']))
-        print('  mssClumpCloud                          %8.1f us   %.2fx (bar 1.3x)' % (
-            1e6 * med['ocloud'], med['ocloud'] / med['ycloud']))
+        print('  mssClumpCloud                          %8.1f us   %.2fx (bar 1.3x)   rounds: %s' % (
+            1e6 * med['ocloud'], cloudRatio, ' '.join('%.2fx' % (o / y) for o, y in zip(m['ocloud'], m['ycloud']))))
         print('  updateClumpProperties(discretization=0) %7.1f us' % (1e6 * med['yupdate'] / n))
         print('  restoreClumpProperties                 %8.1f us   (bar 50 us)' % (1e6 * med['restore'] / n))
         print('    its floor: the YADE calls alone      %8.1f us' % (1e6 * med['floor'] / n))
         rows.append(dict(date=datetime.datetime.now().isoformat(timespec='seconds'), commit=commit(),
-                         load=round(load, 2), clumps=n, spheres=len(r), rounds=a.rounds,
+                         machine=machine(), load=round(load, 2), clumps=n, spheres=len(r), rounds=a.rounds,
                          appendClumped_us=round(1e6 * med['plain'] / n, 1), mssClump_us=round(1e6 * med['ours'] / n, 1),
-                         mssClump_ratio=round(med['ours'] / med['plain'], 3),
+                         mssClump_ratio=round(ratio, 3),
                          makeClumpCloud_us=round(1e6 * med['ycloud'], 1), mssClumpCloud_us=round(1e6 * med['ocloud'], 1),
-                         cloud_ratio=round(med['ocloud'] / med['ycloud'], 3),
+                         cloud_ratio=round(cloudRatio, 3),
                          updateClumpProperties_us=round(1e6 * med['yupdate'] / n, 1),
                          restore_us=round(1e6 * med['restore'] / n, 1),
                          restore_floor_us=round(1e6 * med['floor'] / n, 1)))
