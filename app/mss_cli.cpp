@@ -370,22 +370,6 @@ int cmdInfo(const Args& a) {
 // ---- the command line (CLI11): subcommands, per-subcommand help; values are kept as text and converted by
 // the helpers above, so that every bad value gets the same message as before
 
-/// Edit distance, for "did you mean" on unknown options.
-std::size_t distance(const std::string& a, const std::string& b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diag = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
-            diag = up;
-        }
-    }
-    return row[b.size()];
-}
-
 /// "unknown option '--sphere': did you mean '--spheres'?" for what CLI11 did not expect.
 std::string unknownOption(const CLI::App* sub, const std::vector<std::string>& extras) {
     const std::string bad = extras.empty() ? "" : extras.front();
@@ -394,7 +378,7 @@ std::string unknownOption(const CLI::App* sub, const std::vector<std::string>& e
     for (const CLI::Option* o : sub->get_options())
         for (const std::string& name : o->get_lnames()) {
             const std::string cand = "--" + name;
-            const std::size_t d = distance(bad, cand);
+            const std::size_t d = mss::editDistance(bad, cand);
             if (d < bestD || (bad.size() > 2 && cand.rfind(bad, 0) == 0 && d < bestD + 4)) {
                 bestD = std::min(d, bestD);
                 best = cand;

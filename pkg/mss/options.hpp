@@ -85,6 +85,9 @@ OptionValue parseOption(const OptionSpec& spec, const std::string& text);
 /// @throws OptionError when @p value is not of @p spec's type or outside its range or choices.
 void checkOption(const OptionSpec& spec, const OptionValue& value);
 
+/// Levenshtein distance of two names, for "did you mean" on an unknown option (every front end's).
+std::size_t editDistance(const std::string& a, const std::string& b);
+
 /// The range of an Integer or Number row as text: ">= 1", "in [0, 1)".
 std::string optionRange(const OptionSpec& spec);
 
