@@ -42,11 +42,11 @@ def encodeMany(ids, x, radii, volume, C, I, m, V, j, F):
     (k, 3, 3): member 1's rotation matrix (one member: member 0's, V^T). :return: list of k strings"""
     k = len(ids)
     x0 = np.array([xi[0] for xi in x]).reshape(k, 3)
-    Ft = np.transpose(F, (0, 2, 1))
-    crel = np.einsum('kij,kj->ki', Ft, C - x0)
-    Irel = np.einsum('kij,kjl,klm->kim', Ft, I, F)
-    J = np.einsum('kij,kj,klj->kil', V, j, V)  # V diag(j) V^T
-    Jrel = np.einsum('kij,kjl,klm->kim', Ft, J, F)
+    Ft = np.transpose(F, (0, 2, 1))  # stacked matmul: einsum's overhead was most of a single clump's cost
+    crel = (Ft @ (C - x0)[:, :, None])[:, :, 0]
+    Irel = Ft @ I @ F
+    J = (V * np.asarray(j)[:, None, :]) @ np.transpose(V, (0, 2, 1))  # V diag(j) V^T
+    Jrel = Ft @ J @ F
     out = []
     for i in range(k):
         rel = (x[i] - x0[i]).dot(F[i])

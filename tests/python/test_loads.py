@@ -66,3 +66,29 @@ class Loads(unittest.TestCase):
 
 if __name__ == '__main__':
     unittest.main()
+
+
+class TakenCheck(unittest.TestCase):
+    """_checkMany: what YADE's sums gave a clump against what was asked, with its tolerances (the check that
+    refuses a clump YADE did not take exactly)."""
+
+    class State(object):
+        def __init__(self, mass, pos, inertia):
+            self.mass, self.pos, self.inertia = mass, pos, inertia
+
+    def check(self, mass=2.0, pos=(1.0, 2.0, 3.0), inertia=(3.0, 1.0, 2.0)):
+        import numpy as np
+        from yade_mss._clumps import _checkMany
+        _checkMany('f', [7], [self.State(mass, pos, inertia)], np.array([2.0]), np.array([[1.0, 2.0, 3.0]]),
+                   np.array([[1.0, 2.0, 3.0]]))
+
+    def test_what_was_asked_passes_in_any_order_of_the_moments(self):
+        self.check()
+        self.check(mass=2.0 * (1 + 1e-10), pos=(1.0 + 1e-10, 2.0, 3.0))  # within the tolerances
+
+    def test_a_wrong_mass_centre_or_moment_is_refused_naming_the_clump(self):
+        for kw in (dict(mass=2.1), dict(pos=(1.0, 2.0, 3.1)), dict(inertia=(3.0, 1.0, 2.5))):
+            with self.subTest(**kw):
+                with self.assertRaisesRegex(RuntimeError, 'f: YADE did not take the requested mass properties of '
+                                                          'clump 7'):
+                    self.check(**kw)
