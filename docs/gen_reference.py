@@ -151,17 +151,15 @@ def readmeResults():
         last = latest(rows, lambda r: r['case'])
         keep = [r for r in last.values() if r['target_s'] != '-']
         commits = sorted({r['commit'] for r in keep})
-        loads = sorted({r['load'] for r in keep})
         out += ['Speed, end to end on %s (process start to spheres written, median of 5); `bash bench/speed.sh` '
-                '(commit %s, load %s):' % (keep[0]['machine'] if keep else 'this machine', ', '.join(commits),
-                                           ', '.join(loads)), '',
+                '(commit %s; the manual\'s results page gives each row\'s machine load):'
+                % (keep[0]['machine'] if keep else 'this machine', ', '.join(commits)), '',
                 markdownTable(['case', 'seconds'], [[r['case'], r['median_s']] for r in keep]), '']
     rows = readRows('yade_clumps.csv')
     if rows:
         last = latest(rows, lambda r: r['clumps'])
         out += ['Clumps in YADE, 10 spheres each; `yade -n -x bench/yade_clumps.py` (time against YADE\'s own of the '
-                'same spheres; commit %s, load %s):' % (', '.join(sorted({r['commit'] for r in last.values()})),
-                                                       ', '.join(sorted({r['load'] for r in last.values()}))), '',
+                'same spheres; commit %s):' % ', '.join(sorted({r['commit'] for r in last.values()})), '',
                 markdownTable(['clumps', '`mssClump` / `appendClumped`', '`mssClumpCloud` / `makeClumpCloud`',
                                '`restoreClumpProperties`, us a clump'],
                               [[r['clumps'], r['mssClump_ratio'] + 'x', r['cloud_ratio'] + 'x', r['restore_us']]

@@ -1,4 +1,5 @@
-// Comparing sphere sets with a grain (pkg/mss/generation/compare.cpp): frames, alignment, protrusion, mass errors.
+// Comparing sphere sets with a grain (pkg/mss/generation/compare.cpp): frames, alignment, protrusion, mass
+// errors.
 #include "mss/compare.hpp"
 #include "mss/io.hpp"
 #include "mss/spheres.hpp"
