@@ -47,7 +47,7 @@ def table(header, rows, widths=None):
     return '\n'.join(out) + '\n'
 
 
-def cliReference(table_rows):
+def cliReference(table_rows, _options):
     out = ['Command-line reference', '======================', '',
            'Made from the option table (``pkg/mss/generation/options.cpp``), as ``mss COMMAND --help`` is: each option has '
            'one name and one meaning in every command that takes it; the Python keyword is the same option in '
@@ -60,9 +60,7 @@ def cliReference(table_rows):
                 continue
             flag = r['flag'].split(',')
             value = '' if r['type'] == 'bool' else ' ' + r['metavar']
-            extra = [x for x in (r['unit'], r['range']) if x]
-            if r['type'] == 'choice':
-                extra.insert(0, 'one of ' + ', '.join(r['choices'].split('|')))
+            extra = _options.facts(r, withDefault=False)
             rows.append(['``%s``' % (', '.join(flag) + value), '``%s``' % r['name'] if r['python'] else '',
                          esc(r['help']) + (' [%s]' % esc('; '.join(extra)) if extra else ''),
                          esc(r['default'])])
@@ -188,7 +186,7 @@ def write(path, text):
 def main(outdir):
     from yade_mss import _options
     os.makedirs(outdir, exist_ok=True)
-    write(os.path.join(outdir, 'cli_reference.rst'), cliReference(_options.TABLE))
+    write(os.path.join(outdir, 'cli_reference.rst'), cliReference(_options.TABLE, _options))
     write(os.path.join(outdir, 'fidelity.rst'), fidelity())
     write(os.path.join(outdir, 'speed.rst'), speed())
     write(os.path.join(outdir, 'yade_clumps.rst'), yadeClumps())

@@ -161,7 +161,11 @@ mss::OptionValue optionValue(const mss::OptionSpec& spec, const py::object& v) {
         return planes(v);
     case T::Files: {
         std::vector<std::string> out;
-        for (long i = 0; i < py::len(v); ++i) out.push_back(py::extract<std::string>(v[i]));
+        for (long i = 0; i < py::len(v); ++i) {
+            py::extract<std::string> f(v[i]);
+            if (!f.check()) throw bad(" must be a list of file names");
+            out.push_back(f());
+        }
         return out;
     }
     }

@@ -83,18 +83,25 @@ def collect(func, command, given):
     return {k: check(func, command, k, v) for k, v in given.items() if v is not None}
 
 
-def _paramLine(r, indent):
-    extra = [x for x in (r['unit'], r['range']) if x]
+_SHAPES = {'point': '(x, y, z)', 'point2': '(x, y)', 'planes': '[((px, py, pz), (nx, ny, nz)), ...]'}
+
+
+def facts(r, python=False, withDefault=True):
+    """What a row says beside its help, as every front end's help shows it (--help of the Python parsers, the
+    docstrings, the manual's reference): its choices or shape, unit, range and default."""
+    out = [x for x in (r['unit'], r['range']) if x]
     if r['type'] == 'choice':
-        extra.insert(0, ' or '.join("'%s'" % c for c in r['choices'].split('|')))
-    if r['type'] == 'point':
-        extra.insert(0, '(x, y, z)')
-    if r['type'] == 'point2':
-        extra.insert(0, '(x, y)')
-    if r['type'] == 'planes':
-        extra.insert(0, '[((px, py, pz), (nx, ny, nz)), ...]')
-    if r['default']:
-        extra.append('default %s' % (r['default'].capitalize() if r['type'] == 'bool' else r['default']))
+        words = r['choices'].split('|')
+        out.insert(0, ' or '.join("'%s'" % c for c in words) if python else 'one of ' + ', '.join(words))
+    if python and r['type'] in _SHAPES:
+        out.insert(0, _SHAPES[r['type']])
+    if withDefault and r['default'] and (python or r['type'] != 'bool'):
+        out.append('default %s' % (r['default'].capitalize() if r['type'] == 'bool' else r['default']))
+    return out
+
+
+def _paramLine(r, indent):
+    extra = facts(r, python=True)
     text = ':param %s%s: %s' % (_PYTHON_TYPES[r['type']], r['name'], r['help'])
     if extra:
         text += ' [%s]' % '; '.join(extra)
@@ -151,9 +158,7 @@ def addArguments(parser, command, skip=()):
             continue
         flags = r['flag'].split(',')
         helpText = ('turns off: ' if r['type'] == 'bool' and r['default'] == 'true' else '') + r['help']
-        extra = [x for x in (r['unit'], r['range']) if x]
-        if r['default'] and r['type'] != 'bool':
-            extra.append('default %s' % r['default'])
+        extra = facts(r)
         if extra:
             helpText += ' [%s]' % '; '.join(extra)
         helpText = helpText.replace('%', '%%')
