@@ -88,3 +88,64 @@ class cppPath(object):
                 shown = self.path.encode('utf-8', 'backslashreplace').decode('utf-8')
                 raise ValueError(str(error).replace(self.link, shown)) from None
         return False
+
+
+def _memoryBytes():
+    try:
+        return os.sysconf('SC_PHYS_PAGES') * os.sysconf('SC_PAGE_SIZE')
+    except (ValueError, OSError):
+        return 1 << 34
+
+
+def readNpy(where, path, mmap=False):
+    """A .npy array, its header checked before numpy reads the data: the magic, a header numpy parses, no Python
+    objects, and data the file really holds (a header may declare any shape). Every failure, whatever the parser
+    raised, is ValueError('WHERE: PATH: ...')."""
+    import numpy as np
+    path = os.fspath(path)
+    requireRegularFile(where, path)
+    try:
+        with open(path, 'rb') as f:
+            if f.read(6) != b'\x93NUMPY':
+                raise ValueError('not a .npy file (it does not start with \\x93NUMPY)')
+            f.seek(0)
+            version = np.lib.format.read_magic(f)
+            if version == (1, 0):
+                shape, _, dtype = np.lib.format.read_array_header_1_0(f)
+            elif version == (2, 0):
+                shape, _, dtype = np.lib.format.read_array_header_2_0(f)
+            else:
+                raise ValueError('.npy format version %d.%d (1.0 and 2.0 are read)' % version)
+            if dtype.hasobject:
+                raise ValueError('it holds Python objects (dtype %s), which are never unpickled' % dtype)
+            need, have = int(np.prod(shape, dtype=object)) * dtype.itemsize, os.fstat(f.fileno()).st_size - f.tell()
+            if need > have:
+                raise ValueError('its header declares shape %s of %s (%d bytes), the file holds %d'
+                                 % (tuple(shape), dtype, need, have))
+        return np.load(path, mmap_mode='r' if mmap else None, allow_pickle=False)
+    except Exception as e:  # a parser of hostile bytes: SyntaxError, TokenError, OverflowError, ... all say the same
+        if isinstance(e, ValueError) and str(e).startswith(where):
+            raise
+        raise ValueError('%s: %s: cannot read the .npy file (%s)' % (where, path, e)) from None
+
+
+def readTiff(where, path):
+    """A TIFF stack as one array, its declared size checked against the memory before anything is expanded. Every
+    failure of the reader (tifffile raises its own TiffFileError, struct.error, KeyError, ...) is
+    ValueError('WHERE: PATH: ...')."""
+    import numpy as np
+    import tifffile
+    path = os.fspath(path)
+    requireRegularFile(where, path)
+    try:
+        with tifffile.TiffFile(path) as t:
+            if not t.series:
+                raise ValueError('it holds no image')
+            s = t.series[0]
+            need, limit = int(np.prod(s.shape, dtype=object)) * np.dtype(s.dtype).itemsize, _memoryBytes() // 2
+            if need > limit:
+                raise ValueError('it declares shape %s of %s (%d bytes), more than half the memory (%d bytes)'
+                                 % (tuple(s.shape), s.dtype, need, limit))
+            return t.asarray()
+    except Exception as e:  # as readNpy's
+        raise ValueError('%s: %s: cannot read the TIFF (%s)' % (where, path, e)) from None

@@ -1,8 +1,10 @@
 """Results and sphere files: :class:`MassProperties`, :class:`MssResult`, :func:`readSpheres`."""
 
 import json
-import zipfile
 import os
+import struct
+import zipfile
+import zlib
 
 import numpy as np
 
@@ -173,7 +175,10 @@ class MssResult(object):
                 r = MssResult(centers, radii, meta.get('metrics'), meta.get('grid'), None, meta.get('source', ''))
                 if meta.get('targetMass'):
                     r.targetMass = MassProperties._fromDict(meta['targetMass'])
-        except (OSError, KeyError, ValueError, TypeError, AttributeError, EOFError, zipfile.BadZipFile) as e:
+        except (OSError, KeyError, ValueError, TypeError, AttributeError, EOFError, zipfile.BadZipFile, zlib.error,
+                NotImplementedError, struct.error) as e:
+            # zlib.error: a damaged deflate stream shows only while an array is expanded; NotImplementedError: the
+            # zip reader's answer to a damaged version field
             raise ValueError('MssResult.load: %s: not a saved result (%s)' % (path, e))
         return r
 
@@ -189,6 +194,11 @@ def _checkArchive(path):
         for info in z.infolist():
             if info.filename not in ('centers.npy', 'radii.npy', 'meta.npy'):
                 raise ValueError("unexpected member '%s'" % info.filename)
+            if (info.compress_type not in (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED) or info.flag_bits & 0x1
+                    or info.extract_version > zipfile.MAX_EXTRACT_VERSION):
+                # what save() writes; other methods and encryption would fail later with other exceptions
+                raise ValueError("member '%s' is encrypted, compressed by method %d or needs zip version %.1f"
+                                 % (info.filename, info.compress_type, info.extract_version / 10))
             total += info.file_size
         if total > MAX_ARCHIVE_BYTES:
             raise ValueError('its arrays would take %d bytes expanded (at most %d)' % (total, MAX_ARCHIVE_BYTES))

@@ -12,7 +12,7 @@ import numpy as np
 from . import _mss
 from ._args import INT64_MAX, integer, number
 from ._clumps import randomRotation
-from ._files import requireRegularFile
+from ._files import readNpy, readTiff
 
 _VOLUME_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'voxels')  # the format table's
 
@@ -21,23 +21,17 @@ def readVolume(path):
     """An integer or boolean volume from a .npy file or a TIFF stack. Raises ValueError naming the problem."""
     path = os.fspath(path)
     ext = os.path.splitext(path)[1].lower()
-    requireRegularFile('readVolume', path)
-    try:
-        if ext == '.npy':
-            a = np.load(path, mmap_mode='r', allow_pickle=False)
-        elif ext in ('.tif', '.tiff'):
-            import tifffile
-            a = tifffile.imread(path)
-        else:
-            raise ValueError("%s: unknown volume extension '%s' (expected .npy, .tif or .tiff)" % (path, ext))
-    except (OSError, ValueError) as e:
-        if str(e).startswith(path):
-            raise
-        raise ValueError('%s: cannot read the volume (%s)' % (path, e))
+    if ext == '.npy':
+        a = readNpy('readVolume', path, mmap=True)
+    elif ext in ('.tif', '.tiff'):
+        a = readTiff('readVolume', path)
+    else:
+        raise ValueError("readVolume: %s: unknown volume extension '%s' (expected .npy, .tif or .tiff)"
+                         % (path, ext))
     if a.ndim != 3:
-        raise ValueError('%s: the volume must be 3-D, got %d-D' % (path, a.ndim))
+        raise ValueError('readVolume: %s: the volume must be 3-D, got %d-D' % (path, a.ndim))
     if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
-        raise ValueError('%s: dtype %s is not boolean or integer (a labelled volume: 0 is background)' % (path, a.dtype))
+        raise ValueError('readVolume: %s: dtype %s is not boolean or integer (a labelled volume: 0 is background)' % (path, a.dtype))
     return np.asarray(a)
 
 

@@ -17,7 +17,7 @@ import numpy as np
 
 from . import _mss
 from . import _options
-from ._files import atomicWrite, requireRegularFile
+from ._files import atomicWrite, readNpy, requireRegularFile
 
 _DEFAULT_RADII = (0.0025, 0.004, 0.006, 0.01, 0.02)  # fractions of the particle's size
 
@@ -29,7 +29,7 @@ def readImage(path, threshold=None):
     ext = os.path.splitext(path)[1].lower()
     requireRegularFile('readImage', path)
     if ext == '.npy':
-        a = np.load(path, allow_pickle=False)
+        a = readNpy('readImage', path)
         if a.ndim != 2:
             raise ValueError('%s: the image must be 2-D, got %d-D' % (path, a.ndim))
         if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
@@ -39,14 +39,32 @@ def readImage(path, threshold=None):
         import matplotlib
         matplotlib.use('Agg')
         import matplotlib.image as mpimg
+        _checkPngSize(path)
         try:
             img = mpimg.imread(path)
-        except (OSError, ValueError, SyntaxError) as e:
-            raise ValueError('%s: cannot read the PNG (%s)' % (path, e))
+        except Exception as e:  # a decoder of hostile bytes (PIL raises OSError, SyntaxError, struct.error, ...)
+            raise ValueError('%s: cannot read the PNG (%s)' % (path, e)) from None
         grey = img[..., :3].mean(axis=-1) if img.ndim == 3 else img
         t = 0.5 if threshold is None else float(threshold)
         return (grey < t)[::-1].T  # [row, col] from the top -> [i, j] with j up
     raise ValueError("%s: unknown image extension '%s' (expected .npy or .png)" % (path, ext))
+
+
+MAX_IMAGE_PIXELS = 1 << 28  # a 16384 x 16384 image; a PNG may declare 4e9 x 4e9 in its first 24 bytes
+
+
+def _checkPngSize(path):
+    """Refuses a PNG whose header declares more than MAX_IMAGE_PIXELS, before the decoder allocates them."""
+    try:
+        with open(path, 'rb') as f:
+            head = f.read(24)
+    except OSError as e:
+        raise ValueError('%s: cannot read the PNG (%s)' % (path, e)) from None
+    if len(head) < 24 or head[:8] != b'\x89PNG\r\n\x1a\n' or head[12:16] != b'IHDR':
+        raise ValueError('%s: not a PNG file (no PNG signature and header)' % path)
+    width, height = int.from_bytes(head[16:20], 'big'), int.from_bytes(head[20:24], 'big')
+    if width * height > MAX_IMAGE_PIXELS:
+        raise ValueError('%s: the PNG declares %d x %d pixels (at most %d)' % (path, width, height, MAX_IMAGE_PIXELS))
 
 
 def _fit(mask, vertices, radius, pixelSize, origin, init='auto', **options):
