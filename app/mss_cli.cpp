@@ -199,6 +199,8 @@ void printMetrics(const mss::Result& r) {
     if (m.clipped) std::cout << "clipped     " << m.clipped << " spheres shrunk by the final clipping\n";
     std::cout << "protrusion  " << m.protrusion
               << "   (largest beyond the grain, world units, <= " << m.protrusionLimit << ")\n";
+    std::cout << "smallest r  " << m.smallestRadius << "   (world units; " << m.smallestRadius / r.grid.h
+              << " voxels: it sets the time step)\n";
     std::cout << std::setprecision(3) << "seconds     read " << m.secondsRead << "  voxelize "
               << m.secondsVoxelize << "  edt " << m.secondsEdt << "  select " << m.secondsSelect
               << "  refine " << m.secondsRefine << "  total " << m.secondsTotal << "\n";
@@ -607,14 +609,18 @@ int main(int argc, char** argv) {
     app.add_subcommand("preview",
                        "draw a clump against its grain (PNG): mss preview GRAIN SPHERES -o OUT.png");
     app.add_subcommand(
-        "curve", "D and time against the sphere count (PNG, CSV): mss curve GRAIN --spheres A:B -o OUT.png");
+        "curve", "D and time against the sphere count (PNG, CSV): mss curve GRAIN --counts A:B -o OUT.png");
+    app.add_subcommand("ochart",
+                       "D, simulation cost n / r_min and O = cost x D over sphere counts and radius "
+                       "bounds (PNG, CSV): mss ochart GRAIN -o OUT.png [--dice X --min-cost]");
     app.add_subcommand(
         "batch", "a labelled CT volume or a folder of grains to a DEM assembly: mss batch INPUT... -o DIR");
     app.add_subcommand("spheropolygon",
                        "2-D particle images to spheropolygons: mss spheropolygon IMAGE -o OUT.json");
     const std::string first = argc > 1 ? argv[1] : "";
     // these run in python3 (matplotlib, Dask): their options and help are there
-    if (first == "preview" || first == "curve" || first == "batch" || first == "spheropolygon") {
+    if (first == "preview" || first == "curve" || first == "ochart" || first == "batch" ||
+        first == "spheropolygon") {
         try {
             return runPython(std::vector<std::string>(argv + 1, argv + argc));
         } catch (const std::exception& e) {
@@ -623,8 +629,9 @@ int main(int argc, char** argv) {
         }
     }
     if (!first.empty() && first[0] != '-' && !runsHere(first)) {
-        std::cerr << "mss: unknown command '" << argv[1]
-                  << "' (generate, compare, info, preview, curve, batch or spheropolygon; mss --help)\n";
+        std::cerr
+            << "mss: unknown command '" << argv[1]
+            << "' (generate, compare, info, preview, curve, ochart, batch or spheropolygon; mss --help)\n";
         return 2;
     }
     try {

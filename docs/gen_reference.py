@@ -24,6 +24,9 @@ COMMANDS = (('generate', 'mss generate INPUT -o OUT [options]', 'Spheres for a m
              'and a section.'),
             ('curve', 'mss curve GRAIN --counts A:B -o OUT.png [options]', 'D and the generation time against the '
              'sphere count, as a chart and a CSV.'),
+            ('ochart', 'mss ochart GRAIN -o OUT.png [--counts A:B --radii A:B] [--dice X --min-cost]', 'D, the '
+             'simulation cost T = n / r_min and O = T x D over sphere counts and radius bounds (the O-chart in '
+             '3-D), with the Pareto front; ``--dice X --min-cost`` writes the cheapest clump meeting D <= X.'),
             ('spheropolygon', 'mss spheropolygon IMAGE -o OUT.json [options]', '2-D particle images (.npy, .png) '
              'to spheropolygons (the second paper), with the O-chart.'))
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Redraws the README's pictures of the femur with the command line: mss preview (40 spheres against the mesh)
-# and mss curve (D and time for 5 to 100 spheres, CLUMP's real outputs as points).
+# and mss curve (D and time for 5 to 100 spheres, CLUMP's real outputs as points), and the manual's mss ochart
+# (D, cost and O over 4 to 64 spheres and five radius bounds; the cheapest clump with D <= 0.05).
 # usage: bash docs/make_pictures.sh   (after bash scripts/setup.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,3 +12,5 @@ trap 'rm -rf "$tmp"' EXIT
 $MSS generate $FEMUR --spheres 40 --resolution 103 -o "$tmp/femur_40.txt" --preview docs/femur40_preview.png
 $MSS curve $FEMUR --counts 5:100 -o docs/femur_curve.png \
   --compare tests/data/clump/FA_femur_N70_min.txt tests/data/clump/FM_femur_n70_dmin2_rmin1_rstep0.1_seed5.txt
+$MSS ochart $FEMUR --counts 4:64 --dice 0.05 --min-cost -o "$tmp/femur_ochart.png"
+cp "$tmp/femur_ochart.png" docs/femur_ochart.png

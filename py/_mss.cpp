@@ -214,13 +214,10 @@ const char* typeWord(mss::OptionType t) {
 
 unsigned commandBit(const std::string& name) {
     static const std::pair<const char*, unsigned> kCommands[] = {
-        {"generate", mss::command::Generate},
-        {"compare", mss::command::Compare},
-        {"info", mss::command::Info},
-        {"batch", mss::command::Batch},
-        {"preview", mss::command::Preview},
-        {"curve", mss::command::Curve},
-        {"spheropolygon", mss::command::Spheropolygon}};
+        {"generate", mss::command::Generate}, {"compare", mss::command::Compare},
+        {"info", mss::command::Info},         {"batch", mss::command::Batch},
+        {"preview", mss::command::Preview},   {"curve", mss::command::Curve},
+        {"ochart", mss::command::Ochart},     {"spheropolygon", mss::command::Spheropolygon}};
     for (const auto& [word, bit] : kCommands)
         if (name == word) return bit;
     throw std::invalid_argument("options: no command '" + name + "'");
@@ -271,13 +268,10 @@ py::list fileFormats() {
 /// The option table (mss/options.hpp) as a list of dicts, for the facade's parsers and docstrings.
 py::list optionTable() {
     static const std::pair<unsigned, const char*> kCommands[] = {
-        {mss::command::Generate, "generate"},
-        {mss::command::Compare, "compare"},
-        {mss::command::Info, "info"},
-        {mss::command::Batch, "batch"},
-        {mss::command::Preview, "preview"},
-        {mss::command::Curve, "curve"},
-        {mss::command::Spheropolygon, "spheropolygon"}};
+        {mss::command::Generate, "generate"}, {mss::command::Compare, "compare"},
+        {mss::command::Info, "info"},         {mss::command::Batch, "batch"},
+        {mss::command::Preview, "preview"},   {mss::command::Curve, "curve"},
+        {mss::command::Ochart, "ochart"},     {mss::command::Spheropolygon, "spheropolygon"}};
     py::list out;
     for (const mss::OptionSpec& s : mss::optionTable()) {
         py::dict d;
@@ -333,6 +327,8 @@ py::dict result(const mss::Result& r) {
     md["clipped"] = m.clipped;
     md["protrusion"] = m.protrusion;
     md["protrusionLimit"] = m.protrusionLimit;
+    md["smallestRadius"] = m.smallestRadius;
+    md["inscribedRadius"] = m.inscribedRadius;
     py::list warnings;
     for (const std::string& w : m.warnings) warnings.append(w);
     md["warnings"] = warnings;

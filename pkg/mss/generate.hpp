@@ -35,6 +35,9 @@ struct GenerateOptions {
     double eta = 0.0;  ///< stop once the relative mismatch eq. 7 is <= eta (problem (ii), eq. 4); 0 = none
     double dice = 0.0; ///< stop once the Dice mismatch eq. 27 is <= dice; 0 = none
     double rMin = 0.0; ///< no sphere smaller than this radius, world units; 0 = none
+    /// no sphere smaller than this many voxels of the generation grid (with rMin: the larger); 0 = none. A
+    /// batch's grains share it whatever their grid.
+    double rMinVoxels = 0.0;
     int maxIterations = 100; ///< cap on iterations (paper mode) or greedy rounds of refinement (optimized)
     double deltaMin = 1.0;   ///< minimal distance between sphere centres, voxels (paper section 3.4, δmin)
     Method method = Method::Optimized;
@@ -74,7 +77,12 @@ struct Metrics {
     /// Largest protrusion beyond the grain, world units, an upper bound: max over spheres of the radius minus
     /// the exact distance from the centre to the surface (mesh) or to the nearest background voxel's cube.
     double protrusion = 0.0;
-    double protrusionLimit = 0.0;      ///< the bound that applied (maxProtrusion resolved; +inf: unbounded)
+    double protrusionLimit = 0.0; ///< the bound that applied (maxProtrusion resolved; +inf: unbounded)
+    /// The smallest radius, world units: it sets a DEM time step (a linear contact's sqrt(m / k) ~ r sqrt(rho
+    /// / E), YADE's PWaveTimeStep).
+    double smallestRadius = 0.0;
+    double inscribedRadius =
+        0.0; ///< the largest inscribed radius (the EDT's maximum), world units: how thick
     std::vector<std::string> warnings; ///< what was wrong with the input and how it was handled
     double secondsRead = 0.0, secondsVoxelize = 0.0, secondsEdt = 0.0, secondsSelect = 0.0,
            secondsRefine = 0.0, secondsTotal = 0.0;

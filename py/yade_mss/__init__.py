@@ -15,7 +15,7 @@ Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, the
 ``_clumps`` (YADE clumps), ``_records`` (their records), ``_restore`` (exact properties back),
 ``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings),
 ``_specimen`` (labelled volumes, synthetic specimens), ``_batch`` (mss batch), ``_assembly`` (specimens in YADE),
-``_pictures`` (mss preview, mss curve), ``_spheropolygon`` (2-D: spheropolygons, the O-chart).
+``_pictures`` (mss preview, mss curve), ``_ochart`` (mss ochart: the clumps' cost), ``_spheropolygon`` (2-D: spheropolygons, the O-chart).
 """
 
 import os as _os
@@ -36,9 +36,10 @@ from ._batch import batch  # noqa: E402
 from ._assembly import mssAssembly  # noqa: E402
 from ._specimen import regions, syntheticSpecimen  # noqa: E402
 from ._spheropolygon import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
+from ._ochart import clumpOchart  # noqa: E402
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
            'restoreClumpProperties', 'totalMass', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
            'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen',
-           'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart']
+           'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart', 'clumpOchart']

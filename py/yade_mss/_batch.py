@@ -11,14 +11,11 @@ At the end: ``assembly.txt`` (every sphere, ``x y z r clumpId``, with each clump
 """
 
 import argparse
-import csv
 import hashlib
-import html
 import json
 import os
 import sys
 import time
-import urllib.parse
 
 import numpy as np
 
@@ -29,7 +26,9 @@ from ._results import MssResult
 from ._specimen import _VOLUME_EXT, readVolume, regions
 from ._sources import _MESH_EXT
 
-COLUMNS = ['label', 'file', 'status', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'seconds', 'touches_border', 'message']
+COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
+           'r_min_voxels', 'thickness_voxels', 'time_step', 'seconds', 'touches_border', 'message']
+TOO_SMALL = 'exceeds the largest inscribed radius'  # the core's message when rMin leaves a grain no sphere
 
 
 class GrainTask(object):
@@ -95,23 +94,26 @@ def runGrain(task):
             r = generate(task.crop, voxelSize=task.voxelSize, origin=task.origin, **opts)
         else:
             r = generate(task.path, **opts)
+        h = r.grid['voxelSize']
         row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
-                   protrusion=r.metrics.get('protrusion', ''),
+                   protrusion=r.metrics.get('protrusion', ''), r_min=r.metrics['smallestRadius'],
+                   r_min_voxels=r.metrics['smallestRadius'] / h, thickness_voxels=r.metrics['inscribedRadius'] / h,
                    seconds=time.perf_counter() - t0)
-        if getattr(task, 'preview', False):  # drawn where the grain is, sent back as PNG bytes
-            import tempfile
-            from ._pictures import preview
-            with tempfile.TemporaryDirectory() as d:
-                png = os.path.join(d, task.key + '.png')
-                grain = task.crop if task.crop is not None else task.path
-                kw = {'voxelSize': task.voxelSize, 'origin': task.origin} if task.crop is not None else {}
-                preview(grain, r, png, title=task.key, **kw)
-                with open(png, 'rb') as f:
-                    r.png = f.read()
         return task.key, row, r
-    except Exception as e:  # noqa: BLE001 (any grain's failure is recorded, the batch goes on)
-        row.update(status='failed', seconds=time.perf_counter() - t0, message='%s: %s' % (type(e).__name__, e))
+    except ValueError as e:
+        if TOO_SMALL not in str(e):
+            return _failed(task, row, t0, e)
+        # reported as such, never shrunk under the bound: the assembly lacks it, the report says why
+        row.update(status='skipped', seconds=time.perf_counter() - t0, message='too small for the radius bound '
+                   '(rMin, rMinVoxels): %s' % e)
         return task.key, row, None
+    except Exception as e:  # noqa: BLE001 (any grain's failure is recorded, the batch goes on)
+        return _failed(task, row, t0, e)
+
+
+def _failed(task, row, t0, e):
+    row.update(status='failed', seconds=time.perf_counter() - t0, message='%s: %s' % (type(e).__name__, e))
+    return task.key, row, None
 
 
 def _freeCores():
@@ -141,9 +143,12 @@ def _oneThread():
 
 def _row(task):
     """A grain's row before it is generated: what the task says of it, no figures yet."""
-    return {'label': task.label if task.label is not None else '', 'file': task.path or '', 'voxels': task.voxels,
-            'touches_border': int(bool(task.touchesBorder)), 'spheres': 0, 'dice': '', 'eta': '', 'seconds': '',
-            'message': ''}
+    return dict(_blank(), label=task.label if task.label is not None else '', file=task.path or '',
+                voxels=task.voxels, touches_border=int(bool(task.touchesBorder)))
+
+
+def _blank():
+    return dict({c: '' for c in COLUMNS}, spheres=0, voxels=0, touches_border=0)
 
 
 def _failedRow(task, message):
@@ -208,8 +213,7 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
         vol = readVolume(files[0]) if array is None else array
         for reg in regions(vol, labels):
             k = 'label_%d' % reg.label
-            base = {'label': reg.label, 'file': '', 'voxels': reg.voxels, 'touches_border': int(reg.touchesBorder),
-                    'spheres': 0, 'dice': '', 'eta': '', 'seconds': ''}
+            base = dict(_blank(), label=reg.label, voxels=reg.voxels, touches_border=int(reg.touchesBorder))
             if reg.voxels < minVoxels:
                 skipped[k] = dict(base, status='skipped', message='%d voxels, under --min-voxels %d'
                                   % (reg.voxels, minVoxels))
@@ -217,7 +221,8 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
                 skipped[k] = dict(base, status='skipped', message='cut by the volume\'s border (--exclude-border)')
             else:
                 crop, start = reg.crop(vol)
-                tasks.append(GrainTask(k, options, label=reg.label, crop=crop, voxelSize=h,
+                tasks.append(GrainTask(k, options, label=reg.label, path=files[0] if array is None else None,
+                                       crop=crop, voxelSize=h,
                                        origin=(org + h * start).tolist(), voxels=reg.voxels,
                                        touchesBorder=reg.touchesBorder))
         return tasks, skipped, key
@@ -235,16 +240,22 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
             else:
                 tasks.append(GrainTask(k, options, path=f))
         except (OSError, ValueError) as e:  # a bad file is recorded, the batch goes on
-            skipped[k] = {'label': '', 'file': f, 'voxels': 0, 'touches_border': 0, 'spheres': 0, 'dice': '',
-                          'eta': '', 'seconds': '', 'status': 'failed', 'message': '%s: %s' % (type(e).__name__, e)}
+            skipped[k] = dict(_blank(), file=f, status='failed', message='%s: %s' % (type(e).__name__, e))
     return tasks, skipped, key
 
 
 class Batch(object):
-    """What a batch did: rows (one per grain, in key order) and the results of the grains that are ok."""
+    """What a batch did: rows (one per grain, in key order) and the results of the grains that are ok.
+
+    :ivar seconds: this run's wall time
+    :ivar generated: grains generated in this run (the others were done by an earlier run of the same options)
+    :ivar timeStep: the assembly's critical time step (the least a grain allows), or None without a grain
+    :ivar setBy: the keys of the grains that set it (within 10% of the least)
+    """
 
     def __init__(self):
-        self.rows, self.results, self.seconds = {}, {}, 0.0
+        self.rows, self.results, self.seconds, self.generated = {}, {}, 0.0, 0
+        self.timeStep, self.setBy = None, []
 
     @property
     def failed(self):
@@ -406,7 +417,8 @@ class _LocalPool(object):
 
 @_options.documented('batch')
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
-          voxelSize=None, origin=None, progress=True, previews=False, security=None, **options):
+          voxelSize=None, origin=None, progress=True, previews=False, security=None, density=1000.0, young=1e9,
+          **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
     assembly, as ``mss batch`` does (the options are the same, spelled for Python).
 
@@ -428,9 +440,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         workers = 1 if 'yade' in sys.modules else _freeCores()
     from ._args import integer
     workers = integer('batch', 'workers', workers, 1, 1024)
+    density, young = (_options.check('batch', 'batch', n, v) for n, v in (('density', density), ('young', young)))
     tasks, skipped, key = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
-    for t in tasks:
-        t.preview = bool(previews) and outdir is not None
     out = Batch()
     t0 = time.perf_counter()
     if outdir is not None:
@@ -476,99 +487,25 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         close()
         if bar is not None:
             bar.close()
-    out.seconds = time.perf_counter() - t0
+    out.generated = n
     out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
+    out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
+    from . import _report
+    _report.annotate(out, gen, density, young)
     if outdir is not None:
-        writeOutputs(outdir, out)
+        if previews:
+            _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
+        out.seconds = time.perf_counter() - t0
+        _report.writeOutputs(outdir, out, density, young)
+    out.seconds = time.perf_counter() - t0
     if progress:
-        ok = sum(1 for r in out.rows.values() if r['status'] == 'ok')
-        print('batch: %d ok, %d skipped, %d failed of %d grains in %.2f s (%.1f grains/s generated here)'
-              % (ok, sum(1 for r in out.rows.values() if r['status'] == 'skipped'), len(out.failed), total,
-                 out.seconds, n / out.seconds if out.seconds > 0 else 0.0), flush=True)
+        print(_report.summary(out, total, density, young), flush=True)
     return out
 
 
 def _order(key):
     kind, _, rest = key.partition('_')
     return (kind, int(rest) if rest.isdigit() else 0, rest)
-
-
-def writeOutputs(outdir, b):
-    """assembly.txt, grains.csv and report.html, each atomically."""
-    rows = list(b.rows.values())
-
-    def table(p):  # a file name's bytes that are not UTF-8 are written as their escapes, never lost
-        with open(p, 'w', newline='', encoding='utf-8', errors='backslashreplace') as f:
-            w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction='ignore')
-            w.writeheader()
-            w.writerows(rows)
-    _atomic(os.path.join(outdir, 'grains.csv'), table)
-
-    def assembly(p):
-        with open(p, 'w') as f:
-            f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
-                    '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
-                    'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
-            for i, (k, r) in enumerate(b.results.items(), 1):
-                cid = b.rows[k]['label'] if b.rows[k]['label'] != '' else i
-                m = r.targetMass
-                I = m.inertia
-                f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
-                        % ((int(cid), m.volume) + tuple(float(x) for x in m.centroid)
-                           + (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])))
-                for c, rad in zip(r.centers, r.radii):
-                    f.write('%r %r %r %r %d\n' % (float(c[0]), float(c[1]), float(c[2]), float(rad), int(cid)))
-    b.results = dict(sorted(b.results.items(), key=lambda kv: _order(kv[0])))
-    _atomic(os.path.join(outdir, 'assembly.txt'), assembly)
-    _report(outdir, b)
-
-
-def _report(outdir, b):
-    rows = list(b.rows.values())
-    ok = [r for r in rows if r['status'] == 'ok']
-    img = ''
-    if ok:
-        import matplotlib
-        matplotlib.use('Agg')
-        import matplotlib.pyplot as plt
-        fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.6), dpi=100)
-        a1.hist([float(r['dice']) for r in ok], bins=20)
-        a1.set_xlabel('Dice mismatch D (eq. 27, generation grid)')
-        a1.tick_params(axis='x', labelrotation=30)
-        a1.set_ylabel('grains')
-        a2.hist([int(r['spheres']) for r in ok], bins=20)
-        a2.set_xlabel('spheres per grain')
-        a2.set_ylabel('grains')
-        fig.suptitle('%d grains generated' % len(ok))
-        fig.tight_layout()
-        _atomic(os.path.join(outdir, 'report_distributions.png'), fig.savefig)
-        plt.close(fig)
-        img = '<img src="report_distributions.png" alt="distributions of D and of the sphere counts">'
-    keys = list(b.rows)
-
-    def thumb(k):
-        if not os.path.exists(os.path.join(outdir, 'grains', k + '.png')):
-            return ''
-        url = html.escape('grains/' + urllib.parse.quote(k + '.png'), quote=True)
-        return '<td><a href="%s"><img src="%s" width="360" alt="%s"></a></td>' % (url, url, _html(k))
-    cells = ''.join('<tr>%s%s</tr>' % (''.join('<td>%s</td>' % _html(r.get(c, '')) for c in COLUMNS), thumb(k))
-                    for k, r in zip(keys, rows))
-    counts = {s: sum(1 for r in rows if r['status'] == s) for s in ('ok', 'skipped', 'failed')}
-    page = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>td,th{padding:2px 8px;'
-            'font:12px sans-serif}tr:nth-child(even){background:#eee}</style></head><body><h1>mss batch</h1>'
-            '<p>%d grains: %d ok, %d skipped, %d failed; %.2f s. Files: <a href="assembly.txt">assembly.txt</a>, '
-            '<a href="grains.csv">grains.csv</a>.</p>%s<table><tr>%s</tr>%s</table></body></html>'
-            % (len(rows), counts['ok'], counts['skipped'], counts['failed'], b.seconds, img,
-               ''.join('<th>%s</th>' % c for c in COLUMNS), cells))
-    _atomic(os.path.join(outdir, 'report.html'), lambda p: _write(p, page))
-
-
-def _html(v):
-    """Text for the report: escaped for content and attributes alike (quotes too); bytes of a file name that
-    are not UTF-8 shown as their escapes."""
-    if isinstance(v, float):
-        v = '%.4g' % v
-    return html.escape(str(v).encode('utf-8', 'backslashreplace').decode('utf-8'), quote=True)
 
 
 def _stopOnTerm():
@@ -593,14 +530,15 @@ def main(argv=None):
     try:
         v = _options.parsed('batch', a)
         own = ('output', 'workers', 'scheduler', 'tlsCaFile', 'tlsCert', 'tlsKey', 'minVoxels', 'excludeBorder',
-               'labels', 'previews', 'voxelSize', 'origin')
+               'labels', 'previews', 'voxelSize', 'origin', 'density', 'young')
         gen = {k: x for k, x in v.items() if k not in own}
         labels = [int(x) for x in v['labels'].split(',')] if v.get('labels') else None
         b = batch(a.inputs, v['output'], workers=v.get('workers'), scheduler=v.get('scheduler'),
                   minVoxels=v.get('minVoxels', 0),
                   security=clusterSecurity(None, v.get('tlsCaFile'), v.get('tlsCert'), v.get('tlsKey')),
                   excludeBorder=v.get('excludeBorder', False), labels=labels, voxelSize=v.get('voxelSize'),
-                  origin=v.get('origin'), previews=v.get('previews', False), **gen)
+                  origin=v.get('origin'), previews=v.get('previews', False), density=v.get('density', 1000.0),
+                  young=v.get('young', 1e9), **gen)
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)

@@ -14,7 +14,8 @@ _PYTHON_TYPES = {'int': 'int ', 'float': 'float ', 'bool': 'bool ', 'choice': 's
 
 
 def rows(command):
-    """The table's rows for *command* ('generate', 'compare', 'info', 'batch', 'preview', 'curve')."""
+    """The table's rows for *command* ('generate', 'compare', 'info', 'batch', 'preview', 'curve', 'ochart',
+    'spheropolygon')."""
     return [r for r in TABLE if command in r['commands']]
 
 

@@ -22,6 +22,7 @@ from ._files import atomicWrite
 from ._generate import compareMany, generate
 from ._results import MssResult, readSpheres
 from ._sources import _Mesh, _source
+from ._specimen import _VOLUME_EXT
 
 _AXES = {'x': (1, 2, 0), 'y': (0, 2, 1), 'z': (0, 1, 2)}  # (right, up, towards the viewer)
 
@@ -152,7 +153,8 @@ def preview(grain, spheres, path, resolution=160, title=None, voxelSize=None, or
     protr = np.asarray(row['sphereProtrusion'])
     vmax = max(protr.max(), 0.02 * size)
     norm = mcolors.Normalize(vmin=0, vmax=vmax)
-    cmap = cm.get_cmap('viridis')
+    import matplotlib
+    cmap = matplotlib.colormaps['viridis']
     colors = cmap(norm(protr))[:, :3]
     pixel = size / 400.0
     fig, axs = plt.subplots(1, 5, figsize=(20, 5.2), dpi=100, constrained_layout=True)
@@ -173,9 +175,11 @@ def preview(grain, spheres, path, resolution=160, title=None, voxelSize=None, or
     sm = cm.ScalarMappable(norm=norm, cmap=cmap)
     fig.colorbar(sm, ax=axs[3], fraction=0.05, pad=0.02, label='sphere protrusion (world units)')
     name = title or (getattr(sp, 'source', '') or 'spheres')
-    fig.suptitle('%s: n = %d spheres, D = %.4f (eq. 27, independent grid of %d voxels), largest protrusion %.3g '
-                 '(%.2f%% of the grain\'s size)' % (name, len(sp), row['dice'], scoreResolution, row['protrusion'],
-                                                     100 * row['protrusion'] / size))
+    voxels = isinstance(grain, np.ndarray) or (isinstance(grain, (str, os.PathLike)) and os.path.splitext(
+        os.fspath(grain))[1].lower() in _VOLUME_EXT)  # scored on its own voxels: the generation grid's D
+    grid = 'on the volume\'s own voxels' if voxels else 'independent grid of %d voxels' % scoreResolution
+    fig.suptitle('%s: n = %d spheres, D = %.4f (eq. 27, %s), largest protrusion %.3g (%.2f%% of the grain\'s '
+                 'size)' % (name, len(sp), row['dice'], grid, row['protrusion'], 100 * row['protrusion'] / size))
     fig.supxlabel('views: the grain grey (its outline black), the spheres coloured by how far they protrude, '
                   'shown where they stand out of it by over half a voxel; section through the centroid: red = grain '
                   'the spheres miss, blue = spheres outside the grain, grey = both', fontsize=9)

@@ -64,7 +64,8 @@ class MssResult(object):
     :ivar centers: sphere centres, numpy array (n, 3), world units
     :ivar radii: sphere radii, numpy array (n,)
     :ivar metrics: dict of figures on the generation grid (spheres, eta, dice, protrusion: the largest beyond the
-        grain in world units, an upper bound; protrusionLimit: the bound that applied; iterations, seconds...)
+        grain in world units, an upper bound; protrusionLimit: the bound that applied; smallestRadius, world units:
+        what sets the time step, see :meth:`timeStep`; iterations, seconds...)
     :ivar grid: dict (dims, voxelSize, origin) of the generation grid, or None
     :ivar targetMass: :class:`MassProperties` of the target solid (unit density), or None if unknown
     :ivar source: description of the input (file name or 'array')
@@ -105,6 +106,20 @@ class MssResult(object):
             d = _mss.massSpheres(self.centers.ravel().tolist(), self.radii.tolist(), resolution)
             self._unionMass = (resolution, MassProperties._fromDict(d))
         return self._unionMass[1]
+
+    def timeStep(self, density, young):
+        """The critical time step these spheres allow as YADE's ``PWaveTimeStep`` computes it for a clump's
+        members: the smallest radius times sqrt(density / young) (a linear contact: sqrt(m / k) ~ r sqrt(rho / E)).
+
+        :param float density: the material's density (mass per world unit cubed)
+        :param float young: its Young's modulus (YADE's ``young``)
+        :return: the time step (seconds, in the units of *density* and *young*)
+        """
+        from ._args import number
+        density, young = (number('MssResult.timeStep', n, v) for n, v in (('density', density), ('young', young)))
+        if density <= 0 or young <= 0:
+            raise ValueError('MssResult.timeStep: density and young must be > 0, got %r and %r' % (density, young))
+        return float(self.radii.min()) * float(np.sqrt(density / young))
 
     def boundingRadius(self, center=None):
         """Radius of the smallest ball about a centre holding every sphere.

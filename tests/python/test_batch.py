@@ -425,12 +425,15 @@ class Specimen(unittest.TestCase):
             self.assertEqual(len(b.results), sum(1 for r in got.values() if r['status'] == 'ok'))
             rewritten = sorted(f for f, t in before.items() if os.path.getmtime(os.path.join(g, f)) != t)
             self.assertEqual(rewritten, sorted('label_%s.npz' % lab for lab in gone))  # only those were redone
-            # a criterion that some grains cannot meet: recorded with the message, the batch goes on, exit 1
+            # a radius bound some grains cannot meet: each reported as too small (never shrunk under it), the
+            # batch goes on
             out2 = os.path.join(d, 'fail')
             code = batchMain([path, '-o', out2, '--rmin', '30', '--workers', '1', '--labels', '1,2,3'])
             got2 = rows(out2)
-            self.assertEqual([r['status'] for r in got2], ['failed'] * 3)  # every one recorded, none stops it
-            self.assertEqual(code, 1)
+            self.assertEqual([r['status'] for r in got2], ['skipped'] * 3)
+            self.assertTrue(all('too small for the radius bound' in r['problems'] for r in got2))
+            self.assertTrue(all('exceeds the largest inscribed radius' in r['message'] for r in got2))
+            self.assertEqual(code, 0)
             for r in got2:
                 self.assertIn('largest inscribed radius', r['message'])
             self.assertFalse(os.path.exists(os.path.join(out2, 'grains', 'label_1.npz')))
@@ -455,10 +458,15 @@ class Specimen(unittest.TestCase):
             np.save(os.path.join(d, 'spec.npy'), L)
             a = batch([os.path.join(d, 'spec.tif')], os.path.join(d, 't'), workers=2, nSpheres=5, progress=False,
                       previews=True)
-            pngs = [f for f in os.listdir(os.path.join(d, 't', 'grains')) if f.endswith('.png')]
-            self.assertEqual(len(pngs), len(a.results))  # a preview per grain, drawn by the workers
+            pngs = sorted(f for f in os.listdir(os.path.join(d, 't', 'grains')) if f.endswith('.png'))
+            # the grains worth a look, not every grain: flagged ones worst first, else the three of highest D
+            self.assertEqual(pngs, sorted(k + '.png' for k in a.previewed))
+            flagged = [k for k in a.ranked if a.rows[k]['status'] == 'ok' and a.kinds[k] == 'flagged']
+            self.assertEqual(a.previewed, (flagged or [k for k in a.ranked if k in a.results][:3])[:12])
+            self.assertGreater(len(a.previewed), 0)
+            self.assertLess(len(a.previewed), len(a.results))
             report = open(os.path.join(d, 't', 'report.html')).read()
-            self.assertEqual(report.count('<img src="grains/'), len(a.results))
+            self.assertEqual(report.count('<img src="grains/'), len(a.previewed))
             c = batch([os.path.join(d, 'spec.npy')], os.path.join(d, 'n'), workers=1, nSpheres=5, progress=False)
             self.assertEqual(open(os.path.join(d, 't', 'assembly.txt')).read(),
                              open(os.path.join(d, 'n', 'assembly.txt')).read())

@@ -15,7 +15,7 @@ from yade_mss._generate import GENERATE_OPTIONS
 
 MSS = os.environ.get('MSS_BINARY', 'mss')
 DATA = os.environ.get('MSS_TEST_DATA', os.path.join(os.path.dirname(__file__), '..', 'data'))
-COMMANDS = ('generate', 'compare', 'info', 'batch', 'preview', 'curve', 'spheropolygon')
+COMMANDS = ('generate', 'compare', 'info', 'batch', 'preview', 'curve', 'ochart', 'spheropolygon')
 
 
 def helpFlags(command):
@@ -122,7 +122,7 @@ class PythonFunctions(unittest.TestCase):
     def test_pictures_take_the_table_defaults(self):
         from yade_mss import _pictures
         for f, command in ((_pictures.preview, 'preview'), (_pictures.curve, 'curve'),
-                           (yade_mss.spheropolygon, 'spheropolygon')):
+                           (yade_mss.spheropolygon, 'spheropolygon'), (yade_mss.clumpOchart, 'ochart')):
             params = inspect.signature(f).parameters
             for r in _options.rows(command):
                 if r['python'] and r['name'] in params:

@@ -299,8 +299,10 @@ private:
     const double inscribed = E.data.empty() ? 0.0 : h * *std::max_element(E.data.begin(), E.data.end());
     std::ostringstream os;
     if (opt.rMin > 0.0 && opt.rMin > inscribed)
-        os << "generate: rMin " << opt.rMin << " exceeds the largest inscribed radius " << inscribed
-           << " of the grain: no sphere can be placed";
+        os << "generate: rMin " << opt.rMin << " (" << opt.rMin / h
+           << " voxels) exceeds the largest inscribed "
+           << "radius " << inscribed << " (" << inscribed / h
+           << " voxels) of the grain: no sphere can be placed";
     else
         os << "generate: no sphere is left" << (opt.rMin > 0.0 ? " at or above rMin" : "")
            << (opt.clip || !opt.planes.empty()          ? " under the clipping constraint"
@@ -323,10 +325,12 @@ double largestProtrusion(const SphereSet& spheres, const Clearance& clearance) {
 
 /// @p meshClearance: the mesh's clearance (exact distance to its surface), or empty: then the voxel volume's;
 /// @p meshAbove: the mesh's ClearanceAbove, or empty.
-Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metrics m, Clock::time_point start,
-                      Clearance meshClearance = {}, ClearanceAbove meshAbove = {}) {
+Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& given, Metrics m,
+                      Clock::time_point start, Clearance meshClearance = {}, ClearanceAbove meshAbove = {}) {
     if (countSolid(grain) == 0)
         throw std::invalid_argument("generate: the voxelised solid is empty (resolution too coarse?)");
+    GenerateOptions opt = given; // rMinVoxels in world units on this grid: from here on one bound, rMin
+    opt.rMin = std::max(opt.rMin, opt.rMinVoxels * grain.spec.h);
     // Constraint planes cut the target as well: the spheres are fitted to, and scored against, the part of
     // the grain on the allowed side of every plane (voxel centres), so that a fragment gets its own D and a
     // quality target it can meet.
@@ -406,6 +410,8 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& opt, Metric
     }
     if (r.spheres.size() == 0) noSphereLeft(E, opt);
     m.protrusion = largestProtrusion(r.spheres, clearanceAtCentres);
+    m.smallestRadius = *std::min_element(r.spheres.radii.begin(), r.spheres.radii.end());
+    m.inscribedRadius = h * *std::max_element(E.data.begin(), E.data.end());
     const Mismatch mm = mismatch(S, r.spheres);
     m.spheres = r.spheres.size();
     m.eta = mm.eta;
@@ -432,6 +438,7 @@ void validateOptions(const GenerateOptions& o) {
     check("eta", o.eta);
     check("dice", o.dice);
     check("rMin", o.rMin);
+    check("rMinVoxels", o.rMinVoxels);
     check("maxIterations", (long long)o.maxIterations);
     check("deltaMin", o.deltaMin);
     // more threads than libgomp can start end in "Thread creation failed" (2000) or overflow its stacks
@@ -440,9 +447,9 @@ void validateOptions(const GenerateOptions& o) {
     if (o.clip && o.maxProtrusion && *o.maxProtrusion != 0.0)
         throw OptionError("generate", "clip", " means maxProtrusion 0: give one of them");
     check("planes", o.planes);
-    if (o.nSpheres == 0 && o.eta == 0.0 && o.dice == 0.0 && o.rMin == 0.0)
+    if (o.nSpheres == 0 && o.eta == 0.0 && o.dice == 0.0 && o.rMin == 0.0 && o.rMinVoxels == 0.0)
         throw std::invalid_argument(
-            "generate: give at least one termination criterion (nSpheres, eta, dice or rMin)");
+            "generate: give at least one termination criterion (nSpheres, eta, dice, rMin or rMinVoxels)");
 }
 
 double protrusionLimit(const GenerateOptions& o, double h) {

@@ -19,7 +19,7 @@ constexpr double kMaxMemoryGiB = 1048576.0;
 
 using T = OptionType;
 namespace c = command;
-constexpr unsigned kGrain = c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve;
+constexpr unsigned kGrain = c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve | c::Ochart;
 constexpr unsigned kGen = c::Generate | c::Batch; // a generation's own options
 
 // name, flag, python, type, default, low, high, lowOpen, highOpen, choices, unit, metavar, help, commands
@@ -33,6 +33,8 @@ const std::vector<OptionSpec> kTable = {
      c::Preview},
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
      "the chart to write; its CSV is written beside it", c::Curve},
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
+     "the charts to write; OUT.csv beside it (and with minCost the clump chosen, OUT_best.csv)", c::Ochart},
     // termination (paper section 3.5): generation stops at the first met
     {"nSpheres", "--spheres", true, T::Integer, "", 1, 65535, false, false, "", "", "N",
      "at most this many spheres (problem (i) of the paper, eq. 2)", kGen},
@@ -43,6 +45,10 @@ const std::vector<OptionSpec> kTable = {
      "stop once the Dice mismatch (eq. 27) is at most this; 0: no such target", kGen},
     {"rMin", "--rmin", true, T::Number, "", 0, kInf, false, true, "", "world units", "R",
      "no sphere of a smaller radius; 0: no such bound", kGen},
+    {"rMinVoxels", "--rmin-voxels", true, T::Number, "", 0, kInf, false, true, "", "voxels", "V",
+     "no sphere of a radius under this many voxels of the generation grid (with rMin: the larger); 0: no "
+     "such bound",
+     kGen},
     {"maxIterations", "--max-iterations", true, T::Integer, "100", 1, kIntMax, false, false, "", "", "N",
      "cap on the iterations (paper method) or rounds of refinement (optimized)", kGen},
     // the grid
@@ -60,7 +66,7 @@ const std::vector<OptionSpec> kTable = {
     {"resolution", "--resolution", true, T::Integer, "103", 1, kIntMax, false, false, "", "voxels", "N",
      "a mesh's generation grid: this many voxels along the shortest bounding-box edge (scored on a grid "
      "of 100, offset 0.37)",
-     c::Curve},
+     c::Curve | c::Ochart},
     {"supersample", "--supersample", true, T::Integer, "1", 1, 16, false, false, "", "", "K",
      "K^3 samples per voxel (K this) when voxelising a mesh (1: voxel centres)",
      c::Generate | c::Batch | c::Compare},
@@ -71,7 +77,7 @@ const std::vector<OptionSpec> kTable = {
     {"label", "--label", true, T::Integer, "", 0, kInt64Max, false, false, "", "", "L",
      "a labelled voxel volume: the solid is the voxels of this label (required when the volume holds "
      "several labels)",
-     c::Generate | c::Compare | c::Info | c::Preview | c::Curve},
+     c::Generate | c::Compare | c::Info | c::Preview | c::Curve | c::Ochart},
     // the method
     {"method", "--method", true, T::Choice, "optimized", 0, 0, false, false, "optimized|paper", "", "M",
      "optimized: MSS's candidates and a denser medial sampling, chosen greedily and tuned; paper: the "
@@ -92,7 +98,7 @@ const std::vector<OptionSpec> kTable = {
      "no point of a sphere farther than this beyond the grain (the radius is at most the exact distance "
      "from the centre to the surface plus this); default: one voxel of the generation grid, the paper's "
      "tolerance; 0: as clip; inf: unbounded",
-     kGen | c::Curve},
+     kGen | c::Curve | c::Ochart},
     {"refill", "--no-refill", true, T::Flag, "true", 0, 0, false, false, "", "", "",
      "with clip or a protrusion bound: choose the spheres under it, regaining the coverage it costs (off: "
      "generate freely, then shrink the radii)",
@@ -116,11 +122,26 @@ const std::vector<OptionSpec> kTable = {
     {"preview", "--preview", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
      "also draw the clump against the grain (as mss preview)", c::Generate},
     {"previews", "--previews", true, T::Flag, "false", 0, 0, false, false, "", "", "",
-     "draw each grain (as mss preview) into report.html", c::Batch},
+     "draw the grains worth a look (as mss preview: the flagged ones, worst first, at most 12) into "
+     "report.html",
+     c::Batch},
     {"counts", "--counts", true, T::Text, "", 0, 0, false, false, "", "", "A:B",
-     "the range of sphere counts (log-spaced, both ends included)", c::Curve},
+     "the range of sphere counts (log-spaced, both ends included)", c::Curve | c::Ochart},
     {"points", "--points", true, T::Integer, "12", 2, 1000, false, false, "", "", "N",
      "sphere counts in the range", c::Curve},
+    {"points", "--points", true, T::Integer, "6", 2, 100, false, false, "", "", "N",
+     "sphere counts in the range", c::Ochart},
+    {"radii", "--radii", true, T::Text, "0.05:0.6", 0, 0, false, false, "", "", "A:B",
+     "the range of the radius bound rMin, fractions of the grain's largest inscribed radius (log-spaced, "
+     "both ends included)",
+     c::Ochart},
+    {"radiusPoints", "--radius-points", true, T::Integer, "5", 2, 100, false, false, "", "", "M",
+     "radius bounds in the range", c::Ochart},
+    {"dice", "--dice", true, T::Number, "", 0, 1, true, true, "", "", "X",
+     "with minCost: the fidelity to meet, D <= X on the scoring grid", c::Ochart},
+    {"minCost", "--min-cost", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "choose the clump of least cost n / r_min among the chart's points meeting dice (problem (iii))",
+     c::Ochart},
     {"compare", "--compare", true, T::Files, "", 0, 0, false, false, "", "", "SPHERES",
      "sphere files of other generators, drawn as points", c::Curve},
     // a batch
@@ -142,6 +163,11 @@ const std::vector<OptionSpec> kTable = {
      "skip grains of fewer voxels", c::Batch},
     {"excludeBorder", "--exclude-border", true, T::Flag, "false", 0, 0, false, false, "", "", "",
      "skip grains cut by the volume's border", c::Batch},
+    // the time step each grain allows (YADE's PWaveTimeStep: the smallest radius times sqrt(density / young))
+    {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
+     "the grains' density, for the time step each allows (default: YADE's FrictMat)", c::Batch},
+    {"young", "--young", true, T::Number, "1e9", 0, kInf, true, true, "", "mass / (world unit s^2)", "E",
+     "the grains' Young's modulus, for the time step each allows (default: YADE's FrictMat)", c::Batch},
     // spheropolygons (2-D, the second paper)
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "JSON", "the JSON to write",
      c::Spheropolygon},
@@ -198,6 +224,8 @@ std::string commandName(unsigned cmd) {
         return "preview";
     case c::Curve:
         return "curve";
+    case c::Ochart:
+        return "ochart";
     case c::Spheropolygon:
         return "spheropolygon";
     default:
@@ -410,6 +438,8 @@ void apply(Settings& st, const std::string& name, const OptionValue& v) {
         g.dice = asNumber(v);
     else if (name == "rMin")
         g.rMin = asNumber(v);
+    else if (name == "rMinVoxels")
+        g.rMinVoxels = asNumber(v);
     else if (name == "maxIterations")
         g.maxIterations = asInt(v);
     else if (name == "deltaMin")

@@ -1,0 +1,205 @@
+"""A batch's report leads to the problems: each grain's reasons, worst first, the border and the time step in view,
+the radius bound applied to every grain; the same grain gives the same clump alone and inside a batch; the
+assembly's .vtk read by VTK itself; the page read by headless Chromium. Run with /usr/bin/python3."""
+import csv
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+from yade_mss import batch, generate, syntheticSpecimen
+from yade_mss._report import THIN_VOXELS
+
+BINARY = os.environ.get('MSS_BINARY', 'mss')
+
+
+def ball(shape, centre, radius):
+    g = np.indices(shape).transpose(1, 2, 3, 0) - np.asarray(centre, dtype=float)
+    return (g ** 2).sum(axis=-1) <= radius ** 2
+
+
+def handMade():
+    """1: a ball well inside; 2: a plate three voxels thick (thin); 3: a ball cut by the border; 4: a small
+    ball (radius 2 voxels)."""
+    L = np.zeros((60, 48, 40), dtype=np.int32)
+    L[ball(L.shape, (14, 14, 20), 9)] = 1
+    L[36:56, 6:40, 18:21] = 2
+    L[ball(L.shape, (14, 40, 36), 8)] = 3
+    L[ball(L.shape, (40, 40, 8), 2)] = 4
+    return L
+
+
+def tableRows(path):
+    """The report's table as the browser built it: the cells of each row (headless Chromium's DOM)."""
+    import html.parser
+
+    class Cells(html.parser.HTMLParser):
+        def __init__(self):
+            super().__init__()
+            self.rows, self.inCell = [], False
+
+        def handle_starttag(self, tag, attrs):
+            if tag == 'tr':
+                self.rows.append([])
+            elif tag in ('td', 'th'):
+                self.inCell = True
+                self.rows[-1].append('')
+
+        def handle_endtag(self, tag):
+            if tag in ('td', 'th'):
+                self.inCell = False
+
+        def handle_data(self, data):
+            if self.inCell:
+                self.rows[-1][-1] += data
+    with tempfile.TemporaryDirectory() as profile:
+        dom = subprocess.run(['chromium', '--headless', '--no-sandbox', '--disable-gpu', '--no-first-run',
+                              '--disable-background-networking', '--user-data-dir=' + profile,
+                              '--virtual-time-budget=3000', '--dump-dom', 'file://' + os.path.abspath(path)],
+                             capture_output=True, text=True, timeout=120).stdout
+    p = Cells()
+    p.feed(dom)
+    return p.rows
+
+
+class Report(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.dir = tempfile.TemporaryDirectory()
+        cls.L = handMade()
+        cls.out = os.path.join(cls.dir.name, 'out')
+        cls.b = batch(cls.L, cls.out, workers=1, nSpheres=12, progress=False, previews=True, density=2650,
+                      young=7e10)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.dir.cleanup()
+
+    def test_the_worst_grain_first_with_its_reasons(self):
+        b = self.b
+        self.assertEqual(b.ranked[0], 'label_2')  # the plate
+        self.assertIn('thin', b.rows['label_2']['problems'])
+        self.assertLess(float(b.rows['label_2']['thickness_voxels']), THIN_VOXELS)
+        self.assertIn('cut by the border', b.rows['label_3']['problems'])
+        self.assertNotIn('cut by the border', b.rows['label_1']['problems'])
+        self.assertEqual(b.rows['label_1']['problems'], '')  # nothing to say of a plain ball
+        # the page, as Chromium built it: the plate in the first row, the border and the time step said
+        cells = tableRows(os.path.join(self.out, 'report.html'))
+        header = next(r for r in cells if r and r[0] == '#')
+        first = cells[cells.index(header) + 1]
+        self.assertEqual(first[header.index('label')], '2')
+        self.assertIn('thin', first[header.index('problems')])
+        with open(os.path.join(self.out, 'report.html')) as f:
+            page = f.read()
+        self.assertIn('1 of 4 grains are cut by the volume', page)
+        self.assertIn('set by label_', page)
+
+    def test_the_time_step_and_who_sets_it(self):
+        b = self.b
+        steps = {k: float(r.radii.min()) * np.sqrt(2650 / 7e10) for k, r in b.results.items()}
+        self.assertAlmostEqual(b.timeStep, min(steps.values()), delta=1e-15)
+        self.assertEqual(b.setBy[0], min(steps, key=steps.get))
+        self.assertTrue(all(steps[k] <= 1.1 * b.timeStep for k in b.setBy))
+        for k, r in b.results.items():
+            row = b.rows[k]
+            self.assertAlmostEqual(row['time_step'], steps[k], delta=1e-15)
+            self.assertAlmostEqual(row['r_min'], r.radii.min(), delta=1e-12)
+            self.assertEqual(r.timeStep(2650, 7e10), steps[k])
+        with open(os.path.join(self.out, 'grains.csv')) as f:
+            written = {r['label']: r for r in csv.DictReader(f)}
+        self.assertAlmostEqual(float(written['1']['time_step']), steps['label_1'], delta=1e-15)
+        self.assertIn('sets the time step', b.rows[b.setBy[0]]['problems'])
+
+    def test_previews_only_of_the_grains_worth_a_look(self):
+        pngs = sorted(f[:-4] for f in os.listdir(os.path.join(self.out, 'grains')) if f.endswith('.png'))
+        self.assertEqual(pngs, sorted(self.b.previewed))
+        self.assertIn('label_2', self.b.previewed)
+        self.assertNotIn('label_1', self.b.previewed)
+
+    def test_the_assembly_vtk_as_vtk_reads_it(self):
+        import vtk
+        r = vtk.vtkPolyDataReader()
+        r.SetFileName(os.path.join(self.out, 'assembly.vtk'))
+        r.Update()
+        poly = r.GetOutput()
+        spheres = sum(len(x) for x in self.b.results.values())
+        self.assertEqual(poly.GetNumberOfPoints(), spheres)
+        self.assertEqual(poly.GetNumberOfVerts(), spheres)
+        data = poly.GetPointData()
+        radius = np.array([data.GetArray('radius').GetValue(i) for i in range(spheres)])
+        ids = np.array([data.GetArray('clump_id').GetValue(i) for i in range(spheres)])
+        dice = np.array([data.GetArray('dice').GetValue(i) for i in range(spheres)])
+        points = np.array([poly.GetPoint(i) for i in range(spheres)])
+        at = 0
+        for k, res in self.b.results.items():
+            n = len(res)
+            np.testing.assert_array_equal(radius[at:at + n], res.radii)
+            np.testing.assert_array_equal(points[at:at + n], res.centers)
+            self.assertTrue(np.all(ids[at:at + n] == self.b.rows[k]['label']))
+            self.assertTrue(np.all(dice[at:at + n] == self.b.rows[k]['dice']))
+            at += n
+
+    def test_a_rerun_says_what_it_did(self):
+        again = batch(self.L, self.out, workers=1, nSpheres=12, progress=False, density=2650, young=7e10)
+        self.assertEqual(again.generated, 0)
+        with open(os.path.join(self.out, 'report.html')) as f:
+            page = f.read()
+        self.assertIn('0 grains generated (the others were done by an earlier run', page)
+        self.assertEqual(again.ranked, self.b.ranked)
+
+
+class RadiusBound(unittest.TestCase):
+    def test_rmin_voxels_holds_for_every_grain_and_too_small_ones_are_reported(self):
+        L = handMade()
+        b = batch(L, None, workers=1, nSpheres=12, rMinVoxels=2.5, voxelSize=0.01, progress=False)
+        self.assertEqual(b.rows['label_4']['status'], 'skipped')  # radius 2 voxels: cannot hold 2.5
+        self.assertIn('too small for the radius bound', b.rows['label_4']['problems'])
+        self.assertEqual(b.rows['label_2']['status'], 'skipped')  # the plate, 3 voxels thick
+        for k, r in b.results.items():
+            self.assertGreaterEqual(r.radii.min(), 2.5 * 0.01 * (1 - 1e-12), k)  # none shrunk under it
+            self.assertGreaterEqual(b.rows[k]['r_min_voxels'], 2.5 * (1 - 1e-12))
+        self.assertEqual(sorted(b.results), ['label_1', 'label_3'])
+        # world units and voxels: the larger bound applies
+        r = generate(L == 1, nSpheres=12, rMin=3.0, rMinVoxels=2.0)
+        self.assertGreaterEqual(r.radii.min(), 3.0)
+        self.assertEqual(r.metrics['smallestRadius'], r.radii.min())
+
+
+class SameGrainSameClump(unittest.TestCase):
+    def test_a_label_alone_and_inside_a_batch_byte_for_byte(self):
+        L = syntheticSpecimen((70, 70, 70), grains=10, seed=4)
+        with tempfile.TemporaryDirectory() as d:
+            vol = os.path.join(d, 'v.npy')
+            np.save(vol, L)
+            out = os.path.join(d, 'out')
+            b = batch([vol], out, workers=2, dice=0.03, nSpheres=40, progress=False)
+            self.assertGreaterEqual(len(b.results), 8)
+            for k in b.results:
+                label = b.rows[k]['label']
+                alone = os.path.join(d, 'alone_%d.csv' % label)
+                subprocess.run([BINARY, 'generate', vol, '--label', str(label), '--dice', '0.03', '--spheres', '40',
+                                '-o', alone], check=True, capture_output=True)
+                with open(alone, 'rb') as f, open(os.path.join(out, 'grains', k + '.csv'), 'rb') as g:
+                    self.assertEqual(f.read(), g.read(), k)
+
+    def test_wherever_the_grain_sits_in_the_array(self):
+        L = syntheticSpecimen((70, 70, 70), grains=6, seed=8)
+        for label in range(1, int(L.max()) + 1):
+            solid = L == label
+            idx = np.argwhere(solid)
+            lo, hi = idx.min(0), idx.max(0) + 1
+            crop = solid[lo[0]:hi[0], lo[1]:hi[1], lo[2]:hi[2]]
+            ref = generate(solid, nSpheres=25)
+            for pad in ((1, 1, 1), (3, 0, 2), (9, 5, 4)):
+                big = np.zeros(np.array(crop.shape) + np.array(pad) + 4, dtype=bool)
+                big[pad[0]:pad[0] + crop.shape[0], pad[1]:pad[1] + crop.shape[1], pad[2]:pad[2] + crop.shape[2]] = crop
+                moved = generate(big, nSpheres=25, origin=tuple(float(x) for x in lo - np.array(pad)))
+                self.assertEqual(len(moved), len(ref))
+                np.testing.assert_allclose(moved.centers, ref.centers, rtol=0, atol=1e-9)
+                np.testing.assert_allclose(moved.radii, ref.radii, rtol=0, atol=1e-9)
+
+
+if __name__ == '__main__':
+    unittest.main()
