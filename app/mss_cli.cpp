@@ -179,6 +179,39 @@ mss::VoxelGrid readVoxels(const mss::Settings& st, const std::string& path) {
     return mss::readNpy(path, st.voxelSize > 0 ? st.voxelSize : 1.0, st.origin, st.label);
 }
 
+/// The other grains near @p label, on its bounding box widened by 2 voxels (the grid mss batch gives it;
+/// beyond the volume nobody): where its spheres may protrude by half the bound only.
+mss::VoxelGrid neighboursOf(const mss::LabelGrid& g, long long label) {
+    std::array<int, 3> lo{g.spec.dims}, hi{0, 0, 0};
+    for (int k = 0; k < g.spec.dims[2]; ++k)
+        for (int j = 0; j < g.spec.dims[1]; ++j)
+            for (int i = 0; i < g.spec.dims[0]; ++i)
+                if (g.labels[g.spec.index(i, j, k)] == label) {
+                    const int at[3] = {i, j, k};
+                    for (int a = 0; a < 3; ++a)
+                        lo[std::size_t(a)] = std::min(lo[std::size_t(a)], at[a]),
+                        hi[std::size_t(a)] = std::max(hi[std::size_t(a)], at[a] + 1);
+                }
+    mss::GridSpec s;
+    for (int a = 0; a < 3; ++a) {
+        lo[std::size_t(a)] -= 2;
+        hi[std::size_t(a)] += 2;
+        s.dims[std::size_t(a)] = std::max(0, hi[std::size_t(a)] - lo[std::size_t(a)]);
+    }
+    s.h = g.spec.h;
+    s.origin = g.spec.origin + g.spec.h * mss::Vec3(lo[0], lo[1], lo[2]);
+    mss::VoxelGrid out(s, 0);
+    for (int k = 0; k < s.dims[2]; ++k)
+        for (int j = 0; j < s.dims[1]; ++j)
+            for (int i = 0; i < s.dims[0]; ++i) {
+                const int x = i + lo[0], y = j + lo[1], z = k + lo[2];
+                if (!g.spec.contains(x, y, z)) continue;
+                const std::int64_t v = g.labels[g.spec.index(x, y, z)];
+                out(i, j, k) = v != 0 && v != label;
+            }
+    return out;
+}
+
 /// Refuses, for a mesh, the options that only voxel volumes take (they would be ignored).
 void voxelOptionsOnly(const Args& a, const std::string& in, std::initializer_list<const char*> names) {
     for (const char* name : names)
@@ -199,6 +232,11 @@ void printMetrics(const mss::Result& r) {
     if (m.clipped) std::cout << "clipped     " << m.clipped << " spheres shrunk by the final clipping\n";
     std::cout << "protrusion  " << m.protrusion
               << "   (largest beyond the grain, world units, <= " << m.protrusionLimit << ")\n";
+    if (m.contacts)
+        std::cout << "contacts    " << m.contacts << " with neighbours, " << m.contactsAdded
+                  << " spheres added to reach them"
+                  << (m.contactsMissed ? ", " + std::to_string(m.contactsMissed) + " not reached" : "")
+                  << "\n";
     std::cout << "smallest r  " << m.smallestRadius << "   (world units; " << m.smallestRadius / r.grid.h
               << " voxels: it sets the time step)\n";
     std::cout << std::setprecision(3) << "seconds     read " << m.secondsRead << "  voxelize "
@@ -218,7 +256,7 @@ int cmdGenerate(const Args& a) {
                                         "' (expected " + written + ")");
     }
     const mss::Settings st = mss::settingsFrom(values(a, mss::command::Generate), mss::command::Generate);
-    const mss::GenerateOptions& o = st.generate;
+    mss::GenerateOptions o = st.generate;
     mss::validateOptions(o);
     const auto t0 = std::chrono::steady_clock::now();
     mss::Result r;
@@ -228,6 +266,12 @@ int cmdGenerate(const Args& a) {
                                         ": --resolution applies to meshes; a voxel volume is used at its "
                                         "own voxels (--voxel-size sets their edge)");
         const mss::VoxelGrid v = readVoxels(st, in);
+        if (st.label >= 0 && st.keepContacts) { // the grain's neighbours, as mss batch finds them
+            const mss::LabelGrid labels =
+                mss::readNpyLabels(in, st.voxelSize > 0 ? st.voxelSize : 1.0, st.origin);
+            o.contacts = mss::contactPointsOf(mss::findContacts(labels), st.label);
+            o.neighbours = neighboursOf(labels, st.label);
+        }
         const double tRead = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         r = mss::generate(v, o);
         r.metrics.secondsRead = tRead;

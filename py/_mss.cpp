@@ -83,28 +83,38 @@ mss::SphereSet spheres(const py::object& centers, const py::object& radii) {
     return s;
 }
 
-/// Voxels from bytes with x fastest (numpy Fortran order), one byte per voxel, non-zero = solid.
-mss::VoxelGrid voxels(const py::object& data, const py::object& shape, double voxelSize,
-                      const py::object& origin) {
-    if (py::len(shape) != 3) throw std::invalid_argument("voxels: the array must be 3-D");
+/// A grid of @p shape, voxel edge and origin, and the bytes of its voxels (@p width each), all checked.
+mss::GridSpec gridOf(const py::object& data, const py::object& shape, double voxelSize,
+                     const py::object& origin, std::size_t width, const char* where, const char** bytes) {
+    const std::string w = where;
+    if (py::len(shape) != 3) throw std::invalid_argument(w + ": the array must be 3-D");
     mss::GridSpec g;
     std::array<long long, 3> dims{};
     for (int a = 0; a < 3; ++a) dims[a] = py::extract<long long>(shape[a]);
-    mss::checkGridSize("voxels", dims, 1, std::size_t(1) << 40);
+    mss::checkGridSize(where, dims, 1, std::size_t(1) << 40);
     for (int a = 0; a < 3; ++a) g.dims[a] = static_cast<int>(dims[a]);
     if (!(voxelSize > 0.0) || !std::isfinite(voxelSize))
-        throw std::invalid_argument("voxels: voxel size must be > 0 and finite, got " +
+        throw std::invalid_argument(w + ": voxel size must be > 0 and finite, got " +
                                     std::to_string(voxelSize));
     g.h = voxelSize;
-    g.origin = vec3(origin, "voxels: origin");
-    if (!g.origin.allFinite()) throw std::invalid_argument("voxels: origin is not finite");
+    g.origin = vec3(origin, (w + ": origin").c_str());
+    if (!g.origin.allFinite()) throw std::invalid_argument(w + ": origin is not finite");
     char* buf = nullptr;
     Py_ssize_t len = 0;
     if (!PyBytes_Check(data.ptr()) || PyBytes_AsStringAndSize(data.ptr(), &buf, &len) != 0)
-        throw std::invalid_argument("voxels: data must be bytes");
-    if (static_cast<std::size_t>(len) != g.size())
-        throw std::invalid_argument("voxels: " + std::to_string(len) + " bytes for " +
-                                    std::to_string(g.size()) + " voxels");
+        throw std::invalid_argument(w + ": data must be bytes");
+    if (static_cast<std::size_t>(len) != g.size() * width)
+        throw std::invalid_argument(w + ": " + std::to_string(len) + " bytes for " +
+                                    std::to_string(g.size()) + " voxels of " + std::to_string(width));
+    *bytes = buf;
+    return g;
+}
+
+/// Voxels from bytes with x fastest (numpy Fortran order), one byte per voxel, non-zero = solid.
+mss::VoxelGrid voxels(const py::object& data, const py::object& shape, double voxelSize,
+                      const py::object& origin) {
+    const char* buf = nullptr;
+    const mss::GridSpec g = gridOf(data, shape, voxelSize, origin, 1, "voxels", &buf);
     mss::VoxelGrid v(g, 0);
     for (std::size_t q = 0; q < g.size(); ++q) v.data[q] = buf[q] != 0;
     return v;
@@ -329,6 +339,9 @@ py::dict result(const mss::Result& r) {
     md["protrusionLimit"] = m.protrusionLimit;
     md["smallestRadius"] = m.smallestRadius;
     md["inscribedRadius"] = m.inscribedRadius;
+    md["contacts"] = m.contacts;
+    md["contactsAdded"] = m.contactsAdded;
+    md["contactsMissed"] = m.contactsMissed;
     py::list warnings;
     for (const std::string& w : m.warnings) warnings.append(w);
     md["warnings"] = warnings;
@@ -423,10 +436,37 @@ py::dict generateMesh(const py::object& vertices, const py::object& triangles, c
     return result(mss::generate(mesh(vertices, triangles), st.resolution, st.generate, st.supersample));
 }
 
+/// @p contacts: the points to reach, each 6 numbers (point, normal into the grain), as findContacts gives;
+/// @p neighbours: None, or bytes on the same grid, non-zero where another grain is.
 py::dict generateVoxels(const py::object& data, const py::object& shape, double voxelSize,
-                        const py::object& origin, const py::dict& opts) {
-    return result(mss::generate(voxels(data, shape, voxelSize, origin),
-                                settings(opts, mss::command::Generate).generate));
+                        const py::object& origin, const py::dict& opts, const py::object& contacts,
+                        const py::object& neighbours) {
+    mss::GenerateOptions g = settings(opts, mss::command::Generate).generate;
+    for (const mss::Plane& p : planes(contacts)) g.contacts.push_back({p.point, p.normal});
+    if (!neighbours.is_none()) g.neighbours = voxels(neighbours, shape, voxelSize, origin);
+    return result(mss::generate(voxels(data, shape, voxelSize, origin), g));
+}
+
+/// Every contact of a labelled volume: int64 labels, x fastest (Fortran order), as {a, b, faces, point,
+/// normal (from a into b)} dicts.
+py::list findContacts(const py::object& data, const py::object& shape, double voxelSize,
+                      const py::object& origin) {
+    mss::LabelGrid g;
+    const char* buf = nullptr;
+    g.spec = gridOf(data, shape, voxelSize, origin, 8, "findContacts", &buf);
+    g.labels.resize(g.spec.size());
+    std::memcpy(g.labels.data(), buf, g.labels.size() * 8);
+    py::list out;
+    for (const mss::LabelContact& c : mss::findContacts(g)) {
+        py::dict d;
+        d["a"] = c.a;
+        d["b"] = c.b;
+        d["faces"] = c.faces;
+        d["point"] = py::make_tuple(c.point.x(), c.point.y(), c.point.z());
+        d["normal"] = py::make_tuple(c.normal.x(), c.normal.y(), c.normal.z());
+        out.append(d);
+    }
+    return out;
 }
 
 // with planes: the part of the solid on their allowed side (a fragment)
@@ -647,7 +687,10 @@ BOOST_PYTHON_MODULE(_mss) {
             "An option's value from its text, as the command line parses it.");
     py::def("generateMesh", generateMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("options")));
     py::def("generateVoxels", generateVoxels,
-            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options")));
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options"),
+             py::arg("contacts") = py::list(), py::arg("neighbours") = py::object()));
+    py::def("findContacts", findContacts,
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin")));
     py::def("massMesh", massMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("planes") = py::list()));
     py::def("massVoxels", massVoxels,

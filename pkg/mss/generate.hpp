@@ -62,6 +62,18 @@ struct GenerateOptions {
     bool refill = true;
     std::vector<Plane>
         planes; ///< planes no sphere may cross (system walls, a fragmentation plane), always applied
+    /// Points of the grain's surface the spheres must reach, within a quarter voxel (the contacts of a
+    /// labelled volume's grain with its neighbours, findContacts): where none does, the largest ball touching
+    /// the point from inside along its normal that protrudes at most half a voxel (and no more than the
+    /// protrusion bound) is added.
+    std::vector<ContactPoint> contacts;
+    /// The grain's neighbours (a labelled volume's other grains near it, any grid: non-zero where one is),
+    /// for neighbourProtrusion. Empty (no voxels): none.
+    VoxelGrid neighbours;
+    /// The share of the protrusion bound a sphere may reach into a neighbour: 0.5 keeps two neighbours'
+    /// clumps from overlapping by more than the bound, at a cost in D where grains share much of their
+    /// surface; 1: the bound as elsewhere.
+    double neighbourProtrusion = 1.0;
 };
 
 /// Figures of a generation, on the generation grid.
@@ -81,8 +93,11 @@ struct Metrics {
     /// The smallest radius, world units: it sets a DEM time step (a linear contact's sqrt(m / k) ~ r sqrt(rho
     /// / E), YADE's PWaveTimeStep).
     double smallestRadius = 0.0;
-    double inscribedRadius =
-        0.0; ///< the largest inscribed radius (the EDT's maximum), world units: how thick
+    /// The largest inscribed radius (the EDT's maximum), world units: how thick the grain is.
+    double inscribedRadius = 0.0;
+    std::size_t contacts = 0;          ///< contact points asked (GenerateOptions::contacts)
+    std::size_t contactsAdded = 0;     ///< spheres added to reach them
+    std::size_t contactsMissed = 0;    ///< points no ball under the bounds could reach
     std::vector<std::string> warnings; ///< what was wrong with the input and how it was handled
     double secondsRead = 0.0, secondsVoxelize = 0.0, secondsEdt = 0.0, secondsSelect = 0.0,
            secondsRefine = 0.0, secondsTotal = 0.0;

@@ -5,6 +5,7 @@
 #include "mss/grid.hpp"
 #include "mss/mesh.hpp"
 #include "mss/spheres.hpp"
+#include "mss/voxelize.hpp"
 
 #include <string>
 #include <vector>
@@ -73,6 +74,10 @@ SphereSet readVtkSpheres(const std::string& path);
 /// when it is non-zero. The grid gets voxel size @p voxelSize and voxel (0, 0, 0) centred at @p origin.
 /// @throws std::invalid_argument naming the file and the problem (not .npy, truncated, not 3-D, empty,
 ///         floating point or other unsupported dtype, label absent).
+/// A labelled volume from a .npy file (integers or booleans, C or Fortran order): every label kept, for
+/// findContacts. The same checks as readNpy. @throws std::invalid_argument naming the file and the problem.
+LabelGrid readNpyLabels(const std::string& path, double voxelSize = 1.0, const Vec3& origin = Vec3::Zero());
+
 VoxelGrid readNpy(const std::string& path, double voxelSize = 1.0, const Vec3& origin = Vec3::Zero(),
                   long long label = -1);
 

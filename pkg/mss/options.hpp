@@ -100,8 +100,9 @@ struct Settings {
     double voxelSize = 0.0; ///< given voxel edge (world units), 0 = not given
     Vec3 origin = Vec3::Zero();
     bool originGiven = false;
-    long long label = -1;   ///< -1 = not given
-    long long clumpId = -1; ///< -1 = not given
+    long long label = -1;     ///< -1 = not given
+    long long clumpId = -1;   ///< -1 = not given
+    bool keepContacts = true; ///< a labelled volume's grain: reach its neighbours (GenerateOptions::contacts)
 };
 
 /// Settings from the values of command @p cmd (a command:: bit): each value checked against its row (type,

@@ -47,4 +47,33 @@ VoxelGrid voxelizeSpheres(const SphereSet& spheres, const GridSpec& grid);
 /// layers (eq. 6), keeping world positions. @throws std::invalid_argument if it has no solid voxel.
 VoxelGrid padVoxels(const VoxelGrid& volume, int padding = 2);
 
+/// A labelled voxel volume (a segmented CT): a label per voxel, 0 the background, x fastest.
+struct LabelGrid {
+    GridSpec spec;
+    std::vector<std::int64_t> labels;
+};
+
+/// A point of a grain's surface its spheres must reach, with the normal into the grain (where a neighbour
+/// touches it in a labelled volume: GenerateOptions::contacts).
+struct ContactPoint {
+    Vec3 point = Vec3::Zero();
+    Vec3 inward = Vec3::UnitZ();
+};
+
+/// Two labels whose voxels share faces: how many, and the one shared face nearest the centroid of them all
+/// (its centre, on both grains' surfaces, and its normal from @p a into @p b). The same for both grains, so
+/// that each can reach the same point.
+struct LabelContact {
+    std::int64_t a = 0, b = 0; ///< a < b
+    std::size_t faces = 0;
+    Vec3 point = Vec3::Zero();
+    Vec3 normal = Vec3::UnitZ();
+};
+
+/// Every pair of labels in contact (sharing a voxel face), ordered by (a, b); one pass over the volume.
+std::vector<LabelContact> findContacts(const LabelGrid& volume);
+
+/// The contact points of @p label among @p contacts, each with the normal into it.
+std::vector<ContactPoint> contactPointsOf(const std::vector<LabelContact>& contacts, std::int64_t label);
+
 } // namespace mss

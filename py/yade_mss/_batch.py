@@ -23,11 +23,12 @@ from . import _options
 from ._files import atomicWrite, requireRegularFile
 from ._generate import GENERATE_OPTIONS
 from ._results import MssResult
-from ._specimen import _VOLUME_EXT, readVolume, regions
+from ._specimen import _VOLUME_EXT, contactPoints, findContacts, readVolume, regions
 from ._sources import _MESH_EXT
 
 COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
-           'r_min_voxels', 'thickness_voxels', 'time_step', 'seconds', 'touches_border', 'message']
+           'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contact_spheres',
+           'seconds', 'touches_border', 'message']
 TOO_SMALL = 'exceeds the largest inscribed radius'  # the core's message when rMin leaves a grain no sphere
 
 
@@ -37,19 +38,24 @@ class GrainTask(object):
     reuses a result only for the same input."""
 
     def __init__(self, key, options, label=None, path=None, crop=None, voxelSize=None, origin=None, voxels=0,
-                 touchesBorder=False):
+                 touchesBorder=False, contacts=None, neighbours=None):
         self.key, self.options, self.label, self.path = key, options, label, path
+        self.contacts = contacts  # the points its spheres must reach (its neighbours in the volume), or None
+        self.neighbours = neighbours  # the other grains on the crop's grid (booleans), or None
         self.crop, self.voxelSize, self.origin = crop, voxelSize, origin
         self.voxels, self.touchesBorder = voxels, touchesBorder
-        self.digest = _cropDigest(crop, voxelSize, origin) if crop is not None else _fileDigest(path)
+        self.digest = (_cropDigest(crop, voxelSize, origin, contacts, neighbours) if crop is not None
+                       else _fileDigest(path))
 
 
-def _cropDigest(crop, voxelSize, origin):
+def _cropDigest(crop, voxelSize, origin, contacts=None, neighbours=None):
     a = np.ascontiguousarray(crop)
     h = hashlib.sha256()
     h.update(json.dumps({'shape': list(a.shape), 'dtype': a.dtype.str, 'voxelSize': voxelSize,
-                         'origin': [float(x) for x in origin]}).encode())
+                         'origin': [float(x) for x in origin], 'contacts': contacts or []}).encode())
     h.update(a.tobytes())
+    if neighbours is not None:
+        h.update(np.ascontiguousarray(neighbours).tobytes())
     return h.hexdigest()
 
 
@@ -85,19 +91,21 @@ def fileKeys(files):
 
 def runGrain(task):
     """Generates one grain (one thread); never raises: a failure is a row with its message."""
-    from ._generate import generate
+    from ._generate import _generate
     row = _row(task)
     t0 = time.perf_counter()
     try:
         opts = dict(task.options, threads=1)
         if task.crop is not None:
-            r = generate(task.crop, voxelSize=task.voxelSize, origin=task.origin, **opts)
+            r = _generate(task.crop, dict(opts, voxelSize=task.voxelSize, origin=task.origin), task.contacts or [],
+                          task.neighbours)
         else:
-            r = generate(task.path, **opts)
+            r = _generate(task.path, opts)
         h = r.grid['voxelSize']
         row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
                    protrusion=r.metrics.get('protrusion', ''), r_min=r.metrics['smallestRadius'],
                    r_min_voxels=r.metrics['smallestRadius'] / h, thickness_voxels=r.metrics['inscribedRadius'] / h,
+                   contacts_ct=len(task.contacts or []), contact_spheres=r.metrics.get('contactsAdded', 0),
                    seconds=time.perf_counter() - t0)
         return task.key, row, r
     except ValueError as e:
@@ -197,7 +205,7 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
     several files give one task each. Grains under *minVoxels* or (with *excludeBorder*) cut by
     the border come back as skipped rows instead.
 
-    :return: (tasks, skipped rows {key: row}, options key)
+    :return: (tasks, skipped rows {key: row}, options key, the volume's contacts or None)
     """
     array = inputs if isinstance(inputs, np.ndarray) else None
     files = ['(array)'] if array is not None else _inputs(inputs)
@@ -211,6 +219,7 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
     volumes = [f for f in files if os.path.splitext(f)[1].lower() in _VOLUME_EXT]
     if array is not None or (len(files) == 1 and volumes):
         vol = readVolume(files[0]) if array is None else array
+        found = findContacts(vol, h, org) if options.get('contacts', True) else None
         for reg in regions(vol, labels):
             k = 'label_%d' % reg.label
             base = dict(_blank(), label=reg.label, voxels=reg.voxels, touches_border=int(reg.touchesBorder))
@@ -221,11 +230,13 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
                 skipped[k] = dict(base, status='skipped', message='cut by the volume\'s border (--exclude-border)')
             else:
                 crop, start = reg.crop(vol)
+                near = reg.neighbours(vol) if found is not None else None
                 tasks.append(GrainTask(k, options, label=reg.label, path=files[0] if array is None else None,
-                                       crop=crop, voxelSize=h,
+                                       crop=crop, voxelSize=h, contacts=None if found is None else
+                                       contactPoints(found, reg.label), neighbours=near,
                                        origin=(org + h * start).tolist(), voxels=reg.voxels,
                                        touchesBorder=reg.touchesBorder))
-        return tasks, skipped, key
+        return tasks, skipped, key, found
     if labels:
         raise ValueError('batch: --labels applies to one labelled volume')
     for f, k in zip(files, fileKeys(files)):
@@ -241,7 +252,7 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
                 tasks.append(GrainTask(k, options, path=f))
         except (OSError, ValueError) as e:  # a bad file is recorded, the batch goes on
             skipped[k] = dict(_blank(), file=f, status='failed', message='%s: %s' % (type(e).__name__, e))
-    return tasks, skipped, key
+    return tasks, skipped, key, None
 
 
 class Batch(object):
@@ -441,7 +452,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     from ._args import integer
     workers = integer('batch', 'workers', workers, 1, 1024)
     density, young = (_options.check('batch', 'batch', n, v) for n, v in (('density', density), ('young', young)))
-    tasks, skipped, key = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+    tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
     out = Batch()
     t0 = time.perf_counter()
     if outdir is not None:
@@ -491,6 +502,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
     out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
     from . import _report
+    _report.keptContacts(out, found, 1.0 if voxelSize is None else float(voxelSize))
     _report.annotate(out, gen, density, young)
     if outdir is not None:
         if previews:

@@ -1,7 +1,10 @@
 """Generation and scoring: :func:`generate` (MSS paper, sections 2-3) and :func:`score` (eq. 7, 27)."""
 
 import inspect
+import os
 import warnings
+
+import numpy as np
 
 from . import _mss, _options
 from ._args import integer, number
@@ -13,7 +16,7 @@ from ._sources import _Mesh, _flat, _plane, _source
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=None, voxelSize=None,
              resolution=None, method='optimized', supersample=1, keepSymmetry=True, maxIterations=100, deltaMin=1.0,
              threads=0, origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=(),
-             maxProtrusion=None):
+             maxProtrusion=None, contacts=True, neighbourProtrusion=1.0):
     """Generates the sphere set of a grain (MSS paper, sections 2-3). The options are the option table's
     (``mss generate --help`` lists the same, spelled for the command line).
 
@@ -26,7 +29,16 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=N
         return source
     given = dict(locals())
     del given['source']
+    return _generate(source, given)
+
+
+def _generate(source, given, contactPoints=None, neighbours=None):
+    """:func:`generate` with its keywords in *given* (None: not given); *contactPoints*: the points to reach
+    (6 numbers each, :func:`yade_mss._specimen.contactPoints`) and *neighbours* (a boolean array on the
+    source's grid: the other grains), found here for a labelled volume's grain when None and contacts are
+    kept."""
     opts = _options.collect('generate', 'generate', given)
+    label, origin, resolution = given.get('label'), given.get('origin'), given.get('resolution')
     s = _source(source, opts.get('voxelSize'), opts.get('origin'), opts.get('label'))
     if isinstance(s, _Mesh):
         if label is not None:  # it would be ignored
@@ -38,7 +50,15 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=N
     else:
         if resolution is not None:
             raise ValueError('generate: resolution applies to meshes; voxels are used at their own resolution')
-        d = _mss.generateVoxels(*s.args(), opts)
+        if contactPoints is None:
+            contactPoints = []
+            if label is not None and opts.get('contacts', True):  # its neighbours, as mss batch finds them
+                from ._specimen import contactPoints as pointsOf, findContacts, readVolume
+                labels = readVolume(source) if isinstance(source, (str, os.PathLike)) else np.asarray(source)
+                contactPoints = pointsOf(findContacts(labels, s.voxelSize, s.origin), label)
+                neighbours = (labels != 0) & (labels != label)
+        d = _mss.generateVoxels(*s.args(), opts, contactPoints, None if neighbours is None else np.asfortranarray(
+            neighbours, dtype=np.uint8).tobytes(order='F'))
         target = MassProperties._fromDict(_mss.massVoxels(*s.args(), opts.get('planes', [])))
     for w in d['metrics'].get('warnings', []):
         warnings.warn('%s: %s' % (s.name, w))

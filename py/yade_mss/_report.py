@@ -27,6 +27,49 @@ def _number(v):
         return None
 
 
+KEPT_GAP = 0.5  # voxels: a scan's contact is kept when the two clumps' spheres come this close
+
+
+def _gap(r1, r2):
+    """The least gap between two sphere sets (negative: they overlap by that much)."""
+    d = np.linalg.norm(r1.centers[:, None, :] - r2.centers[None, :, :], axis=-1)
+    return float((d - r1.radii[:, None] - r2.radii[None, :]).min())
+
+
+def keptContacts(b, found, h):
+    """Each row's ``contacts_ct`` (the scan's contacts of the grain) and ``contacts_kept`` (those whose two
+    clumps come within KEPT_GAP voxels), and the batch's ``contacts`` (pairs in the scan, between two generated
+    grains, kept; the coordination numbers; the largest overlap of a kept pair, voxels). Nothing without
+    contacts (a folder of grains, or contacts off)."""
+    b.contacts = None
+    if found is None:
+        return
+    byLabel = {b.rows[k]['label']: k for k in b.results}
+    ct, kept = {}, {}
+    both, keptPairs, overlap = 0, 0, 0.0
+    for c in found:
+        for lab in (c['a'], c['b']):
+            ct[lab] = ct.get(lab, 0) + 1
+        ka, kb = byLabel.get(c['a']), byLabel.get(c['b'])
+        if ka is None or kb is None:
+            continue
+        both += 1
+        g = _gap(b.results[ka], b.results[kb]) / h
+        if g <= KEPT_GAP:
+            keptPairs += 1
+            overlap = max(overlap, -g)
+            for lab in (c['a'], c['b']):
+                kept[lab] = kept.get(lab, 0) + 1
+    for k, row in b.rows.items():
+        lab = row['label']
+        if lab != '':
+            row['contacts_ct'] = ct.get(lab, 0)
+            row['contacts_kept'] = kept.get(lab, 0) if k in b.results else ''
+    n = max(1, len(b.results))
+    b.contacts = {'pairs': len(found), 'between': both, 'kept': keptPairs, 'overlap': overlap,
+                  'coordinationScan': 2.0 * both / n, 'coordinationAssembly': 2.0 * keptPairs / n}
+
+
 def annotate(b, options, density, young):
     """Fills each row's ``time_step`` and ``problems``, and the batch's ``timeStep``, ``setBy`` and ``ranked`` (keys,
     worst first)."""
@@ -63,6 +106,9 @@ def annotate(b, options, density, young):
             # fewer spheres than asked is a problem only where D is poor too (a ball needs one)
             if asked and int(row['spheres']) < asked and d is not None and d > flagAt / 2:
                 reasons.append('%s of the %d spheres asked' % (row['spheres'], asked))
+            lost = _number(row.get('contacts_ct')), _number(row.get('contacts_kept'))
+            if lost[0] is not None and lost[1] is not None and lost[1] < lost[0]:
+                reasons.append('%d of its %d contacts in the scan lost' % (lost[0] - lost[1], lost[0]))
             if k in b.setBy:
                 reasons.append('sets the time step (smallest radius %.3g voxels)' % _number(row['r_min_voxels'])
                                if _number(row.get('r_min_voxels')) is not None else 'sets the time step')
@@ -110,6 +156,12 @@ def summary(b, total, density, young):
         text += '\nbatch: time step %.3g s (density %g, young %g), set by %s' % (
             b.timeStep, density, young, ', '.join(b.setBy[:5]) + (' and %d more' % (len(b.setBy) - 5)
                                                                 if len(b.setBy) > 5 else ''))
+    if getattr(b, 'contacts', None):
+        c = b.contacts
+        text += ('\nbatch: contacts: %d of the scan\'s %d between generated grains kept (gap <= %.1f voxel); '
+                 'coordination %.2f in the scan, %.2f in the assembly' % (c['kept'], c['between'], KEPT_GAP,
+                                                                        c['coordinationScan'],
+                                                                        c['coordinationAssembly']))
     if b.ranked and b.rows[b.ranked[0]]['problems']:
         k = b.ranked[0]
         text += '\nbatch: worst: %s (%s)' % (k, b.rows[k]['problems'])
@@ -225,7 +277,7 @@ def _charts(outdir, b):
 
 
 _SHOWN = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min_voxels',
-          'thickness_voxels', 'time_step', 'seconds', 'message']
+          'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'seconds', 'message']
 
 
 def _report(outdir, b, density, young):
@@ -246,6 +298,13 @@ def _report(outdir, b, density, young):
         notes.append('The assembly\'s critical time step is %.3g s (PWaveTimeStep: the smallest radius times '
                      'sqrt(density / young), density %g, young %g), set by %s.'
                      % (b.timeStep, density, young, ', '.join(_html(k) for k in b.setBy[:10])))
+    if getattr(b, 'contacts', None):
+        c = b.contacts
+        notes.append('Contacts: %d pairs of grains touch in the scan, %d of them between generated grains; %d of '
+                     'those touch in the assembly (spheres within %.1f voxel; largest overlap %.2f voxels). '
+                     'Coordination number %.2f in the scan, %.2f in the assembly.'
+                     % (c['pairs'], c['between'], c['kept'], KEPT_GAP, c['overlap'], c['coordinationScan'],
+                        c['coordinationAssembly']))
     generated = sum(_number(r['seconds']) or 0.0 for r in rows)
     previewed = set(getattr(b, 'previewed', []))
 

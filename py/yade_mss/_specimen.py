@@ -51,6 +51,15 @@ class Region(object):
         start = np.array([s.start for s in self.box]) - pad
         return np.pad(sub, pad), start
 
+    def neighbours(self, labels, pad=2):
+        """The other grains on the grid of :meth:`crop` (booleans): where no sphere may protrude by more than half
+        the bound."""
+        lo = [max(0, s.start - pad) for s in self.box]
+        hi = [min(n, s.stop + pad) for s, n in zip(self.box, labels.shape)]
+        sub = labels[tuple(slice(a, b) for a, b in zip(lo, hi))]
+        widths = [(a - (s.start - pad), s.stop + pad - b) for a, b, s in zip(lo, hi, self.box)]
+        return np.pad((sub != 0) & (sub != self.label), widths)  # beyond the volume: nobody
+
 
 def regions(labels, only=None):
     """The labels present (non-zero), each as a :class:`Region`, in increasing label order: one pass over the
@@ -81,6 +90,63 @@ def regions(labels, only=None):
         if missing:
             raise ValueError('labels not in the volume: %s' % ', '.join(str(m) for m in missing))
     return out
+
+
+def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0)):
+    """Every pair of labels whose voxels share faces (the scan's contacts), found once for the whole volume: a
+    list of dicts ``a``, ``b`` (a < b), ``faces`` (how many they share), ``point`` (the shared face nearest the
+    centroid of them all, world units) and ``normal`` (from a into b).
+
+    :param labels: a 3-D array of integers >= 0 (0 is background), or of booleans
+    :param float voxelSize: the voxel edge, world units
+    :param origin: the world position of the centre of voxel (0, 0, 0)
+    """
+    a = np.asarray(labels)
+    if a.ndim != 3 or not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
+        raise ValueError('findContacts: labels must be a 3-D array of integers, got %s of %s' % (a.shape, a.dtype))
+    if a.dtype == np.uint64 and a.size and a.max() > np.iinfo(np.int64).max:
+        raise ValueError('findContacts: a label over 2^63 - 1')
+    data = np.asfortranarray(a, dtype=np.int64).tobytes(order='F')
+    return _mss.findContacts(data, tuple(int(n) for n in a.shape), float(voxelSize), [float(x) for x in origin])
+
+
+def contactPoints(contacts, label):
+    """The points a grain's spheres must reach, 6 numbers each (the point, the normal into the grain), from
+    :func:`findContacts`'s list: what :func:`generate` takes for a labelled volume's grain."""
+    out = []
+    for c in contacts:
+        if c['a'] == label:
+            out.append(list(c['point']) + [-x for x in c['normal']])
+        elif c['b'] == label:
+            out.append(list(c['point']) + list(c['normal']))
+    return out
+
+
+def voronoiBall(radius=50, cells=12, seed=1):
+    """A dense specimen: a ball of *radius* voxels cut into *cells* Voronoi cells (labels 1..cells), every grain
+    touching its neighbours: for tests and benchmarks of contacts.
+
+    :param int radius: the ball's radius, voxels
+    :param int cells: how many cells (grains)
+    :param int seed: random seed of the cells' seeds
+    :return: int32 array of (2 radius + 5)^3 voxels, labels 1..cells
+    """
+    from scipy.spatial import cKDTree
+    radius = integer('voronoiBall', 'radius', radius, 2, 1000)
+    cells = integer('voronoiBall', 'cells', cells, 1, 100000)
+    rng = np.random.default_rng(integer('voronoiBall', 'seed', seed, 0, INT64_MAX))
+    n = 2 * radius + 5
+    centre = (n - 1) / 2.0
+    seeds = []
+    while len(seeds) < cells:  # seeds in the inner 80% of the ball, so that no cell is a sliver of its rim
+        p = rng.uniform(-0.8 * radius, 0.8 * radius, 3)
+        if np.linalg.norm(p) <= 0.8 * radius:
+            seeds.append(p + centre)
+    g = np.indices((n, n, n)).reshape(3, -1).T.astype(float)
+    inside = np.linalg.norm(g - centre, axis=1) <= radius
+    labels = np.zeros(n ** 3, dtype=np.int32)
+    labels[inside] = cKDTree(np.array(seeds)).query(g[inside])[1] + 1
+    return labels.reshape(n, n, n)
 
 
 def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, gap=1, maxTries=20000):

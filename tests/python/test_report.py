@@ -10,7 +10,8 @@ import unittest
 import numpy as np
 
 from yade_mss import batch, generate, syntheticSpecimen
-from yade_mss._report import THIN_VOXELS
+from yade_mss._report import THIN_VOXELS, _gap
+from yade_mss._specimen import findContacts, voronoiBall
 
 BINARY = os.environ.get('MSS_BINARY', 'mss')
 
@@ -165,6 +166,67 @@ class RadiusBound(unittest.TestCase):
         r = generate(L == 1, nSpheres=12, rMin=3.0, rMinVoxels=2.0)
         self.assertGreaterEqual(r.radii.min(), 3.0)
         self.assertEqual(r.metrics['smallestRadius'], r.radii.min())
+
+
+class Contacts(unittest.TestCase):
+    """The bar: a ball of 50 voxels radius cut into 12 Voronoi cells, every grain touching its neighbours."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.L = voronoiBall(50, 12, seed=1)
+        cls.on = batch(cls.L, None, workers=2, dice=0.03, nSpheres=40, progress=False)
+        cls.off = batch(cls.L, None, workers=2, dice=0.03, nSpheres=40, progress=False, contacts=False)
+
+    def gaps(self, b):
+        by = {b.rows[k]['label']: b.results[k] for k in b.results}
+        return [_gap(by[c['a']], by[c['b']]) for c in findContacts(self.L)]
+
+    def test_every_contact_of_the_scan_kept(self):
+        c = self.on.contacts
+        self.assertEqual(c['pairs'], len(findContacts(self.L)))
+        self.assertGreaterEqual(c['pairs'], 20)
+        self.assertEqual(c['kept'], c['pairs'])  # 100%
+        self.assertTrue(all(g <= 0.5 for g in self.gaps(self.on)))
+        self.assertEqual(c['coordinationAssembly'], c['coordinationScan'])
+        self.assertFalse(all(g <= 0.5 for g in self.gaps(self.off)))  # without: some are lost
+        self.assertIsNone(self.off.contacts)
+        for k, row in self.on.rows.items():
+            self.assertEqual(row['contacts_kept'], row['contacts_ct'], k)
+            self.assertGreater(row['contacts_ct'], 0)
+
+    def test_no_bump_and_the_same_fidelity(self):
+        added = 0
+        for k, r in self.on.results.items():
+            m = r.metrics
+            self.assertLessEqual(m['protrusion'], m['protrusionLimit'] + 1e-12, k)  # nothing beyond the bound
+            self.assertEqual(m['contactsMissed'], 0, k)
+            added += m['contactsAdded']
+            self.assertLessEqual(self.on.rows[k]['dice'], 1.10 * self.off.rows[k]['dice'], k)
+        self.assertGreater(added, 0)
+
+    def test_half_the_bound_into_neighbours_keeps_overlaps_under_it(self):
+        half = batch(self.L, None, workers=2, dice=0.03, nSpheres=40, progress=False, neighbourProtrusion=0.5)
+        self.assertEqual(half.contacts['kept'], half.contacts['pairs'])
+        self.assertLessEqual(half.contacts['overlap'], 1.0 + 1e-9)  # the bound: one voxel
+        self.assertGreater(self.on.contacts['overlap'], 1.0)  # the full bound each side: more
+
+    def test_alone_and_in_the_batch_byte_for_byte(self):
+        with tempfile.TemporaryDirectory() as d:
+            vol = os.path.join(d, 'v.npy')
+            np.save(vol, self.L)
+            for share in ('1', '0.5'):
+                out = os.path.join(d, 'out' + share)
+                batch([vol], out, workers=2, dice=0.03, nSpheres=40, progress=False, neighbourProtrusion=float(share))
+                for label in (1, 5, 9):
+                    alone = os.path.join(d, 'alone.csv')
+                    subprocess.run([BINARY, 'generate', vol, '--label', str(label), '--dice', '0.03', '--spheres',
+                                    '40', '--neighbour-protrusion', share, '-o', alone], check=True,
+                                   capture_output=True)
+                    with open(alone, 'rb') as f, open(os.path.join(out, 'grains', 'label_%d.csv' % label), 'rb') as g:
+                        self.assertEqual(f.read(), g.read(), (share, label))
+            r = generate(vol, label=5, dice=0.03, nSpheres=40)  # Python alone, from the file
+            np.testing.assert_array_equal(r.centers, self.on.results['label_5'].centers)
+            np.testing.assert_array_equal(r.radii, self.on.results['label_5'].radii)
 
 
 class SameGrainSameClump(unittest.TestCase):

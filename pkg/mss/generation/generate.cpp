@@ -1,6 +1,7 @@
 #include "mss/generate.hpp"
 #include "mss/core/ball_rows.hpp"
 #include "mss/core/edt.hpp"
+#include "mss/generation/contacts.hpp"
 #include "mss/generation/engine/optimized.hpp"
 #include "mss/generation/engine/paper.hpp"
 #include "mss/options.hpp"
@@ -354,7 +355,13 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& given, Metr
         if (!opt.planes.empty()) grainEdt = distanceTransform(grain);
         clearance = voxelVolumeClearance(grain, opt.planes.empty() ? E : grainEdt);
     }
-    const auto bound = radiusBound(clearance, H, opt.planes);
+    // a share of 1 is the bound everywhere: the neighbours' clearance, never below the grain's, changes
+    // nothing
+    std::shared_ptr<NeighbourClearance> near;
+    if (opt.neighbourProtrusion < 1.0 && countSolid(opt.neighbours) > 0)
+        near = std::make_shared<NeighbourClearance>(opt.neighbours);
+    const double share = opt.neighbourProtrusion;
+    const auto bound = withNeighbours(radiusBound(clearance, H, opt.planes), near, H, share);
     BoundVox boundVox;
     if (bound && (opt.refill || !std::isfinite(H))) {
         const CachedBound cached(bound, boundAtLeast(meshAbove, H, opt.planes), S.spec);
@@ -393,7 +400,8 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& given, Metr
         const auto it = known.find({c.x(), c.y(), c.z()});
         return it != known.end() ? it->second : clearance(c);
     };
-    const auto finalBound = bound ? radiusBound(clearanceAtCentres, H, opt.planes) : bound;
+    const auto finalBound =
+        bound ? withNeighbours(radiusBound(clearanceAtCentres, H, opt.planes), near, H, share) : bound;
     for (std::size_t q = 0; q < balls.size(); ++q) {
         const Vec3& c = centres[q];
         double radius = balls[q].r * h;
@@ -409,9 +417,11 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& given, Metr
         if (radius >= rMin) r.spheres.add(c, radius);
     }
     if (r.spheres.size() == 0) noSphereLeft(E, opt);
+    const double inscribed = h * *std::max_element(E.data.begin(), E.data.end());
+    if (!opt.contacts.empty()) reachContacts(r.spheres, opt, clearance, H, h, inscribed, near, m);
     m.protrusion = largestProtrusion(r.spheres, clearanceAtCentres);
     m.smallestRadius = *std::min_element(r.spheres.radii.begin(), r.spheres.radii.end());
-    m.inscribedRadius = h * *std::max_element(E.data.begin(), E.data.end());
+    m.inscribedRadius = inscribed;
     const Mismatch mm = mismatch(S, r.spheres);
     m.spheres = r.spheres.size();
     m.eta = mm.eta;
@@ -439,6 +449,7 @@ void validateOptions(const GenerateOptions& o) {
     check("dice", o.dice);
     check("rMin", o.rMin);
     check("rMinVoxels", o.rMinVoxels);
+    check("neighbourProtrusion", o.neighbourProtrusion);
     check("maxIterations", (long long)o.maxIterations);
     check("deltaMin", o.deltaMin);
     // more threads than libgomp can start end in "Thread creation failed" (2000) or overflow its stacks
@@ -447,6 +458,10 @@ void validateOptions(const GenerateOptions& o) {
     if (o.clip && o.maxProtrusion && *o.maxProtrusion != 0.0)
         throw OptionError("generate", "clip", " means maxProtrusion 0: give one of them");
     check("planes", o.planes);
+    for (const ContactPoint& c : o.contacts)
+        if (!c.point.allFinite() || !c.inward.allFinite() || !(c.inward.norm() > 0))
+            throw std::invalid_argument(
+                "generate: a contact point needs a finite point and a non-zero normal");
     if (o.nSpheres == 0 && o.eta == 0.0 && o.dice == 0.0 && o.rMin == 0.0 && o.rMinVoxels == 0.0)
         throw std::invalid_argument(
             "generate: give at least one termination criterion (nSpheres, eta, dice, rMin or rMinVoxels)");

@@ -87,6 +87,14 @@ const std::vector<OptionSpec> kTable = {
      "paper method: least distance between sphere centres (section 3.4)", kGen},
     {"keepSymmetry", "--no-symmetry", true, T::Flag, "true", 0, 0, false, false, "", "", "",
      "detect the grain's mirror planes and keep them (optimized method)", kGen},
+    {"contacts", "--no-contacts", true, T::Flag, "true", 0, 0, false, false, "", "", "",
+     "a labelled volume: keep the grain's contacts with its neighbours (each one's spheres reach a point of "
+     "the faces they share, so that grains touching in the scan touch in the assembly)",
+     c::Generate | c::Batch},
+    {"neighbourProtrusion", "--neighbour-protrusion", true, T::Number, "1", 0, 1, false, false, "", "", "F",
+     "a labelled volume's grain: the share of the protrusion bound its spheres may reach into a neighbouring "
+     "grain (0.5: two neighbours' clumps overlap by at most the bound, at a cost in D; 1: as elsewhere)",
+     c::Generate | c::Batch},
     {"threads", "--threads", true, T::Integer, "0", 0, 1024, false, false, "", "", "T",
      "OpenMP threads, 0: OpenMP's default; the result does not depend on it", c::Generate},
     // the bound on protrusion (paper section 3.5)
@@ -450,6 +458,10 @@ void apply(Settings& st, const std::string& name, const OptionValue& v) {
         g.threads = asInt(v);
     else if (name == "clip")
         g.clip = std::get<bool>(v);
+    else if (name == "contacts")
+        st.keepContacts = std::get<bool>(v);
+    else if (name == "neighbourProtrusion")
+        g.neighbourProtrusion = asNumber(v);
     else if (name == "refill")
         g.refill = std::get<bool>(v);
     else if (name == "maxProtrusion")

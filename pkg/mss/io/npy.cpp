@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -165,9 +166,15 @@ void typedFlags(const char* raw, std::size_t n, long long label, std::vector<std
     }
 }
 
-} // namespace
+/// A .npy file's header and data, checked: its size against the file's, the grid's against the limits;
+/// the bytes in the machine's order.
+struct NpyData {
+    NpyHeader header;
+    std::vector<char> raw;
+    std::size_t count = 0;
+};
 
-VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin, long long label) {
+NpyData readNpyData(const std::string& path, double voxelSize, const Vec3& origin) {
     if (!(voxelSize > 0.0) || !std::isfinite(voxelSize)) {
         std::ostringstream os;
         os << "voxel size must be > 0 and finite, got " << voxelSize;
@@ -179,13 +186,12 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     if (!in) fail(path, "cannot open file");
     const std::streamoff size = in.tellg();
     in.seekg(0);
-    const NpyHeader h = readNpyHeader(path, in, size);
-    const std::vector<long long>& shape = h.shape;
-    const bool fortran = h.fortran;
-    const char kind = h.kind;
-    const int width = h.width;
+    NpyData d;
+    d.header = readNpyHeader(path, in, size);
+    const std::vector<long long>& shape = d.header.shape;
+    const int width = d.header.width;
     // the header's word against the file's size first (in long double: a lying shape overflows 64 bits)
-    const std::uintmax_t held = static_cast<std::uintmax_t>(size) - h.dataOffset;
+    const std::uintmax_t held = static_cast<std::uintmax_t>(size) - d.header.dataOffset;
     const long double wanted = static_cast<long double>(shape[0]) * shape[1] * shape[2] * width;
     if (wanted > static_cast<long double>(held)) {
         std::ostringstream os;
@@ -195,22 +201,59 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
         fail(path, os.str());
     }
     checkGridSize("readNpy", {shape[0], shape[1], shape[2]}, 1, std::size_t(1) << 40);
-    const std::size_t count = static_cast<std::size_t>(shape[0] * shape[1] * shape[2]);
-    std::vector<char> raw(count * static_cast<std::size_t>(width));
-    in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
-    if (static_cast<std::size_t>(in.gcount()) != raw.size()) fail(path, "truncated data");
-    if (h.bigEndian)
-        for (std::size_t q = 0; q < raw.size(); q += static_cast<std::size_t>(width))
-            std::reverse(raw.begin() + static_cast<std::ptrdiff_t>(q),
-                         raw.begin() + static_cast<std::ptrdiff_t>(q) + width);
+    d.count = static_cast<std::size_t>(shape[0] * shape[1] * shape[2]);
+    d.raw.resize(d.count * static_cast<std::size_t>(width));
+    in.read(d.raw.data(), static_cast<std::streamsize>(d.raw.size()));
+    if (static_cast<std::size_t>(in.gcount()) != d.raw.size()) fail(path, "truncated data");
+    if (d.header.bigEndian)
+        for (std::size_t q = 0; q < d.raw.size(); q += static_cast<std::size_t>(width))
+            std::reverse(d.raw.begin() + static_cast<std::ptrdiff_t>(q),
+                         d.raw.begin() + static_cast<std::ptrdiff_t>(q) + width);
+    return d;
+}
 
+/// @p in (the file's order) into @p out (the grid's, x fastest): a copy for Fortran order, a transpose of x
+/// and z in 32 x 32 tiles for C order (both sides stay in cache).
+template <class T, class U>
+void toGridOrder(const std::vector<T>& in, const std::vector<long long>& shape, bool fortran, U* out) {
+    const std::size_t n0 = std::size_t(shape[0]), n1 = std::size_t(shape[1]), n2 = std::size_t(shape[2]);
+    if (fortran) {
+        std::copy(in.begin(), in.end(), out);
+        return;
+    }
+    constexpr std::size_t kTile = 32;
+    for (std::size_t b = 0; b < n1; ++b)
+        for (std::size_t a0 = 0; a0 < n0; a0 += kTile)
+            for (std::size_t c0 = 0; c0 < n2; c0 += kTile)
+                for (std::size_t c = c0; c < std::min(n2, c0 + kTile); ++c)
+                    for (std::size_t a = a0; a < std::min(n0, a0 + kTile); ++a)
+                        out[a + n0 * (b + n1 * c)] = in[c + n2 * (b + n1 * a)];
+}
+
+/// The labels of @p n values of type T as 64-bit integers.
+template <class T> void typedLabels(const char* raw, std::size_t n, std::vector<std::int64_t>& out) {
+    for (std::size_t q = 0; q < n; ++q) {
+        T v;
+        std::memcpy(&v, raw + q * sizeof(T), sizeof(T));
+        out[q] = static_cast<std::int64_t>(v);
+    }
+}
+
+} // namespace
+
+VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin, long long label) {
+    const NpyData d = readNpyData(path, voxelSize, origin);
+    const std::vector<long long>& shape = d.header.shape;
+    const char kind = d.header.kind;
+    const int width = d.header.width;
+    const std::size_t count = d.count;
+    const std::vector<char>& raw = d.raw;
     GridSpec g;
     g.dims = {static_cast<int>(shape[0]), static_cast<int>(shape[1]), static_cast<int>(shape[2])};
     g.h = voxelSize;
     g.origin = origin;
     VoxelGrid out(g, 0);
-    // the flags in the file's order (one typed pass), then into the grid's (x fastest): a copy for Fortran
-    // order, a transpose of x and z in 32 x 32 tiles for C order (both sides stay in cache)
+    // the flags in the file's order (one typed pass), then into the grid's (x fastest)
     std::vector<std::uint8_t> on(count);
     std::set<long long> labels; // without a label, several labels would merge grains: refused below
     switch (width) {
@@ -237,18 +280,7 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     }
     std::size_t solid = 0;
     for (std::uint8_t v : on) solid += v;
-    const std::size_t n0 = std::size_t(shape[0]), n1 = std::size_t(shape[1]), n2 = std::size_t(shape[2]);
-    if (fortran) {
-        std::copy(on.begin(), on.end(), out.data.begin());
-    } else {
-        constexpr std::size_t kTile = 32;
-        for (std::size_t b = 0; b < n1; ++b)
-            for (std::size_t a0 = 0; a0 < n0; a0 += kTile)
-                for (std::size_t c0 = 0; c0 < n2; c0 += kTile)
-                    for (std::size_t c = c0; c < std::min(n2, c0 + kTile); ++c)
-                        for (std::size_t a = a0; a < std::min(n0, a0 + kTile); ++a)
-                            out.data[a + n0 * (b + n1 * c)] = on[c + n2 * (b + n1 * a)];
-    }
+    toGridOrder(on, shape, d.header.fortran, out.data.data());
     if (labels.size() > 1) {
         std::ostringstream os;
         os << "the volume holds " << (labels.size() < 64 ? "" : "at least ") << labels.size() << " labels (";
@@ -266,6 +298,50 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     if (solid == 0)
         fail(path,
              label >= 0 ? "no voxel has label " + std::to_string(label) : "the volume has no solid voxel");
+    return out;
+}
+
+LabelGrid readNpyLabels(const std::string& path, double voxelSize, const Vec3& origin) {
+    const NpyData d = readNpyData(path, voxelSize, origin);
+    const char kind = d.header.kind;
+    std::vector<std::int64_t> flat(d.count);
+    switch (d.header.width) {
+    case 1:
+        if (kind == 'i')
+            typedLabels<std::int8_t>(d.raw.data(), d.count, flat);
+        else
+            typedLabels<std::uint8_t>(d.raw.data(), d.count, flat);
+        break;
+    case 2:
+        if (kind == 'u')
+            typedLabels<std::uint16_t>(d.raw.data(), d.count, flat);
+        else
+            typedLabels<std::int16_t>(d.raw.data(), d.count, flat);
+        break;
+    case 4:
+        if (kind == 'u')
+            typedLabels<std::uint32_t>(d.raw.data(), d.count, flat);
+        else
+            typedLabels<std::int32_t>(d.raw.data(), d.count, flat);
+        break;
+    default:
+        if (kind == 'u') // a uint64 label over 2^63 would turn negative: refused, not misread
+            for (std::size_t q = 0; q < d.count; ++q) {
+                std::uint64_t v;
+                std::memcpy(&v, d.raw.data() + q * 8, 8);
+                if (v > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
+                    fail(path, "a label over 2^63 - 1");
+                flat[q] = std::int64_t(v);
+            }
+        else
+            typedLabels<std::int64_t>(d.raw.data(), d.count, flat);
+    }
+    LabelGrid out;
+    out.spec.dims = {int(d.header.shape[0]), int(d.header.shape[1]), int(d.header.shape[2])};
+    out.spec.h = voxelSize;
+    out.spec.origin = origin;
+    out.labels.resize(d.count);
+    toGridOrder(flat, d.header.shape, d.header.fortran, out.labels.data());
     return out;
 }
 

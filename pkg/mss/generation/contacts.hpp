@@ -1,0 +1,46 @@
+#pragma once
+// Contacts of a labelled volume's grain inside the generation (GenerateOptions::contacts, neighbours,
+// neighbourProtrusion): its neighbours' clearance, the bound with their share, the balls that reach a
+// contact.
+
+#include "mss/generate.hpp"
+#include "mss/grid.hpp"
+
+#include <functional>
+#include <memory>
+
+namespace mss {
+
+/// The distance (world units) from a point to the nearest voxel cube of a grain's neighbours
+/// (GenerateOptions::neighbours): the clearance of their complement, padded so that the grid's edge is no
+/// neighbour; +inf off that grid.
+class NeighbourClearance {
+public:
+    explicit NeighbourClearance(const VoxelGrid& neighbours);
+    /// At least this far (world units), from the nearest voxel centre's distance transform alone.
+    double lower(const Vec3& c) const;
+    double operator()(const Vec3& c) const;
+
+private:
+    std::shared_ptr<VoxelGrid> free_;
+    std::shared_ptr<ScalarGrid> edt_;
+};
+
+/// @p bound with the neighbours' share of the protrusion bound: r <= their clearance + share H. The exact
+/// clearance only where the cheap lower bound cannot tell (most centres are far from every neighbour).
+std::function<double(const Vec3&)> withNeighbours(std::function<double(const Vec3&)> bound,
+                                                  const std::shared_ptr<NeighbourClearance>& n, double H,
+                                                  double share);
+
+/// GenerateOptions::contacts: each point where a neighbour touches the grain is reached by the spheres within
+/// a quarter voxel, so that two grains that touch in the volume touch in the assembly (gap at most half a
+/// voxel). Where no sphere reaches it, the largest ball that touches the point from inside along its normal
+/// is added: centre p + t n, radius t, t the largest (in steps of h / 8) under the clearance plus half a
+/// voxel (at most the neighbours' share of the protrusion bound) and the planes, so that it makes no bump
+/// elsewhere; at least rMin and half a voxel, or the point is counted missed. @p clearance: the grain's
+/// (world units, signed).
+void reachContacts(SphereSet& spheres, const GenerateOptions& opt,
+                   const std::function<double(const Vec3&)>& clearance, double H, double h, double inscribed,
+                   const std::shared_ptr<NeighbourClearance>& neighbours, Metrics& m);
+
+} // namespace mss
