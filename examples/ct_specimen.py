@@ -44,7 +44,12 @@ O.engines = [
                     [Law2_ScGeom_FrictPhys_CundallStrack()]),
     NewtonIntegrator(damping=0.4, gravity=(0, 0, -9.81)),
 ]
-O.dt = 0.5 * utils.PWaveTimeStep()
+step, setBy = clumps.timeStep()  # PWaveTimeStep, and which grains' smallest spheres set it
+print('time step    %.3g s, set by grain%s %s' % (step, 's' if len(setBy) > 1 else '', ', '.join(map(str, setBy[:5]))))
+O.dt = 0.5 * step
+O.step()
+kept, of = clumps.contactsKept()  # the scan's contacts that are interactions in YADE after one step
+print('contacts     %d of the scan\'s %d interact in YADE' % (kept, of))
 height = hi[2] - lo[2]
 speed = 0.5 * height / (4000 * O.dt)  # half the height in 4000 steps: the loose specimen jams, then carries load
 O.bodies[lid].state.vel = (0, 0, -speed)

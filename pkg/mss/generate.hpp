@@ -62,8 +62,8 @@ struct GenerateOptions {
     bool refill = true;
     std::vector<Plane>
         planes; ///< planes no sphere may cross (system walls, a fragmentation plane), always applied
-    /// Points of the grain's surface the spheres must reach, within a quarter voxel (the contacts of a
-    /// labelled volume's grain with its neighbours, findContacts): where none does, the largest ball touching
+    /// Points of the grain's surface the spheres must hold, a twentieth of a voxel deep (the contacts of a
+    /// labelled volume's grain with its neighbours, findContacts): where none does, the largest ball through
     /// the point from inside along its normal that protrudes at most half a voxel (and no more than the
     /// protrusion bound) is added.
     std::vector<ContactPoint> contacts;

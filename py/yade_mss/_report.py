@@ -41,7 +41,7 @@ def keptContacts(b, found, h):
     clumps come within KEPT_GAP voxels), and the batch's ``contacts`` (pairs in the scan, between two generated
     grains, kept; the coordination numbers; the largest overlap of a kept pair, voxels). Nothing without
     contacts (a folder of grains, or contacts off)."""
-    b.contacts = None
+    b.contacts, b.scanContacts = None, found
     if found is None:
         return
     byLabel = {b.rows[k]['label']: k for k in b.results}
@@ -196,6 +196,14 @@ def writeOutputs(outdir, b, density, young):
                     f.write('%r %r %r %r %d\n' % (float(c[0]), float(c[1]), float(c[2]), float(rad), cid))
     _atomic(os.path.join(outdir, 'assembly.txt'), assembly)
     _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
+    if getattr(b, 'scanContacts', None) is not None:
+        def contacts(p):
+            with open(p, 'w', newline='') as f:
+                w = csv.writer(f)
+                w.writerow(['a', 'b', 'faces', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
+                for c in b.scanContacts:
+                    w.writerow([c['a'], c['b'], c['faces']] + ['%r' % x for x in c['point'] + c['normal']])
+        _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
     _report(outdir, b, density, young)
 
 

@@ -247,6 +247,39 @@ class Assembly(Base):
         with self.assertRaises(TypeError):
             mssAssembly(L, voxelSize=h, nSphere=3)
 
+    def test_the_scans_contacts_interact_in_yade_and_the_time_step(self):
+        import tempfile
+        from yade_mss import batch, findContacts, mssAssembly, voronoiBall
+        L = voronoiBall(24, 7, seed=3)
+        h = 1e-3
+        pairs = len(findContacts(L))
+        O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator(gravity=(0, 0, 0))]
+        a = mssAssembly(L, voxelSize=h, nSpheres=10, material='grain')
+        self.assertEqual(len(a.scanContacts), pairs)
+        step, setBy = a.timeStep()
+        self.assertAlmostEqual(step, PWaveTimeStep(), delta=1e-12 * step)  # as YADE computes it
+        self.assertTrue(setBy)
+        O.dt = 0.1 * step
+        O.step()
+        kept, of = a.contactsKept()
+        self.assertEqual(of, pairs)
+        self.assertEqual(kept, pairs)  # every contact of the scan is an interaction in YADE
+        # from a finished batch directory: the same contacts, read from its contacts.csv
+        O.reset()
+        O.materials.append(FrictMat(density=2000, young=1e7, label='grain'))
+        O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator(gravity=(0, 0, 0))]
+        with tempfile.TemporaryDirectory() as d:
+            batch(L, d, workers=1, nSpheres=10, voxelSize=h, progress=False)
+            b = mssAssembly(d, material='grain')
+            self.assertEqual(sorted(b.scanContacts), sorted(a.scanContacts))
+            O.dt = 0.1 * step
+            O.step()
+            self.assertEqual(b.contactsKept(), (pairs, pairs))
+
 
 if __name__ == '__main__':
     result = unittest.main(exit=False, verbosity=2).result

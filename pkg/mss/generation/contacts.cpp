@@ -52,14 +52,16 @@ std::function<double(const Vec3&)> withNeighbours(std::function<double(const Vec
 void reachContacts(SphereSet& spheres, const GenerateOptions& opt,
                    const std::function<double(const Vec3&)>& clearance, double H, double h, double inscribed,
                    const std::shared_ptr<NeighbourClearance>& neighbours, Metrics& m) {
-    const double reach = 0.25 * h, least = std::max(opt.rMin, 0.5 * h);
+    // reached: the point lies a twentieth of a voxel inside a sphere, so that the two grains' spheres overlap
+    // there (a DEM code's contact detection sees them, not a gap of a rounding error)
+    const double reach = 0.05 * h, least = std::max(opt.rMin, 0.5 * h);
     const double bump = std::min({0.5 * h, H, opt.neighbourProtrusion * H});
     m.contacts = opt.contacts.size();
     for (const ContactPoint& cp : opt.contacts) {
         double gap = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < spheres.size(); ++i)
             gap = std::min(gap, (cp.point - spheres.centers[i]).norm() - spheres.radii[i]);
-        if (gap <= reach) continue;
+        if (gap <= -reach) continue;
         const Vec3 n = cp.inward.normalized();
         double best = 0.0;
         for (int s = 1; s * h / 8 <= inscribed + h; ++s) {
@@ -70,10 +72,10 @@ void reachContacts(SphereSet& spheres, const GenerateOptions& opt,
             limit += bump;
             if (neighbours) limit = std::min(limit, (*neighbours)(c) + bump);
             for (const Plane& p : opt.planes) limit = std::min(limit, planeDistance(p, c));
-            if (t <= limit) best = t;
+            if (t + reach <= limit) best = t;
         }
-        if (best >= least) {
-            spheres.add(cp.point + best * n, best);
+        if (best + reach >= least) {
+            spheres.add(cp.point + best * n, best + reach);
             ++m.contactsAdded;
         } else {
             ++m.contactsMissed;

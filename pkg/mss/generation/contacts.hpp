@@ -32,13 +32,12 @@ std::function<double(const Vec3&)> withNeighbours(std::function<double(const Vec
                                                   const std::shared_ptr<NeighbourClearance>& n, double H,
                                                   double share);
 
-/// GenerateOptions::contacts: each point where a neighbour touches the grain is reached by the spheres within
-/// a quarter voxel, so that two grains that touch in the volume touch in the assembly (gap at most half a
-/// voxel). Where no sphere reaches it, the largest ball that touches the point from inside along its normal
-/// is added: centre p + t n, radius t, t the largest (in steps of h / 8) under the clearance plus half a
-/// voxel (at most the neighbours' share of the protrusion bound) and the planes, so that it makes no bump
-/// elsewhere; at least rMin and half a voxel, or the point is counted missed. @p clearance: the grain's
-/// (world units, signed).
+/// GenerateOptions::contacts: each point where a neighbour touches the grain lies inside the spheres by a
+/// twentieth of a voxel, so that two grains that touch in the volume overlap there in the assembly. Where no
+/// sphere holds it, the largest ball through it from inside along its normal is added: centre p + t n, radius
+/// t + h / 20, t the largest (in steps of h / 8) under the clearance plus half a voxel (at most the
+/// neighbours' share of the protrusion bound) and the planes, so that it makes no bump elsewhere; at least
+/// rMin and half a voxel, or the point is counted missed. @p clearance: the grain's (world units, signed).
 void reachContacts(SphereSet& spheres, const GenerateOptions& opt,
                    const std::function<double(const Vec3&)>& clearance, double H, double h, double inscribed,
                    const std::shared_ptr<NeighbourClearance>& neighbours, Metrics& m);
