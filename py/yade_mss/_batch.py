@@ -16,6 +16,7 @@ import json
 import os
 import sys
 import time
+import zlib
 
 import numpy as np
 
@@ -46,6 +47,31 @@ class GrainTask(object):
         self.voxels, self.touchesBorder = voxels, touchesBorder
         self.digest = (_cropDigest(crop, voxelSize, origin, contacts, neighbours) if crop is not None
                        else _fileDigest(path))
+
+    # A task travels (to a worker process, a Dask worker) with its voxels deflated, a boolean crop packed to a
+    # bit a voxel first: Dask warned of every task over a megabyte ("Large object ... detected in task graph");
+    # a grain's crop packs to about a hundredth. Other arrays (a grain's own volume file) keep their values.
+    def __getstate__(self):
+        state = dict(self.__dict__)
+        for name in ('crop', 'neighbours'):
+            a = state[name]
+            if a is None:
+                continue
+            a = np.ascontiguousarray(a)
+            raw = np.packbits(a, axis=None).tobytes() if a.dtype == bool else a.tobytes()
+            state[name] = (a.shape, a.dtype.str, zlib.compress(raw, 1))
+        return state
+
+    def __setstate__(self, state):
+        for name in ('crop', 'neighbours'):
+            if state.get(name) is not None:
+                shape, dtype, packed = state[name]
+                raw = np.frombuffer(zlib.decompress(packed), dtype=np.uint8)
+                if np.dtype(dtype) == bool:
+                    state[name] = np.unpackbits(raw, count=int(np.prod(shape))).astype(bool).reshape(shape)
+                else:
+                    state[name] = raw.view(np.dtype(dtype)).reshape(shape).copy()
+        self.__dict__.update(state)
 
 
 def _cropDigest(crop, voxelSize, origin, contacts=None, neighbours=None):

@@ -378,6 +378,31 @@ class Specimen(unittest.TestCase):
             self.assertEqual(a.count('#mss clump'), 40)
             self.assertIn('report_distributions.png', open(os.path.join(out1, 'report.html')).read())
 
+    def test_large_crops_travel_packed_and_dask_says_nothing(self):
+        import pickle
+        from yade_mss._batch import GrainTask
+        from yade_mss import voronoiBall
+        crop = np.zeros((150, 150, 150), dtype=bool)
+        crop[20:130, 30:120, 10:140] = True
+        t = GrainTask('label_1', {}, label=1, crop=crop, voxelSize=1.0, origin=[0.0, 0.0, 0.0], neighbours=~crop)
+        back = pickle.loads(pickle.dumps(t))
+        self.assertLess(len(pickle.dumps(t)), 100000)  # 3.4 MB of voxels
+        np.testing.assert_array_equal(back.crop, crop)
+        np.testing.assert_array_equal(back.neighbours, ~crop)
+        self.assertEqual(back.digest, t.digest)
+        # a real batch of large grains on a Dask cluster: no "Large object" warning, no traceback
+        L = voronoiBall(90, 6, seed=2)
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'v.npy'), L)
+            with Cluster() as cl:
+                p = subprocess.run([sys.executable, '-m', 'yade_mss', 'batch', os.path.join(d, 'v.npy'), '-o',
+                                    os.path.join(d, 'out'), '--spheres', '8', '--scheduler', cl.address],
+                                   capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertNotIn('Large object', p.stderr)
+            self.assertNotIn('Traceback', p.stderr + p.stdout)
+            self.assertEqual([r['status'] for r in rows(os.path.join(d, 'out'))], ['ok'] * 6)
+
     def test_a_worker_killed_mid_batch_loses_nothing(self):
         L = syntheticSpecimen((120, 120, 120), 30, size=(10, 18), seed=5)
         with tempfile.TemporaryDirectory() as d:
