@@ -447,17 +447,45 @@ py::dict generateVoxels(const py::object& data, const py::object& shape, double 
     return result(mss::generate(voxels(data, shape, voxelSize, origin), g));
 }
 
-/// Every contact of a labelled volume: int64 labels, x fastest (Fortran order), as {a, b, faces, point,
-/// normal (from a into b)} dicts.
-py::list findContacts(const py::object& data, const py::object& shape, double voxelSize,
-                      const py::object& origin) {
-    mss::LabelGrid g;
-    const char* buf = nullptr;
-    g.spec = gridOf(data, shape, voxelSize, origin, 8, "findContacts", &buf);
-    g.labels.resize(g.spec.size());
-    std::memcpy(g.labels.data(), buf, g.labels.size() * 8);
+/// Every contact of a labelled volume of @p shape, read in slabs of @p layers along x: @p read(x0, x1) gives
+/// the int64 labels of layers x0 .. x1 - 1, x fastest (Fortran order). As {a, b, faces, point, normal (from a
+/// into b)} dicts. Two passes over the slabs: the peak is one slab, not the volume.
+py::list findContacts(const py::object& read, const py::object& shape, double voxelSize,
+                      const py::object& origin, int layers) {
+    if (layers < 1) throw std::invalid_argument("findContacts: layers must be >= 1");
+    if (py::len(shape) != 3) throw std::invalid_argument("findContacts: the array must be 3-D");
+    mss::GridSpec whole;
+    whole.h = voxelSize;
+    whole.origin = vec3(origin, "findContacts: origin");
+    std::array<long long, 3> dims{};
+    for (int a = 0; a < 3; ++a) dims[std::size_t(a)] = py::extract<long long>(shape[a]);
+    mss::checkGridSize("findContacts", dims, 1, std::size_t(1) << 40);
+    for (int a = 0; a < 3; ++a) whole.dims[std::size_t(a)] = int(dims[std::size_t(a)]);
+    if (!(voxelSize > 0.0) || !std::isfinite(voxelSize) || !whole.origin.allFinite())
+        throw std::invalid_argument("findContacts: voxel size must be > 0 and the origin finite");
+    mss::ContactFinder finder(whole);
+    for (int pass = 0; pass < 2; ++pass)
+        for (int x0 = 0; x0 < whole.dims[0]; x0 += layers) {
+            const int own = std::min(layers, whole.dims[0] - x0);
+            const int n = std::min(own + 1, whole.dims[0] - x0); // one layer of the next slab
+            mss::LabelGrid slab;
+            slab.spec = whole;
+            slab.spec.dims[0] = n;
+            const py::object data = read(x0, x0 + n);
+            char* buf = nullptr;
+            Py_ssize_t len = 0;
+            if (!PyBytes_Check(data.ptr()) || PyBytes_AsStringAndSize(data.ptr(), &buf, &len) != 0 ||
+                std::size_t(len) != slab.spec.size() * 8)
+                throw std::invalid_argument("findContacts: a slab must be the bytes of its int64 labels");
+            slab.labels.resize(slab.spec.size());
+            std::memcpy(slab.labels.data(), buf, std::size_t(len));
+            if (pass == 0)
+                finder.count(slab, x0, own);
+            else
+                finder.locate(slab, x0, own);
+        }
     py::list out;
-    for (const mss::LabelContact& c : mss::findContacts(g)) {
+    for (const mss::LabelContact& c : finder.contacts()) {
         py::dict d;
         d["a"] = c.a;
         d["b"] = c.b;
@@ -690,7 +718,7 @@ BOOST_PYTHON_MODULE(_mss) {
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options"),
              py::arg("contacts") = py::list(), py::arg("neighbours") = py::object()));
     py::def("findContacts", findContacts,
-            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin")));
+            (py::arg("read"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("layers")));
     py::def("massMesh", massMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("planes") = py::list()));
     py::def("massVoxels", massVoxels,

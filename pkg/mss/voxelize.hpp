@@ -70,8 +70,26 @@ struct LabelContact {
     Vec3 normal = Vec3::UnitZ();
 };
 
-/// Every pair of labels in contact (sharing a voxel face), ordered by (a, b); one pass over the volume.
+/// Every pair of labels in contact (sharing a voxel face), ordered by (a, b).
 std::vector<LabelContact> findContacts(const LabelGrid& volume);
+
+/// findContacts for a volume that does not fit in memory, read in slabs along x: count() every slab, then
+/// locate() the same slabs, then contacts(). A slab holds layers x0 .. x0 + n - 1 of the volume; all but the
+/// last slab end with one layer more than they own (@p own = n - 1), the first layer of the next. The answer
+/// is findContacts' on the whole volume.
+class ContactFinder {
+public:
+    /// @p volume: the whole volume's grid (its dims, voxel edge and origin)
+    explicit ContactFinder(const GridSpec& volume);
+    void count(const LabelGrid& slab, long long x0, int own);
+    void locate(const LabelGrid& slab, long long x0, int own);
+    std::vector<LabelContact> contacts() const;
+
+private:
+    struct Pairs;
+    GridSpec volume_;
+    std::shared_ptr<Pairs> pairs_;
+};
 
 /// The contact points of @p label among @p contacts, each with the normal into it.
 std::vector<ContactPoint> contactPointsOf(const std::vector<LabelContact>& contacts, std::int64_t label);

@@ -92,22 +92,31 @@ def regions(labels, only=None):
     return out
 
 
+SLAB_VOXELS = 1 << 23  # findContacts reads the volume in slabs of about this many voxels (64 MB as int64)
+
+
 def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0)):
     """Every pair of labels whose voxels share faces (the scan's contacts), found once for the whole volume: a
     list of dicts ``a``, ``b`` (a < b), ``faces`` (how many they share), ``point`` (the shared face nearest the
-    centroid of them all, world units) and ``normal`` (from a into b).
+    centroid of them all, world units) and ``normal`` (from a into b). The volume is read in slabs (a
+    memory-mapped .npy stays on disk but for one slab).
 
     :param labels: a 3-D array of integers >= 0 (0 is background), or of booleans
     :param float voxelSize: the voxel edge, world units
     :param origin: the world position of the centre of voxel (0, 0, 0)
     """
-    a = np.asarray(labels)
+    a = labels if isinstance(labels, np.ndarray) else np.asarray(labels)
     if a.ndim != 3 or not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
         raise ValueError('findContacts: labels must be a 3-D array of integers, got %s of %s' % (a.shape, a.dtype))
-    if a.dtype == np.uint64 and a.size and a.max() > np.iinfo(np.int64).max:
-        raise ValueError('findContacts: a label over 2^63 - 1')
-    data = np.asfortranarray(a, dtype=np.int64).tobytes(order='F')
-    return _mss.findContacts(data, tuple(int(n) for n in a.shape), float(voxelSize), [float(x) for x in origin])
+    layers = max(1, SLAB_VOXELS // max(1, a.shape[1] * a.shape[2]))
+
+    def read(x0, x1):
+        s = np.asarray(a[x0:x1])
+        if s.dtype == np.uint64 and s.size and s.max() > np.iinfo(np.int64).max:
+            raise ValueError('findContacts: a label over 2^63 - 1')
+        return np.asfortranarray(s, dtype=np.int64).tobytes(order='F')
+    return _mss.findContacts(read, tuple(int(n) for n in a.shape), float(voxelSize), [float(x) for x in origin],
+                             layers)
 
 
 def contactPoints(contacts, label):

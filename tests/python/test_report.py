@@ -229,6 +229,40 @@ class Contacts(unittest.TestCase):
             np.testing.assert_array_equal(r.radii, self.on.results['label_5'].radii)
 
 
+class ContactsInSlabs(unittest.TestCase):
+    def test_slabs_give_the_whole_volumes_contacts(self):
+        import yade_mss._specimen as spec
+        L = voronoiBall(30, 9, seed=2)
+        whole = findContacts(L, 0.5, (1.0, 2.0, 3.0))
+        saved = spec.SLAB_VOXELS
+        try:
+            for voxels in (1, 61 * 61 * 2, 7 * 61 * 61):  # one layer a slab, two, seven
+                spec.SLAB_VOXELS = voxels
+                self.assertEqual(findContacts(L, 0.5, (1.0, 2.0, 3.0)), whole, voxels)
+        finally:
+            spec.SLAB_VOXELS = saved
+
+    def test_a_memory_mapped_volume_is_read_a_slab_at_a_time(self):
+        import tracemalloc
+        import yade_mss._specimen as spec
+        L = voronoiBall(60, 20, seed=4)  # 125^3 voxels: 7.8 MB of int32, 15.6 MB as int64
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'v.npy'), L)
+            mapped = np.load(os.path.join(d, 'v.npy'), mmap_mode='r')
+            saved = spec.SLAB_VOXELS
+            spec.SLAB_VOXELS = 1 << 16  # slabs of 0.5 MB as int64
+            try:
+                tracemalloc.start()
+                got = findContacts(mapped)
+                peak = tracemalloc.get_traced_memory()[1]
+                tracemalloc.stop()
+            finally:
+                spec.SLAB_VOXELS = saved
+            del mapped
+        self.assertEqual(got, findContacts(L))
+        self.assertLess(peak, 3 << 20)  # a few slabs, not the volume's 15.6 MB
+
+
 class SameGrainSameClump(unittest.TestCase):
     def test_a_label_alone_and_inside_a_batch_byte_for_byte(self):
         L = syntheticSpecimen((70, 70, 70), grains=10, seed=4)

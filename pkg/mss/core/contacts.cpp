@@ -2,81 +2,107 @@
 
 #include <map>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace mss {
 
 namespace {
 
-/// The running sums of one pair's shared faces (first pass), then its face nearest their centroid (second).
-struct PairFaces {
-    std::size_t faces = 0;
-    Vec3 sum = Vec3::Zero();
-    Vec3 centroid = Vec3::Zero();
-    double best = std::numeric_limits<double>::infinity();
-    Vec3 point = Vec3::Zero();
-    Vec3 normal = Vec3::UnitZ();
-};
+/// A shared face in half-voxel units of the whole volume: its centre is origin + h (x, y, z) / 2. Integers,
+/// so that sums and comparisons are exact and the same however the volume is cut into slabs.
+using Face = std::array<std::int64_t, 3>;
 
-/// Calls @p f(a, b, centre, normal from a to b) for every face two different non-zero labels share, in one
-/// fixed order (the grid's, then the axis), so that both passes see the same faces.
-template <class F> void eachSharedFace(const LabelGrid& v, F&& f) {
-    const GridSpec& g = v.spec;
+/// Calls @p f(a, b, face, axis, sign of the normal from a to b) for every face two different non-zero labels
+/// share in @p slab, whose layer x = 0 is the volume's layer @p x0. Faces across x are taken between all its
+/// layers; faces across y and z in its first @p own layers only (the last layer of a slab that overlaps the
+/// next by one is the next one's).
+template <class F> void eachSharedFace(const LabelGrid& slab, long long x0, int own, F&& f) {
+    const GridSpec& g = slab.spec;
     const std::size_t stride[3] = {1, std::size_t(g.dims[0]),
                                    std::size_t(g.dims[0]) * std::size_t(g.dims[1])};
     for (int k = 0; k < g.dims[2]; ++k)
         for (int j = 0; j < g.dims[1]; ++j)
             for (int i = 0; i < g.dims[0]; ++i) {
                 const std::size_t q = g.index(i, j, k);
-                const std::int64_t here = v.labels[q];
+                const std::int64_t here = slab.labels[q];
                 if (here == 0) continue;
                 const int at[3] = {i, j, k};
                 for (int d = 0; d < 3; ++d) {
-                    if (at[d] + 1 >= g.dims[d]) continue;
-                    const std::int64_t there = v.labels[q + stride[d]];
+                    if (at[d] + 1 >= g.dims[d] || (d > 0 && i >= own)) continue;
+                    const std::int64_t there = slab.labels[q + stride[d]];
                     if (there == 0 || there == here) continue;
-                    Vec3 e = Vec3::Zero();
-                    e[d] = 1.0;
-                    const Vec3 centre = g.voxelCenter(i, j, k) + 0.5 * g.h * e;
+                    Face c{2 * (x0 + i), 2 * std::int64_t(j), 2 * std::int64_t(k)};
+                    c[std::size_t(d)] += 1;
                     if (here < there)
-                        f(here, there, centre, e);
+                        f(here, there, c, d, 1);
                     else
-                        f(there, here, centre, Vec3(-e));
+                        f(there, here, c, d, -1);
                 }
             }
 }
 
 } // namespace
 
-std::vector<LabelContact> findContacts(const LabelGrid& volume) {
-    if (volume.labels.size() != volume.spec.size())
+struct ContactFinder::Pairs {
+    struct Pair {
+        std::size_t faces = 0;
+        Face sum{0, 0, 0};
+        double best = std::numeric_limits<double>::infinity();
+        Face at{0, 0, 0};
+        int axis = 0, sign = 1;
+    };
+    std::map<std::pair<std::int64_t, std::int64_t>, Pair> pairs;
+};
+
+ContactFinder::ContactFinder(const GridSpec& volume) : volume_(volume), pairs_(std::make_shared<Pairs>()) {}
+
+void ContactFinder::count(const LabelGrid& slab, long long x0, int own) {
+    if (slab.labels.size() != slab.spec.size())
         throw std::invalid_argument("findContacts: the labels do not fill the grid");
-    std::map<std::pair<std::int64_t, std::int64_t>, PairFaces> pairs;
-    eachSharedFace(volume, [&](std::int64_t a, std::int64_t b, const Vec3& c, const Vec3&) {
-        PairFaces& p = pairs[{a, b}];
+    eachSharedFace(slab, x0, own, [&](std::int64_t a, std::int64_t b, const Face& c, int, int) {
+        Pairs::Pair& p = pairs_->pairs[{a, b}];
         ++p.faces;
-        p.sum += c;
+        for (int d = 0; d < 3; ++d) p.sum[std::size_t(d)] += c[std::size_t(d)];
     });
-    for (auto& [key, p] : pairs) p.centroid = p.sum / double(p.faces);
-    // the face nearest the centroid: on a flat facet its middle, where both grains have the most room for a
-    // ball touching it; the first in the scan order on a tie, so that the choice is the volume's alone
-    eachSharedFace(volume, [&](std::int64_t a, std::int64_t b, const Vec3& c, const Vec3& n) {
-        PairFaces& p = pairs[{a, b}];
-        const double d = (c - p.centroid).squaredNorm();
-        if (d < p.best) p.best = d, p.point = c, p.normal = n;
+}
+
+void ContactFinder::locate(const LabelGrid& slab, long long x0, int own) {
+    // the face nearest the centroid of the pair's faces: on a flat facet its middle, where both grains have
+    // the most room for a ball through it; on a tie the least (x, y, z), so that the choice is the volume's
+    // alone, whatever the slabs
+    eachSharedFace(slab, x0, own, [&](std::int64_t a, std::int64_t b, const Face& c, int axis, int sign) {
+        Pairs::Pair& p = pairs_->pairs[{a, b}];
+        double d = 0;
+        for (int e = 0; e < 3; ++e) {
+            const double x = double(c[std::size_t(e)]) - double(p.sum[std::size_t(e)]) / double(p.faces);
+            d += x * x;
+        }
+        if (d < p.best || (d == p.best && c < p.at)) p.best = d, p.at = c, p.axis = axis, p.sign = sign;
     });
+}
+
+std::vector<LabelContact> ContactFinder::contacts() const {
     std::vector<LabelContact> out;
-    out.reserve(pairs.size());
-    for (const auto& [key, p] : pairs) {
+    out.reserve(pairs_->pairs.size());
+    for (const auto& [key, p] : pairs_->pairs) {
         LabelContact c;
         c.a = key.first;
         c.b = key.second;
         c.faces = p.faces;
-        c.point = p.point;
-        c.normal = p.normal;
+        c.point = volume_.origin + 0.5 * volume_.h * Vec3(double(p.at[0]), double(p.at[1]), double(p.at[2]));
+        c.normal = Vec3::Zero();
+        c.normal[p.axis] = p.sign;
         out.push_back(c);
     }
     return out;
+}
+
+std::vector<LabelContact> findContacts(const LabelGrid& volume) {
+    ContactFinder f(volume.spec);
+    f.count(volume, 0, volume.spec.dims[0]);
+    f.locate(volume, 0, volume.spec.dims[0]);
+    return f.contacts();
 }
 
 std::vector<ContactPoint> contactPointsOf(const std::vector<LabelContact>& contacts, std::int64_t label) {
