@@ -42,19 +42,29 @@ class GrainTask(object):
                  touchesBorder=False, contacts=None, neighbours=None):
         self.key, self.options, self.label, self.path = key, options, label, path
         self.contacts = contacts  # the points its spheres must reach (its neighbours in the volume), or None
-        self.neighbours = neighbours  # the other grains on the crop's grid (booleans), or None
-        self.crop, self.voxelSize, self.origin = crop, voxelSize, origin
+        # crop and neighbours: arrays, or functions that cut them from a (memory-mapped) volume when asked, so
+        # that a batch holds the voxels of the grains in flight only
+        self._crop, self._neighbours = crop, neighbours
+        self.voxelSize, self.origin = voxelSize, origin
         self.voxels, self.touchesBorder = voxels, touchesBorder
-        self.digest = (_cropDigest(crop, voxelSize, origin, contacts, neighbours) if crop is not None
+        self.digest = (_cropDigest(self.crop, voxelSize, origin, contacts, self.neighbours) if crop is not None
                        else _fileDigest(path))
+
+    @property
+    def crop(self):
+        return self._crop() if callable(self._crop) else self._crop
+
+    @property
+    def neighbours(self):
+        return self._neighbours() if callable(self._neighbours) else self._neighbours
 
     # A task travels (to a worker process, a Dask worker) with its voxels deflated, a boolean crop packed to a
     # bit a voxel first: Dask warned of every task over a megabyte ("Large object ... detected in task graph");
     # a grain's crop packs to about a hundredth. Other arrays (a grain's own volume file) keep their values.
     def __getstate__(self):
         state = dict(self.__dict__)
-        for name in ('crop', 'neighbours'):
-            a = state[name]
+        for name in ('_crop', '_neighbours'):
+            a = getattr(self, name[1:])
             if a is None:
                 continue
             a = np.ascontiguousarray(a)
@@ -63,7 +73,7 @@ class GrainTask(object):
         return state
 
     def __setstate__(self, state):
-        for name in ('crop', 'neighbours'):
+        for name in ('_crop', '_neighbours'):
             if state.get(name) is not None:
                 shape, dtype, packed = state[name]
                 raw = np.frombuffer(zlib.decompress(packed), dtype=np.uint8)
@@ -122,8 +132,9 @@ def runGrain(task):
     t0 = time.perf_counter()
     try:
         opts = dict(task.options, threads=1)
-        if task.crop is not None:
-            r = _generate(task.crop, dict(opts, voxelSize=task.voxelSize, origin=task.origin), task.contacts or [],
+        crop = task.crop
+        if crop is not None:
+            r = _generate(crop, dict(opts, voxelSize=task.voxelSize, origin=task.origin), task.contacts or [],
                           task.neighbours)
         else:
             r = _generate(task.path, opts)
@@ -255,8 +266,9 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
             elif excludeBorder and reg.touchesBorder:
                 skipped[k] = dict(base, status='skipped', message='cut by the volume\'s border (--exclude-border)')
             else:
-                crop, start = reg.crop(vol)
-                near = reg.neighbours(vol) if found is not None else None
+                start = np.array([s.start for s in reg.box]) - 2  # the crop's voxel (0, 0, 0), as reg.crop says
+                crop = (lambda reg=reg: reg.crop(vol)[0])
+                near = (lambda reg=reg: reg.neighbours(vol)) if found is not None else None
                 tasks.append(GrainTask(k, options, label=reg.label, path=files[0] if array is None else None,
                                        crop=crop, voxelSize=h, contacts=None if found is None else
                                        contactPoints(found, reg.label), neighbours=near,

@@ -263,6 +263,38 @@ class ContactsInSlabs(unittest.TestCase):
         self.assertLess(peak, 3 << 20)  # a few slabs, not the volume's 15.6 MB
 
 
+class BatchMemory(unittest.TestCase):
+    def test_a_batch_holds_the_grains_in_flight_not_the_volume(self):
+        import tracemalloc
+        import yade_mss._specimen as spec
+        from yade_mss._batch import makeTasks
+        L = voronoiBall(80, 60, seed=5)  # 165^3 int32: 17 MB
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'v.npy')
+            np.save(path, L)
+            saved = spec.SLAB_VOXELS
+            spec.SLAB_VOXELS = 1 << 16
+            try:
+                tracemalloc.start()
+                tasks, skipped, key, found = makeTasks([path], {'nSpheres': 8})  # memory-mapped, in slabs
+                peak = tracemalloc.get_traced_memory()[1]
+                tracemalloc.stop()
+                self.assertEqual(len(tasks), 60)
+                self.assertLess(peak, L.nbytes / 4)  # the tasks cut their crops when they run
+                np.testing.assert_array_equal(tasks[7].crop, np.pad(L[regionsBox(L, tasks[7].label)] ==
+                                                                    tasks[7].label, 2))
+                b = batch([path], None, workers=2, nSpheres=8, progress=False)
+            finally:
+                spec.SLAB_VOXELS = saved
+            self.assertEqual(len(b.results), 60)
+            self.assertEqual(b.contacts['kept'], b.contacts['pairs'])
+
+
+def regionsBox(L, label):
+    idx = np.argwhere(L == label)
+    return tuple(slice(a, b + 1) for a, b in zip(idx.min(0), idx.max(0)))
+
+
 class SameGrainSameClump(unittest.TestCase):
     def test_a_label_alone_and_inside_a_batch_byte_for_byte(self):
         L = syntheticSpecimen((70, 70, 70), grains=10, seed=4)
