@@ -60,9 +60,9 @@ struct ContactPoint {
     Vec3 inward = Vec3::UnitZ();
 };
 
-/// Two labels whose voxels share faces: how many, and the one shared face nearest the centroid of them all
-/// (its centre, on both grains' surfaces, and its normal from @p a into @p b). The same for both grains, so
-/// that each can reach the same point.
+/// Two labels whose voxels share faces: how many, the one shared face nearest the centroid of them all (its
+/// centre, on both grains' surfaces) and the mean normal of their faces from @p a into @p b. The same for
+/// both grains, so that each can reach the same point.
 struct LabelContact {
     std::int64_t a = 0, b = 0; ///< a < b
     std::size_t faces = 0;

@@ -204,6 +204,18 @@ class Contacts(unittest.TestCase):
             self.assertLessEqual(self.on.rows[k]['dice'], 1.10 * self.off.rows[k]['dice'], k)
         self.assertGreater(added, 0)
 
+    def test_the_radius_bound_holds_for_contact_balls_and_what_it_costs_is_reported(self):
+        b = batch(self.L, None, workers=2, dice=0.03, nSpheres=40, progress=False, rMinVoxels=3.0)
+        for k, r in b.results.items():
+            self.assertGreaterEqual(r.radii.min(), 3.0 * (1 - 1e-12), k)  # no contact ball under the bound
+        lost = [k for k, row in b.rows.items() if row['contacts_kept'] < row['contacts_ct']]
+        self.assertEqual(b.contacts['kept'] < b.contacts['pairs'], bool(lost))
+        for k in lost:
+            self.assertIn('contacts in the scan lost', b.rows[k]['problems'])
+        # without the bound every contact is held, by smaller balls where only those fit
+        self.assertLessEqual(min(r.radii.min() for r in self.on.results.values()),
+                             min(r.radii.min() for r in b.results.values()))
+
     def test_half_the_bound_into_neighbours_keeps_overlaps_under_it(self):
         half = batch(self.L, None, workers=2, dice=0.03, nSpheres=40, progress=False, neighbourProtrusion=0.5)
         self.assertEqual(half.contacts['kept'], half.contacts['pairs'])

@@ -49,37 +49,67 @@ std::function<double(const Vec3&)> withNeighbours(std::function<double(const Vec
     };
 }
 
-void reachContacts(SphereSet& spheres, const GenerateOptions& opt,
-                   const std::function<double(const Vec3&)>& clearance, double H, double h, double inscribed,
+void reachContacts(SphereSet& spheres, const GenerateOptions& opt, const VoxelGrid& S, const ScalarGrid& E,
+                   const std::function<double(const Vec3&)>& clearance, double H,
                    const std::shared_ptr<NeighbourClearance>& neighbours, Metrics& m) {
-    // reached: the point lies a twentieth of a voxel inside a sphere, so that the two grains' spheres overlap
+    // held: the point lies a twentieth of a voxel inside a sphere, so that the two grains' spheres overlap
     // there (a DEM code's contact detection sees them, not a gap of a rounding error)
-    const double reach = 0.05 * h, least = std::max(opt.rMin, 0.5 * h);
-    const double bump = std::min({0.5 * h, H, opt.neighbourProtrusion * H});
+    const double h = S.spec.h, reach = 0.05 * h;
+    // a contact ball is bound by rMin like every sphere: where only a smaller one holds the point (the
+    // staircase of an oblique facet near a triple line), rMin decides between the contact and the time step
+    const double least = std::max(opt.rMin, 0.5 * h);
+    const double bump = std::min(H, opt.neighbourProtrusion * H);
+    const double inscribed = h * *std::max_element(E.data.begin(), E.data.end());
+    const auto limitAt = [&](const Vec3& c) {
+        double limit = clearance(c);
+        if (limit < 0) return -1.0; // a centre outside the grain
+        limit += bump;
+        if (neighbours) limit = std::min(limit, (*neighbours)(c) + bump);
+        for (const Plane& p : opt.planes) limit = std::min(limit, planeDistance(p, c));
+        return limit;
+    };
     m.contacts = opt.contacts.size();
     for (const ContactPoint& cp : opt.contacts) {
         double gap = std::numeric_limits<double>::infinity();
         for (std::size_t i = 0; i < spheres.size(); ++i)
             gap = std::min(gap, (cp.point - spheres.centers[i]).norm() - spheres.radii[i]);
         if (gap <= -reach) continue;
+        // candidate centres: the solid voxel centres within the largest useful radius, on the grain's side of
+        // the point, that the distance transform does not rule out (the clearance of a voxel centre is at
+        // most E - 1/2 voxels); the farthest that the exact bound allows wins: the largest ball through the
+        // point
         const Vec3 n = cp.inward.normalized();
-        double best = 0.0;
-        for (int s = 1; s * h / 8 <= inscribed + h; ++s) {
-            const double t = s * h / 8;
-            const Vec3 c = cp.point + t * n;
-            double limit = clearance(c);
-            if (limit < 0) continue; // a centre outside the grain
-            limit += bump;
-            if (neighbours) limit = std::min(limit, (*neighbours)(c) + bump);
-            for (const Plane& p : opt.planes) limit = std::min(limit, planeDistance(p, c));
-            if (t + reach <= limit) best = t;
+        const double R = inscribed + h;
+        const Vec3 lo = S.spec.toVoxel(cp.point - Vec3::Constant(R)),
+                   hi = S.spec.toVoxel(cp.point + Vec3::Constant(R));
+        std::vector<std::pair<double, Vec3>> candidates;
+        for (int k = std::max(0, int(std::floor(lo.z())));
+             k <= std::min(S.spec.dims[2] - 1, int(std::ceil(hi.z()))); ++k)
+            for (int j = std::max(0, int(std::floor(lo.y())));
+                 j <= std::min(S.spec.dims[1] - 1, int(std::ceil(hi.y()))); ++j)
+                for (int i = std::max(0, int(std::floor(lo.x())));
+                     i <= std::min(S.spec.dims[0] - 1, int(std::ceil(hi.x()))); ++i) {
+                    if (!S(i, j, k)) continue;
+                    const Vec3 c = S.spec.voxelCenter(i, j, k);
+                    const double d = (c - cp.point).norm();
+                    if (d > R || n.dot(c - cp.point) <= 0) continue;
+                    if (d + reach > (E(i, j, k) - 0.5) * h + bump) continue;
+                    candidates.push_back({d, c});
+                }
+        for (int s = 1; s * h / 8 <= R; ++s) // and along the patch's normal, between the voxel centres
+            candidates.push_back({s * h / 8, Vec3(cp.point + (s * h / 8) * n)});
+        std::stable_sort(candidates.begin(), candidates.end(),
+                         [](const auto& a, const auto& b) { return a.first > b.first; });
+        bool added = false;
+        for (const auto& [d, c] : candidates) {
+            if (d + reach < least) break;
+            if (d + reach <= limitAt(c)) {
+                spheres.add(c, d + reach);
+                added = true;
+                break;
+            }
         }
-        if (best + reach >= least) {
-            spheres.add(cp.point + best * n, best + reach);
-            ++m.contactsAdded;
-        } else {
-            ++m.contactsMissed;
-        }
+        ++(added ? m.contactsAdded : m.contactsMissed);
     }
 }
 

@@ -34,12 +34,13 @@ std::function<double(const Vec3&)> withNeighbours(std::function<double(const Vec
 
 /// GenerateOptions::contacts: each point where a neighbour touches the grain lies inside the spheres by a
 /// twentieth of a voxel, so that two grains that touch in the volume overlap there in the assembly. Where no
-/// sphere holds it, the largest ball through it from inside along its normal is added: centre p + t n, radius
-/// t + h / 20, t the largest (in steps of h / 8) under the clearance plus half a voxel (at most the
-/// neighbours' share of the protrusion bound) and the planes, so that it makes no bump elsewhere; at least
-/// rMin and half a voxel, or the point is counted missed. @p clearance: the grain's (world units, signed).
-void reachContacts(SphereSet& spheres, const GenerateOptions& opt,
-                   const std::function<double(const Vec3&)>& clearance, double H, double h, double inscribed,
+/// sphere holds it, the largest ball through it from the grain's side is added: its centre a solid voxel's
+/// (or a point on the patch's mean normal), its radius the distance to the point plus h / 20, under the
+/// clearance plus the protrusion bound (the neighbours' share of it) and the planes, so that it makes no bump
+/// beyond the bound; at least rMin and half a voxel, or the point is counted missed. @p S, @p E: the grain's
+/// voxels and distance transform; @p clearance: its clearance (world units, signed).
+void reachContacts(SphereSet& spheres, const GenerateOptions& opt, const VoxelGrid& S, const ScalarGrid& E,
+                   const std::function<double(const Vec3&)>& clearance, double H,
                    const std::shared_ptr<NeighbourClearance>& neighbours, Metrics& m);
 
 } // namespace mss

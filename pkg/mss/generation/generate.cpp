@@ -418,7 +418,7 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& given, Metr
     }
     if (r.spheres.size() == 0) noSphereLeft(E, opt);
     const double inscribed = h * *std::max_element(E.data.begin(), E.data.end());
-    if (!opt.contacts.empty()) reachContacts(r.spheres, opt, clearance, H, h, inscribed, near, m);
+    if (!opt.contacts.empty()) reachContacts(r.spheres, opt, S, E, clearance, H, near, m);
     m.protrusion = largestProtrusion(r.spheres, clearanceAtCentres);
     m.smallestRadius = *std::min_element(r.spheres.radii.begin(), r.spheres.radii.end());
     m.inscribedRadius = inscribed;
