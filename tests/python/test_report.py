@@ -236,6 +236,14 @@ class Contacts(unittest.TestCase):
                                    capture_output=True)
                     with open(alone, 'rb') as f, open(os.path.join(out, 'grains', 'label_%d.csv' % label), 'rb') as g:
                         self.assertEqual(f.read(), g.read(), (share, label))
+            # the command line reads every label of any integer type and order: the same contacts, the same bytes
+            other = os.path.join(d, 'f.npy')
+            np.save(other, np.asfortranarray(self.L.astype(np.uint16)))
+            alone = os.path.join(d, 'alone.csv')
+            subprocess.run([BINARY, 'generate', other, '--label', '9', '--dice', '0.03', '--spheres', '40', '-o',
+                            alone], check=True, capture_output=True)
+            with open(alone, 'rb') as f, open(os.path.join(d, 'out1', 'grains', 'label_9.csv'), 'rb') as g:
+                self.assertEqual(f.read(), g.read())
             r = generate(vol, label=5, dice=0.03, nSpheres=40)  # Python alone, from the file
             np.testing.assert_array_equal(r.centers, self.on.results['label_5'].centers)
             np.testing.assert_array_equal(r.radii, self.on.results['label_5'].radii)

@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 namespace mss {
 
@@ -230,6 +231,35 @@ void toGridOrder(const std::vector<T>& in, const std::vector<long long>& shape, 
                         out[a + n0 * (b + n1 * c)] = in[c + n2 * (b + n1 * a)];
 }
 
+/// Calls @p f with a value of the C++ type of a .npy element: kind 'b', 'i' or 'u', @p width bytes.
+template <class F> void byType(char kind, int width, F&& f) {
+    switch (width) {
+    case 1:
+        if (kind == 'i')
+            f(std::int8_t{});
+        else
+            f(std::uint8_t{});
+        break;
+    case 2:
+        if (kind == 'u')
+            f(std::uint16_t{});
+        else
+            f(std::int16_t{});
+        break;
+    case 4:
+        if (kind == 'u')
+            f(std::uint32_t{});
+        else
+            f(std::int32_t{});
+        break;
+    default:
+        if (kind == 'u')
+            f(std::uint64_t{});
+        else
+            f(std::int64_t{});
+    }
+}
+
 /// The labels of @p n values of type T as 64-bit integers.
 template <class T> void typedLabels(const char* raw, std::size_t n, std::vector<std::int64_t>& out) {
     for (std::size_t q = 0; q < n; ++q) {
@@ -256,28 +286,9 @@ VoxelGrid readNpy(const std::string& path, double voxelSize, const Vec3& origin,
     // the flags in the file's order (one typed pass), then into the grid's (x fastest)
     std::vector<std::uint8_t> on(count);
     std::set<long long> labels; // without a label, several labels would merge grains: refused below
-    switch (width) {
-    case 1:
-        if (kind == 'i')
-            typedFlags<std::int8_t>(raw.data(), count, label, on, &labels);
-        else
-            typedFlags<std::uint8_t>(raw.data(), count, label, on, kind == 'b' ? nullptr : &labels);
-        break;
-    case 2:
-        if (kind == 'u')
-            typedFlags<std::uint16_t>(raw.data(), count, label, on, &labels);
-        else
-            typedFlags<std::int16_t>(raw.data(), count, label, on, &labels);
-        break;
-    case 4:
-        if (kind == 'u')
-            typedFlags<std::uint32_t>(raw.data(), count, label, on, &labels);
-        else
-            typedFlags<std::int32_t>(raw.data(), count, label, on, &labels);
-        break;
-    default:
-        typedFlags<std::int64_t>(raw.data(), count, label, on, &labels);
-    }
+    byType(kind, width, [&](auto zero) {
+        typedFlags<decltype(zero)>(raw.data(), count, label, on, kind == 'b' ? nullptr : &labels);
+    });
     std::size_t solid = 0;
     for (std::uint8_t v : on) solid += v;
     toGridOrder(on, shape, d.header.fortran, out.data.data());
@@ -305,37 +316,17 @@ LabelGrid readNpyLabels(const std::string& path, double voxelSize, const Vec3& o
     const NpyData d = readNpyData(path, voxelSize, origin);
     const char kind = d.header.kind;
     std::vector<std::int64_t> flat(d.count);
-    switch (d.header.width) {
-    case 1:
-        if (kind == 'i')
-            typedLabels<std::int8_t>(d.raw.data(), d.count, flat);
-        else
-            typedLabels<std::uint8_t>(d.raw.data(), d.count, flat);
-        break;
-    case 2:
-        if (kind == 'u')
-            typedLabels<std::uint16_t>(d.raw.data(), d.count, flat);
-        else
-            typedLabels<std::int16_t>(d.raw.data(), d.count, flat);
-        break;
-    case 4:
-        if (kind == 'u')
-            typedLabels<std::uint32_t>(d.raw.data(), d.count, flat);
-        else
-            typedLabels<std::int32_t>(d.raw.data(), d.count, flat);
-        break;
-    default:
-        if (kind == 'u') // a uint64 label over 2^63 would turn negative: refused, not misread
+    byType(kind, d.header.width, [&](auto zero) {
+        using T = decltype(zero);
+        if constexpr (std::is_same_v<T, std::uint64_t>) // a label over 2^63 would turn negative: refused
             for (std::size_t q = 0; q < d.count; ++q) {
                 std::uint64_t v;
                 std::memcpy(&v, d.raw.data() + q * 8, 8);
                 if (v > std::uint64_t(std::numeric_limits<std::int64_t>::max()))
                     fail(path, "a label over 2^63 - 1");
-                flat[q] = std::int64_t(v);
             }
-        else
-            typedLabels<std::int64_t>(d.raw.data(), d.count, flat);
-    }
+        typedLabels<T>(d.raw.data(), d.count, flat);
+    });
     LabelGrid out;
     out.spec.dims = {int(d.header.shape[0]), int(d.header.shape[1]), int(d.header.shape[2])};
     out.spec.h = voxelSize;
