@@ -23,8 +23,8 @@ from ._files import atomicWrite
 from ._generate import compareMany, generate
 from ._sources import _Mesh, _source
 
-_COLUMNS = ['n_asked', 'rmin_fraction_asked', 'rmin_asked', 'n', 'r_min', 'r_min_voxels', 'D', 'T', 'O', 'pareto', 'seconds',
-            'message']
+_COLUMNS = ['n_asked', 'rmin_fraction_asked', 'rmin_asked', 'n', 'r_min', 'r_min_voxels', 'D', 'T', 'O', 'pareto',
+            'seconds', 'message']
 
 
 def _range(name, value, integer):

@@ -31,7 +31,8 @@ def readVolume(path):
     if a.ndim != 3:
         raise ValueError('readVolume: %s: the volume must be 3-D, got %d-D' % (path, a.ndim))
     if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
-        raise ValueError('readVolume: %s: dtype %s is not boolean or integer (a labelled volume: 0 is background)' % (path, a.dtype))
+        raise ValueError('readVolume: %s: dtype %s is not boolean or integer (a labelled volume: 0 is background)'
+                         % (path, a.dtype))
     return np.asarray(a)
 
 
