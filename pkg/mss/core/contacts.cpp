@@ -93,9 +93,10 @@ std::vector<LabelContact> ContactFinder::contacts() const {
         c.b = key.second;
         c.faces = p.faces;
         c.point = volume_.origin + 0.5 * volume_.h * Vec3(double(p.at[0]), double(p.at[1]), double(p.at[2]));
-        // the patch's mean normal: a facet oblique to the axes is a staircase of voxel faces, whose own normals
-        // (the axes) point into the steps; a ball along the mean one stays clear of them (on a Voronoi
-        // specimen the contact balls along the face's axis had radii of 0.7-0.9 voxels and set the time step)
+        // the patch's mean normal: a facet oblique to the axes is a staircase of voxel faces, whose own
+        // normals (the axes) point into the steps; a ball along the mean one stays clear of them (on a
+        // Voronoi specimen the contact balls along the face's axis had radii of 0.7-0.9 voxels and set the
+        // time step)
         c.normal = Vec3(double(p.normals[0]), double(p.normals[1]), double(p.normals[2]));
         if (c.normal.norm() > 0)
             c.normal.normalize();
