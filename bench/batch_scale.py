@@ -2,7 +2,8 @@
 grain touching its neighbours, so that the contacts are found and kept too), run as one process, --workers 2
 and a local Dask cluster (scheduler + 2 workers). Each run is a process of its own, so that its peak memory is
 its own. Prints grains per second, the batch's overhead over the sum of its grains' generation times, the
-peak memory (the batch process; its local workers), and appends a row per run to bench/results/batch_scale.csv.
+peak memory (the batch process, and of it the anonymous memory: the rest is the mapped volume's pages; its local
+workers), and appends a row per run to bench/results/batch_scale.csv.
 Run on a quiet machine: PYTHONPATH=build/py /usr/bin/python3 bench/batch_scale.py"""
 import csv
 import json
@@ -34,8 +35,22 @@ def specimen(path, cells, seed=7):
     return side
 
 
+def _anonPeak(peak):
+    """Samples this process's anonymous memory (RssAnon: the heap; a mapped volume's pages are the page cache's,
+    counted in RSS but given back under pressure) every 5 ms into peak[0], MiB."""
+    while True:
+        with open('/proc/self/status') as f:
+            for line in f:
+                if line.startswith('RssAnon:'):
+                    peak[0] = max(peak[0], int(line.split()[1]) / 1024)
+        time.sleep(0.005)
+
+
 def child(path, label, scheduler):
+    import threading
     from yade_mss import batch
+    anon = [0.0]
+    threading.Thread(target=_anonPeak, args=(anon,), daemon=True).start()
     t = time.perf_counter()
     b = batch([path], os.path.join(os.path.dirname(path), label.replace(' ', '_')), nSpheres=SPHERES,
               progress=False, workers=1 if label == 'one process' else 2, scheduler=scheduler)
@@ -43,7 +58,7 @@ def child(path, label, scheduler):
     gen = sum(float(r['seconds']) for r in b.rows.values() if r['status'] == 'ok')
     print(json.dumps({'wall': wall, 'gen': gen, 'ok': sum(1 for r in b.rows.values() if r['status'] == 'ok'),
                       'kept': b.contacts['kept'], 'pairs': b.contacts['pairs'],
-                      'self': resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024,
+                      'self': resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 'anon': anon[0],
                       'children': resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024}))
 
 
@@ -87,28 +102,28 @@ def main():
         if p.returncode != 0:
             raise SystemExit('%s failed:\n%s' % (label, p.stderr[-3000:]))
         runs.append((label, json.loads(p.stdout.strip().splitlines()[-1]), p.stderr))
-    print('%-17s %8s %10s %12s %9s %14s %16s' % ('run', 'wall s', 'grains/s', 'sum gen. s', 'overhead',
-                                                'peak MiB batch', 'peak MiB workers'))
+    print('%-17s %8s %10s %12s %9s %14s %14s %16s' % ('run', 'wall s', 'grains/s', 'sum gen. s', 'overhead',
+                                                     'peak MiB batch', 'of it anon.', 'peak MiB workers'))
     rows = []
     for label, r, err in runs:
         workers = 1 if label == 'one process' else 2
         over = 100 * (r['wall'] - r['gen'] / workers) / r['wall']
-        print('%-17s %8.1f %10.1f %12.1f %8.0f%% %14.0f %16s' % (label, r['wall'], r['ok'] / r['wall'], r['gen'], over,
-                                                               r['self'], '%.0f' % r['children'] if label ==
-                                                               'workers 2' else '-'))
+        print('%-17s %8.1f %10.1f %12.1f %8.0f%% %14.0f %14.0f %16s' % (
+            label, r['wall'], r['ok'] / r['wall'], r['gen'], over, r['self'], r['anon'],
+            '%.0f' % r['children'] if label == 'workers 2' else '-'))
         rows.append(meta() + [N, label, '%.2f' % r['wall'], '%.1f' % (r['ok'] / r['wall']), '%.0f' % over,
                               '%.0f' % r['self'], '%.0f' % r['children'] if label == 'workers 2' else '',
-                              '%d/%d' % (r['kept'], r['pairs']), int('Large object' in err or 'Traceback' in err)])
-    print('contacts kept: %s; Dask warnings or tracebacks: %s' % (rows[0][-2], 'yes' if any(r[-1] for r in rows)
+                              '%d/%d' % (r['kept'], r['pairs']), int('Large object' in err or 'Traceback' in err),
+                              '%.0f' % r['anon']])
+    print('contacts kept: %s; Dask warnings or tracebacks: %s' % (rows[0][11], 'yes' if any(r[12] for r in rows)
                                                                    else 'none'))
     out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'results', 'batch_scale.csv')
-    new = not os.path.exists(out)
-    with open(out, 'a', newline='') as f:
-        w = csv.writer(f)
-        if new:
-            w.writerow(['date', 'commit', 'machine', 'load', 'grains', 'run', 'wall_s', 'grains_per_s', 'overhead_pct',
-                        'peak_mib_batch', 'peak_mib_workers', 'contacts_kept', 'dask_noise'])
-        w.writerows(rows)
+    header = ['date', 'commit', 'machine', 'load', 'grains', 'run', 'wall_s', 'grains_per_s', 'overhead_pct',
+              'peak_mib_batch', 'peak_mib_workers', 'contacts_kept', 'dask_noise', 'peak_anon_mib_batch']
+    old = list(csv.reader(open(out))) if os.path.exists(out) else [header]
+    old = [header] + [r + [''] * (len(header) - len(r)) for r in old[1:]]  # rows from before a column was added
+    with open(out, 'w', newline='') as f:
+        csv.writer(f).writerows(old + rows)
     print('appended    %s' % out)
 
 

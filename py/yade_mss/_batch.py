@@ -24,7 +24,7 @@ from . import _options
 from ._files import atomicWrite, requireRegularFile
 from ._generate import GENERATE_OPTIONS
 from ._results import MssResult
-from ._specimen import _VOLUME_EXT, contactPoints, findContacts, readVolume, regions
+from ._specimen import _VOLUME_EXT, contactsByLabel, findContacts, readVolume, regions
 from ._sources import _MESH_EXT
 
 COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
@@ -138,6 +138,7 @@ def runGrain(task):
                           task.neighbours)
         else:
             r = _generate(task.path, opts)
+        r.grain = None  # the crop: held per grain it would grow with the volume; previews crop again
         h = r.grid['voxelSize']
         row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
                    protrusion=r.metrics.get('protrusion', ''), r_min=r.metrics['smallestRadius'],
@@ -256,8 +257,10 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
     volumes = [f for f in files if os.path.splitext(f)[1].lower() in _VOLUME_EXT]
     if array is not None or (len(files) == 1 and volumes):
         vol = readVolume(files[0]) if array is None else array
-        found = findContacts(vol, h, org) if options.get('contacts', True) else None
-        for reg in regions(vol, labels):
+        limit = options.get('memoryLimit')  # the volume is read by slabs under it: a CT larger than it is fine
+        found = findContacts(vol, h, org, limit) if options.get('contacts', True) else None
+        points = contactsByLabel(found or [])
+        for reg in regions(vol, labels, limit):
             k = 'label_%d' % reg.label
             base = dict(_blank(), label=reg.label, voxels=reg.voxels, touches_border=int(reg.touchesBorder))
             if reg.voxels < minVoxels:
@@ -271,7 +274,7 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
                 near = (lambda reg=reg: reg.neighbours(vol)) if found is not None else None
                 tasks.append(GrainTask(k, options, label=reg.label, path=files[0] if array is None else None,
                                        crop=crop, voxelSize=h, contacts=None if found is None else
-                                       contactPoints(found, reg.label), neighbours=near,
+                                       points.get(reg.label, []), neighbours=near,
                                        origin=(org + h * start).tolist(), voxels=reg.voxels,
                                        touchesBorder=reg.touchesBorder))
         return tasks, skipped, key, found

@@ -130,7 +130,8 @@ def readNpy(where, path, mmap=False):
 
 
 def readTiff(where, path):
-    """A TIFF stack as one array, its declared size checked against the memory before anything is expanded. Every
+    """A TIFF stack as one array (memory-mapped where the file stores it whole and uncompressed), its declared size
+    checked against the memory before anything is expanded. Every
     failure of the reader (tifffile raises its own TiffFileError, struct.error, KeyError, ...) is
     ValueError('WHERE: PATH: ...')."""
     import numpy as np
@@ -146,6 +147,11 @@ def readTiff(where, path):
             if need > limit:
                 raise ValueError('it declares shape %s of %s (%d bytes), more than half the memory (%d bytes)'
                                  % (tuple(s.shape), s.dtype, need, limit))
+            if s.dataoffset is not None:  # stored whole and uncompressed: mapped, so a CT stays on disk
+                dtype = np.dtype(s.dtype).newbyteorder(t.byteorder)
+                if s.dataoffset + need > os.path.getsize(path):
+                    raise ValueError('its data (%d bytes at %d) run past the end of the file' % (need, s.dataoffset))
+                return np.memmap(path, dtype=dtype, mode='r', offset=s.dataoffset, shape=tuple(s.shape))
             return t.asarray()
     except Exception as e:  # as readNpy's
         raise ValueError('%s: %s: cannot read the TIFF (%s)' % (where, path, e)) from None

@@ -62,12 +62,22 @@ class Region(object):
         return np.pad((sub != 0) & (sub != self.label), widths)  # beyond the volume: nobody
 
 
-def regions(labels, only=None):
+def slabVoxels(memoryLimit=None):
+    """How many voxels a slab of the volume holds when read a slab at a time: SLAB_VOXELS, or less where
+    *memoryLimit* (GiB, generate's option) is lower: a slab costs about 24 bytes a voxel as it is read and
+    converted, up to 48 for the sparse boxes, so a 128th of the limit keeps the batch well under it."""
+    if memoryLimit is None:
+        return SLAB_VOXELS
+    return int(max(1 << 12, min(SLAB_VOXELS, float(memoryLimit) * (1 << 30) / 128)))
+
+
+def regions(labels, only=None, memoryLimit=None):
     """The labels present (non-zero), each as a :class:`Region`, in increasing label order: one pass over the
     volume (``scipy.ndimage.find_objects``), then each label counted in its own box.
 
     :param labels: a 3-D array of integers >= 0 (0 is background), or of booleans
     :param only: these labels only, a list of integers (default: all)
+    :param memoryLimit: GiB, as generate's option: bounds the slabs where the volume is read by slabs
     :return: list of :class:`Region` (label, box, voxels, touchesBorder)
     """
     from scipy import ndimage
@@ -75,14 +85,18 @@ def regions(labels, only=None):
     if labels.ndim != 3 or not (labels.dtype == bool or np.issubdtype(labels.dtype, np.integer)):
         raise ValueError('regions: labels must be a 3-D array of integers, got %s of %s' % (labels.shape, labels.dtype))
     if labels.dtype == bool:
-        labels = labels.astype(np.uint8)
+        labels = labels.view(np.uint8)  # a view: a memory-mapped volume stays on disk
     if labels.min() < 0:
         raise ValueError('labels must be >= 0 (0 is background), found %d' % labels.min())
-    boxes = ndimage.find_objects(labels)
+    top = int(labels.max()) if labels.size else 0
     wanted = None if only is None else set(int(x) for x in only)
     out = []
-    for i, box in enumerate(boxes):
-        label = i + 1
+    if top <= max(DENSE_LABELS, labels.size // 64) and labels.dtype.isnative and labels.flags.aligned:
+        boxes = enumerate(ndimage.find_objects(labels), 1)
+    else:  # find_objects' list has an entry per label up to the largest (2^40: a MemoryError), and it copies a
+        # swapped or unaligned volume whole
+        boxes = _sparseBoxes(labels, slabVoxels(memoryLimit))
+    for label, box in boxes:
         if box is None or (wanted is not None and label not in wanted):
             continue
         out.append(Region(label, box, np.count_nonzero(labels[box] == label), labels.shape))
@@ -93,10 +107,36 @@ def regions(labels, only=None):
     return out
 
 
+DENSE_LABELS = 1 << 20  # labels up to this (or a 64th of the voxels) are boxed by find_objects
+
+
+def _sparseBoxes(labels, voxels):
+    """(label, box) of every label present, in increasing order, by slabs of the volume: memory follows the
+    labels present and one slab, not the largest label."""
+    lo, hi = {}, {}
+    layers = max(1, voxels // max(1, labels.shape[1] * labels.shape[2]))
+    for x0 in range(0, labels.shape[0], layers):
+        s = np.asarray(labels[x0:x0 + layers])
+        idx = np.flatnonzero(s)
+        if not idx.size:
+            continue
+        present, inverse = np.unique(s.ravel()[idx], return_inverse=True)
+        ijk = np.column_stack(np.unravel_index(idx, s.shape)) + (x0, 0, 0)
+        first = np.full((present.size, 3), np.iinfo(np.int64).max)
+        last = np.full((present.size, 3), -1)
+        np.minimum.at(first, inverse, ijk)
+        np.maximum.at(last, inverse, ijk)
+        for label, f, l in zip(present.tolist(), first, last):
+            lo[label] = np.minimum(lo.get(label, f), f)
+            hi[label] = np.maximum(hi.get(label, l), l)
+    for label in sorted(lo):
+        yield label, tuple(slice(int(a), int(b) + 1) for a, b in zip(lo[label], hi[label]))
+
+
 SLAB_VOXELS = 1 << 23  # findContacts reads the volume in slabs of about this many voxels (64 MB as int64)
 
 
-def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0)):
+def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None):
     """Every pair of labels whose voxels share faces (the scan's contacts), found once for the whole volume: a
     list of dicts ``a``, ``b`` (a < b), ``faces`` (how many they share), ``point`` (the shared face nearest the
     centroid of them all, world units) and ``normal`` (from a into b). The volume is read in slabs (a
@@ -105,11 +145,12 @@ def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0)):
     :param labels: a 3-D array of integers >= 0 (0 is background), or of booleans
     :param float voxelSize: the voxel edge, world units
     :param origin: the world position of the centre of voxel (0, 0, 0)
+    :param memoryLimit: GiB, as generate's option: the slabs are a 128th of it at most (:func:`slabVoxels`)
     """
     a = labels if isinstance(labels, np.ndarray) else np.asarray(labels)
     if a.ndim != 3 or not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
         raise ValueError('findContacts: labels must be a 3-D array of integers, got %s of %s' % (a.shape, a.dtype))
-    layers = max(1, SLAB_VOXELS // max(1, a.shape[1] * a.shape[2]))
+    layers = max(1, slabVoxels(memoryLimit) // max(1, a.shape[1] * a.shape[2]))
 
     def read(x0, x1):
         s = np.asarray(a[x0:x1])
@@ -123,12 +164,16 @@ def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0)):
 def contactPoints(contacts, label):
     """The points a grain's spheres must reach, 6 numbers each (the point, the normal into the grain), from
     :func:`findContacts`'s list: what :func:`generate` takes for a labelled volume's grain."""
-    out = []
+    return contactsByLabel(contacts).get(int(label), [])
+
+
+def contactsByLabel(contacts):
+    """:func:`contactPoints` of every label at once, {label: points}: one pass over the contacts (a batch asking
+    each grain in turn would pass over them once per grain)."""
+    out = {}
     for c in contacts:
-        if c['a'] == label:
-            out.append(list(c['point']) + [-x for x in c['normal']])
-        elif c['b'] == label:
-            out.append(list(c['point']) + list(c['normal']))
+        out.setdefault(c['a'], []).append(list(c['point']) + [-x for x in c['normal']])
+        out.setdefault(c['b'], []).append(list(c['point']) + list(c['normal']))
     return out
 
 

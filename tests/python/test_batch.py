@@ -498,5 +498,96 @@ class Specimen(unittest.TestCase):
             self.assertEqual(len(a.results), len(regions(L)))
 
 
+def _peakAnon(cmd, env=None):
+    """Runs *cmd* and samples its anonymous memory (RssAnon: the heap, not the file's pages that a map shares with
+    the page cache) every 2 ms: (return code, output, peak bytes)."""
+    with tempfile.TemporaryFile() as log:
+        proc = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, env=env)
+        peak = 0
+        while proc.poll() is None:
+            try:
+                with open('/proc/%d/status' % proc.pid) as f:
+                    for line in f:
+                        if line.startswith('RssAnon:'):
+                            peak = max(peak, int(line.split()[1]) * 1024)
+            except OSError:
+                pass
+            time.sleep(0.002)
+        log.seek(0)
+        return proc.returncode, log.read().decode(), peak
+
+
+class VolumeLargerThanTheLimit(unittest.TestCase):
+    """A labelled volume four times --memory-limit: the batch reads it in slabs and by a map, never whole."""
+    LIMIT = 0.125  # GiB
+
+    def sparse(self, make):
+        """48 cubes of 6^3 voxels in 512^3 int32 (512 MiB, a sparse file), in pairs that share a face,
+        and one grain in the last corner, so that every slab is read."""
+        a = make((512, 512, 512))
+        label = 0
+        for i in range(4):
+            for j in range(3):
+                for k in range(2):
+                    x, y, z = 40 + 110 * i, 60 + 140 * j, 50 + 100 * k
+                    a[x:x + 6, y:y + 6, z:z + 6] = label + 1
+                    a[x + 6:x + 12, y:y + 6, z:z + 6] = label + 2  # its face pair
+                    label += 2
+        a[-7:-1, -7:-1, -7:-1] = label + 1
+        a.flush()
+        return label + 1
+
+    def run_batch(self, path, d):
+        out = os.path.join(d, 'out')
+        self.assertGreaterEqual(os.path.getsize(path), 4 * self.LIMIT * (1 << 30))
+        code, text, peak = _peakAnon([sys.executable, '-m', 'yade_mss', 'batch', path, '-o', out, '--spheres', '4',
+                                      '--workers', '1', '--memory-limit', str(self.LIMIT)])
+        self.assertEqual(code, 0, text)
+        return rows(out), peak, text
+
+    def check(self, got, n, peak, text):
+        self.assertEqual([r['status'] for r in got], ['ok'] * n)
+        self.assertEqual(sum(int(r['contacts_ct']) for r in got), 48)  # 24 pairs, each counted by both grains
+        self.assertIn('contacts: 24 of the scan\'s 24', text)
+        # a whole copy would be 512 MiB; the slabs are a 128th of the limit
+        print('peak anonymous memory %.1f MiB for a volume of 512 MiB' % (peak / 2 ** 20), file=sys.stderr)
+        self.assertLess(peak, self.LIMIT * (1 << 30), 'peak anonymous memory %.1f MiB' % (peak / 2 ** 20))
+
+    def test_npy_map(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'ct.npy')
+            n = self.sparse(lambda shape: np.lib.format.open_memmap(path, 'w+', np.int32, shape))
+            got, peak, text = self.run_batch(path, d)
+            self.check(got, n, peak, text)
+
+    def test_uncompressed_tiff_map(self):
+        import tifffile
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'ct.tif')
+            n = self.sparse(lambda shape: tifffile.memmap(path, shape=shape, dtype=np.int32))
+            got, peak, text = self.run_batch(path, d)
+            self.check(got, n, peak, text)
+
+    def test_regions_without_a_list_up_to_the_largest_label(self):
+        """Labels up to 2^40 (find_objects wants a list that long: a MemoryError) and a big-endian volume (it would
+        copy it whole) are boxed by slabs: the same regions as the labels 1..n."""
+        from yade_mss import _specimen
+        rng = np.random.default_rng(4)
+        a = rng.integers(0, 40, (30, 31, 32))
+        a[a > 30] = 0
+        want = [(r.label, r.box, r.voxels, r.touchesBorder) for r in regions(a)]
+        self.assertEqual(len(want), 30)
+        big = [(r.label >> 40, r.box, r.voxels, r.touchesBorder) for r in regions(a.astype(np.int64) << 40)]
+        self.assertEqual(big, want)
+        saved = _specimen.SLAB_VOXELS
+        try:
+            _specimen.SLAB_VOXELS = 1 << 12  # slabs of 4 layers: boxes that span several slabs merge
+            swapped = [(r.label, r.box, r.voxels, r.touchesBorder) for r in regions(a.astype('>i4'))]
+        finally:
+            _specimen.SLAB_VOXELS = saved
+        self.assertEqual(swapped, want)
+        self.assertEqual([r.label for r in regions(a.astype('>i4'), only=[3, 7])], [3, 7])
+
+
 if __name__ == '__main__':
     unittest.main()
