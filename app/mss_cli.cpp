@@ -657,6 +657,8 @@ int main(int argc, char** argv) {
     app.add_subcommand("ochart",
                        "D, simulation cost n / r_min and O = cost x D over sphere counts and radius "
                        "bounds (PNG, CSV): mss ochart GRAIN -o OUT.png [--dice X --min-cost]");
+    app.add_subcommand("export", "a clump as another DEM code's template, with the grain's exact mass "
+                                 "properties: mss export GRAIN|RESULT.npz --format liggghts -o OUT");
     app.add_subcommand(
         "batch", "a labelled CT volume or a folder of grains to a DEM assembly: mss batch INPUT... -o DIR");
     app.add_subcommand("spheropolygon",
@@ -664,7 +666,7 @@ int main(int argc, char** argv) {
     const std::string first = argc > 1 ? argv[1] : "";
     // these run in python3 (matplotlib, Dask): their options and help are there
     if (first == "preview" || first == "curve" || first == "ochart" || first == "batch" ||
-        first == "spheropolygon") {
+        first == "spheropolygon" || first == "export") {
         try {
             return runPython(std::vector<std::string>(argv + 1, argv + argc));
         } catch (const std::exception& e) {
@@ -675,7 +677,8 @@ int main(int argc, char** argv) {
     if (!first.empty() && first[0] != '-' && !runsHere(first)) {
         std::cerr
             << "mss: unknown command '" << argv[1]
-            << "' (generate, compare, info, preview, curve, ochart, batch or spheropolygon; mss --help)\n";
+            << "' (generate, compare, info, preview, curve, ochart, export, batch or spheropolygon; mss "
+               "--help)\n";
         return 2;
     }
     try {

@@ -27,6 +27,8 @@ COMMANDS = (('generate', 'mss generate INPUT -o OUT [options]', 'Spheres for a m
             ('ochart', 'mss ochart GRAIN -o OUT.png [--counts A:B --radii A:B] [--dice X --min-cost]', 'D, the '
              'simulation cost T = n / r_min and O = T x D over sphere counts and radius bounds (the O-chart in '
              '3-D), with the Pareto front; ``--dice X --min-cost`` writes the cheapest clump meeting D <= X.'),
+            ('export', 'mss export GRAIN|RESULT.npz --format liggghts -o OUT [options]', 'A clump as another DEM '
+             'code\'s template with the grain\'s exact mass, centre and inertia (see :doc:`/guide/export`).'),
             ('spheropolygon', 'mss spheropolygon IMAGE -o OUT.json [options]', '2-D particle images (.npy, .png) '
              'to spheropolygons (the second paper), with the O-chart.'))
 

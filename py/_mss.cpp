@@ -227,7 +227,8 @@ unsigned commandBit(const std::string& name) {
         {"generate", mss::command::Generate}, {"compare", mss::command::Compare},
         {"info", mss::command::Info},         {"batch", mss::command::Batch},
         {"preview", mss::command::Preview},   {"curve", mss::command::Curve},
-        {"ochart", mss::command::Ochart},     {"spheropolygon", mss::command::Spheropolygon}};
+        {"ochart", mss::command::Ochart},     {"spheropolygon", mss::command::Spheropolygon},
+        {"export", mss::command::Export}};
     for (const auto& [word, bit] : kCommands)
         if (name == word) return bit;
     throw std::invalid_argument("options: no command '" + name + "'");
@@ -281,7 +282,8 @@ py::list optionTable() {
         {mss::command::Generate, "generate"}, {mss::command::Compare, "compare"},
         {mss::command::Info, "info"},         {mss::command::Batch, "batch"},
         {mss::command::Preview, "preview"},   {mss::command::Curve, "curve"},
-        {mss::command::Ochart, "ochart"},     {mss::command::Spheropolygon, "spheropolygon"}};
+        {mss::command::Ochart, "ochart"},     {mss::command::Spheropolygon, "spheropolygon"},
+        {mss::command::Export, "export"}};
     py::list out;
     for (const mss::OptionSpec& s : mss::optionTable()) {
         py::dict d;

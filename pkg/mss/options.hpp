@@ -34,7 +34,7 @@ enum class OptionType {
 /// the Python function of the same name (compare: compareMany) take the same options.
 namespace command {
 constexpr unsigned Generate = 1, Compare = 2, Info = 4, Batch = 8, Preview = 16, Curve = 32,
-                   Spheropolygon = 64, Ochart = 128;
+                   Spheropolygon = 64, Ochart = 128, Export = 256;
 }
 
 /// One row of the table.

@@ -144,6 +144,19 @@ class MssResult(object):
             raise ValueError('MssResult.preview: give the grain (this result does not know what it was made from)')
         return preview(g, self, path, title=kw.pop('title', self.source or None), **kw)
 
+    def export(self, path, format=None, **options):
+        """Writes these spheres as another DEM code's template, with the grain's exact mass, centre and inertia,
+        as ``mss export`` does (:func:`yade_mss._export.exportTemplate`).
+
+        :param path: the file to write
+        :param format: 'liggghts' (the default: an input-script file with ``fix particletemplate/multisphere``)
+        :param options: density, frame ('principal' or 'generated'), templateType, atomType
+        """
+        from ._export import exportTemplate
+        from ._keywords import split
+        o, = split('MssResult.export', options, ('density', 'frame', 'templateType', 'atomType'))
+        exportTemplate(self, path, format, **o)
+
     def save(self, path, compress=True):
         """Writes the result by extension: ``.npz`` (everything, for :meth:`load`), or the sphere files of the
         command line: ``.csv`` (x,y,z,r), ``.txt`` (YADE text clump, ``ymport.textClumps``), ``.vtk`` (ParaView).

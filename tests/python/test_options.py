@@ -15,7 +15,7 @@ from yade_mss._generate import GENERATE_OPTIONS
 
 MSS = os.environ.get('MSS_BINARY', 'mss')
 DATA = os.environ.get('MSS_TEST_DATA', os.path.join(os.path.dirname(__file__), '..', 'data'))
-COMMANDS = ('generate', 'compare', 'info', 'batch', 'preview', 'curve', 'ochart', 'spheropolygon')
+COMMANDS = ('generate', 'compare', 'info', 'batch', 'preview', 'curve', 'ochart', 'export', 'spheropolygon')
 
 
 def helpFlags(command):
@@ -118,6 +118,14 @@ class PythonFunctions(unittest.TestCase):
             if r['python']:
                 with self.subTest(keyword=r['name']):
                     self.assertTrue(r['name'] in params or r['name'] in GENERATE_OPTIONS, r['name'])
+
+    def test_export_takes_the_export_rows(self):
+        from yade_mss._export import exportTemplate
+        params = set(inspect.signature(exportTemplate).parameters) - {'result', 'path'}
+        own = {r['name'] for r in _options.rows('export') if r['python'] and r['name'] not in GENERATE_OPTIONS}
+        self.assertEqual(params, own)
+        for name in params:  # None: the table's default
+            self.assertIsNone(inspect.signature(exportTemplate).parameters[name].default)
 
     def test_pictures_take_the_table_defaults(self):
         from yade_mss import _pictures

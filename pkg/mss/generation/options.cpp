@@ -19,8 +19,9 @@ constexpr double kMaxMemoryGiB = 1048576.0;
 
 using T = OptionType;
 namespace c = command;
-constexpr unsigned kGrain = c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve | c::Ochart;
-constexpr unsigned kGen = c::Generate | c::Batch; // a generation's own options
+constexpr unsigned kGrain =
+    c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve | c::Ochart | c::Export;
+constexpr unsigned kGen = c::Generate | c::Batch | c::Export; // a generation's own options
 
 // name, flag, python, type, default, low, high, lowOpen, highOpen, choices, unit, metavar, help, commands
 const std::vector<OptionSpec> kTable = {
@@ -35,6 +36,24 @@ const std::vector<OptionSpec> kTable = {
      "the chart to write; its CSV is written beside it", c::Curve},
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
      "the charts to write; OUT.csv beside it (and with minCost the clump chosen, OUT_best.csv)", c::Ochart},
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "OUT",
+     "the template to write (liggghts: an input-script file to include, the fix particletemplate/multisphere "
+     "command with the spheres inline)",
+     c::Export},
+    // a template for another DEM code: the grain's exact mass properties with the spheres
+    {"format", "--format", true, T::Choice, "liggghts", 0, 0, false, false, "liggghts", "", "F",
+     "the DEM code whose template is written", c::Export},
+    {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
+     "the grain's density: the template's mass is it times the grain's exact volume", c::Export},
+    {"frame", "--frame", true, T::Choice, "principal", 0, 0, false, false, "principal|generated", "", "FRAME",
+     "the template's axes: the grain's principal axes of inertia, or the axes it was generated in (the "
+     "centre "
+     "of mass is the origin in both)",
+     c::Export},
+    {"templateType", "--type", true, T::Integer, "1", 1, kIntMax, false, false, "", "", "N",
+     "the template's number (LIGGGHTS: multisphere types are consecutive from 1)", c::Export},
+    {"atomType", "--atom-type", true, T::Integer, "1", 1, kIntMax, false, false, "", "", "N",
+     "the spheres' atom (material) type", c::Export},
     // termination (paper section 3.5): generation stops at the first met
     {"nSpheres", "--spheres", true, T::Integer, "", 1, 65535, false, false, "", "", "N",
      "at most this many spheres (problem (i) of the paper, eq. 2)", kGen},
@@ -71,7 +90,9 @@ const std::vector<OptionSpec> kTable = {
      "K^3 samples per voxel (K this) when voxelising a mesh (1: voxel centres)",
      c::Generate | c::Batch | c::Compare},
     {"memoryLimit", "--memory-limit", true, T::Number, "8", 0, kMaxMemoryGiB, true, false, "", "GiB", "GIB",
-     "refuse a mesh's grid whose working memory would exceed this", kGen},
+     "refuse a mesh's grid whose working memory would exceed this; mss batch reads a labelled volume "
+     "in slabs of a 128th of it",
+     kGen},
     {"origin", "--origin", true, T::Point, "", 0, 0, false, false, "", "world units", "X,Y,Z",
      "a voxel volume: the world position of the centre of voxel (0, 0, 0) (default 0,0,0)", kGrain},
     {"label", "--label", true, T::Integer, "", 0, kInt64Max, false, false, "", "", "L",
@@ -234,6 +255,8 @@ std::string commandName(unsigned cmd) {
         return "curve";
     case c::Ochart:
         return "ochart";
+    case c::Export:
+        return "export";
     case c::Spheropolygon:
         return "spheropolygon";
     default:

@@ -1,0 +1,212 @@
+"""mss export: templates for other DEM codes with the grain's exact mass properties, read by the real code
+(LIGGGHTS 3.8.0, Debian's liggghts: it inserts the template and reports the mass and inertia it uses)."""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+import numpy as np
+
+import yade_mss
+from yade_mss._export import liggghtsTemplate
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data')
+MSS = os.environ.get('MSS_BINARY', 'mss')
+
+# one template inserted once, the bodies' properties dumped at full precision (compute multisphere)
+SCRIPT = """atom_style granular
+atom_modify map array
+boundary f f f
+newton off
+communicate single vel yes
+units si
+region domain block -{L} {L} -{L} {L} -{L} {L} units box
+create_box 1 domain
+neighbor {skin} bin
+neigh_modify delay 0
+fix m1 all property/global youngsModulus peratomtype 1e7
+fix m2 all property/global poissonsRatio peratomtype 0.3
+fix m3 all property/global coefficientRestitution peratomtypepair 1 0.5
+fix m4 all property/global coefficientFriction peratomtypepair 1 0.5
+pair_style gran model hertz tangential history
+pair_coeff * *
+timestep 1e-6
+include template.in
+fix pdd all particledistribution/discrete 32452843 1 mss_template_1 1.0
+region ins block -{l} {l} -{l} {l} -{l} {l} units box
+fix ins all insert/pack seed 49979693 distributiontemplate pdd insert_every once overlapcheck yes \
+particles_in_region 1 region ins ntry_mc 10000
+fix ms all multisphere
+compute mass all multisphere property masstotal
+compute inert all multisphere property inertia
+compute ex all multisphere property ex_space
+compute ey all multisphere property ey_space
+compute ez all multisphere property ez_space
+compute xcm all multisphere property xcm
+run 1
+dump d all local 1 bodies.txt c_mass c_inert[1] c_inert[2] c_inert[3] c_ex[1] c_ex[2] c_ex[3] c_ey[1] c_ey[2] \
+c_ey[3] c_ez[1] c_ez[2] c_ez[3] c_xcm[1] c_xcm[2] c_xcm[3]
+dump_modify d format "{fmt16}"
+dump a all custom 1 atoms.txt id x y z radius
+dump_modify a format "%d %.17g %.17g %.17g %.17g"
+run 1
+"""
+
+
+def read(path):
+    with open(path) as f:
+        return f.read()
+
+
+def runLiggghts(template, size):
+    """LIGGGHTS on *template* (the text of the include file): (mass, 3x3 inertia tensor in the template's axes,
+    atoms' positions relative to the body's centre of mass, radii, log)."""
+    with tempfile.TemporaryDirectory() as d:
+        with open(os.path.join(d, 'template.in'), 'w') as f:
+            f.write(template)
+        with open(os.path.join(d, 'in.test'), 'w') as f:
+            f.write(SCRIPT.format(L=20 * size, l=10 * size, skin=0.1 * size, fmt16=' '.join(['%.17g'] * 16)))
+        p = subprocess.run(['liggghts', '-in', 'in.test', '-echo', 'none'], cwd=d, capture_output=True, text=True,
+                           timeout=600)
+        log = p.stdout + p.stderr
+        if p.returncode != 0 or 'ERROR' in log:
+            raise AssertionError('LIGGGHTS failed:\n' + log[-3000:])
+        with open(os.path.join(d, 'bodies.txt')) as f:
+            rows = [l.split() for l in f if not l.startswith('ITEM')]
+        body = [list(map(float, r)) for r in rows if len(r) == 16]
+        with open(os.path.join(d, 'atoms.txt')) as f:
+            atoms = [l.split() for l in f]
+        i = max(k for k, l in enumerate(atoms) if l[:2] == ['ITEM:', 'ATOMS'])
+        xyzr = np.array(sorted((int(a[0]),) + tuple(map(float, a[1:])) for a in atoms[i + 1:]))[:, 1:]
+    assert len(body) >= 1, rows
+    b = body[-1]
+    axes = np.array([b[4:7], b[7:10], b[10:13]])  # rows: ex, ey, ez
+    tensor = sum(m * np.outer(e, e) for m, e in zip(b[1:4], axes))
+    return b[0], tensor, xyzr[:, :3] - np.array(b[13:16]), xyzr[:, 3], log
+
+
+class Liggghts(unittest.TestCase):
+    """The exported templates inserted by LIGGGHTS: the mass and inertia it uses are ours to 1e-9."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.femur = yade_mss.generate(os.path.join(DATA, 'human_femur.stl'), nSpheres=70)
+        cls.ellipsoid = yade_mss.generate(os.path.join(DATA, 'ellipsoid_2_1_1.stl'), nSpheres=10)
+
+    def check(self, r, density, frame):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'template.in')
+            r.export(path, density=density, frame=frame)
+            text = read(path)
+        size = float(np.max(np.ptp(r.centers, axis=0)) + 2 * r.radii.max())
+        mass, tensor, rel, radii, log = runLiggghts(text, size)
+        m = r.targetMass
+        ours = density * m.volume
+        self.assertAlmostEqual(mass / ours, 1.0, delta=1e-9)
+        w, R = m.principal()
+        want = np.diag(w) if frame == 'principal' else m.inertia
+        np.testing.assert_allclose(tensor, density * want, rtol=0, atol=1e-9 * density * w.max())
+        # the spheres where the template puts them: the centre of mass at the origin, in the template's axes
+        # (inserted unrotated)
+        body = (r.centers - m.centroid) @ (R if frame == 'principal' else np.eye(3))
+        order = [int(np.argmin(np.linalg.norm(body - p, axis=1))) for p in rel]
+        self.assertEqual(sorted(order), list(range(len(r))))
+        np.testing.assert_allclose(rel, body[order], rtol=0, atol=1e-9 * size)
+        np.testing.assert_allclose(radii, r.radii[order], rtol=1e-12)
+        self.assertIn('inserted 1 particle templates', log)
+        return mass, tensor
+
+    def test_femur_principal_and_ellipsoid_generated(self):
+        self.check(self.femur, 2650.0, 'principal')
+        self.check(self.ellipsoid, 1000.0, 'generated')
+        self.check(self.ellipsoid, 7.5, 'principal')
+
+    def test_without_mass_properties_liggghts_estimates_the_union(self):
+        """The same template without mass and inertia_tensor: LIGGGHTS' Monte Carlo over the spheres' union
+        (ntry 10^6), beside the grain's exact figures (printed for the note)."""
+        for name, r in (('femur', self.femur), ('ellipsoid', self.ellipsoid)):
+            density = 1000.0
+            size = float(np.max(np.ptp(r.centers, axis=0)) + 2 * r.radii.max())
+            mass, tensor, _, _, _ = runLiggghts(liggghtsTemplate(r, density, exact=False), size)
+            exact = density * r.targetMass.volume
+            union = density * r.unionMass(200).volume
+            w = np.sort(np.linalg.eigvalsh(tensor))
+            ours = density * r.targetMass.principal()[0]
+            print('%s: LIGGGHTS Monte Carlo mass %.6g, principal moments %s; the grain\'s exact mass %.6g, '
+                  'moments %s; the union on a 200-voxel grid %.6g' % (name, mass, ' '.join('%.5g' % x for x in w),
+                                                                       exact, ' '.join('%.5g' % x for x in ours),
+                                                                       union), file=sys.stderr)
+            self.assertLess(abs(mass / union - 1), 0.01)  # what it estimates is the union, not the grain
+            self.assertGreater(abs(mass / exact - 1), 1e-4)
+
+
+class Command(unittest.TestCase):
+    def test_cli_writes_what_python_writes(self):
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, 'e.in')
+            p = subprocess.run([MSS, 'export', os.path.join(DATA, 'ellipsoid_2_1_1.stl'), '--spheres', '10',
+                                '--density', '2500', '--frame', 'generated', '--type', '1', '-o', out],
+                               capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertIn('liggghts template of 10 spheres', p.stdout)
+            r = yade_mss.generate(os.path.join(DATA, 'ellipsoid_2_1_1.stl'), nSpheres=10)
+            r.export(os.path.join(d, 'p.in'), density=2500, frame='generated')
+            cli, py = read(out), read(os.path.join(d, 'p.in'))
+            self.assertEqual(cli, py)
+            # a saved result exports the same, without generating again
+            r.save(os.path.join(d, 'r.npz'))
+            p = subprocess.run([MSS, 'export', os.path.join(d, 'r.npz'), '--density', '2500', '--frame',
+                                'generated', '-o', os.path.join(d, 'n.in')], capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertEqual(read(os.path.join(d, 'n.in')), py)
+
+    def test_bad_input(self):
+        with tempfile.TemporaryDirectory() as d:
+            r = yade_mss.generate(os.path.join(DATA, 'ellipsoid_2_1_1.stl'), nSpheres=4)
+            r.save(os.path.join(d, 'r.csv'))
+            r.save(os.path.join(d, 'r.npz'))
+            cases = [
+                ([os.path.join(d, 'r.csv')], 1, 'sphere file without its grain'),
+                ([os.path.join(d, 'r.npz'), '--spheres', '5'], 1, 'generation options (nSpheres) apply to a grain'),
+                ([os.path.join(DATA, 'cube.stl'), '--density', '-1'], 1, 'density'),
+                ([os.path.join(DATA, 'cube.stl'), '--format', 'pfc4'], 1, 'format'),
+                ([os.path.join(DATA, 'cube.stl'), '--frame', 'body'], 1, 'frame'),
+                ([os.path.join(DATA, 'cube.stl'), '--type', '0'], 1, 'type'),
+                ([os.path.join(d, 'missing.stl')], 1, 'missing.stl'),
+            ]
+            for args, code, words in cases:
+                p = subprocess.run([MSS, 'export'] + args + ['-o', os.path.join(d, 'x.in')], capture_output=True,
+                                   text=True)
+                self.assertEqual(p.returncode, code, (args, p.stderr))
+                self.assertIn(words, p.stderr, args)
+                self.assertNotIn('Traceback', p.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, 'x.in')))
+            with self.assertRaises(TypeError):
+                r.export(os.path.join(d, 'y.in'), densty=2)
+            with self.assertRaises(ValueError):
+                r.export(os.path.join(d, 'y.in'), frame='body')
+            with self.assertRaises(ValueError):
+                r.export(os.path.join(d, 'y.in'), density=float('nan'))
+
+    def test_a_hostile_file_name_stays_a_comment(self):
+        """A grain named with newlines and a LIGGGHTS command: the name is a comment, LIGGGHTS runs nothing else."""
+        with tempfile.TemporaryDirectory() as d:
+            evil = os.path.join(d, 'e\nshell touch PWNED\n.stl')
+            shutil.copy(os.path.join(DATA, 'ellipsoid_2_1_1.stl'), evil)
+            r = yade_mss.generate(evil, nSpheres=4)
+            text = liggghtsTemplate(r, 1000.0)
+            self.assertFalse(any(l.startswith('shell') for l in text.splitlines()))
+            self.assertIn('e?shell touch PWNED?.stl', text)
+            cwd = os.getcwd()
+            try:
+                os.chdir(d)
+                runLiggghts(text, 10.0)
+            finally:
+                os.chdir(cwd)
+            self.assertFalse(os.path.exists(os.path.join(d, 'PWNED')))
+
+
+if __name__ == '__main__':
+    unittest.main()
