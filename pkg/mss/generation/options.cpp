@@ -46,9 +46,8 @@ const std::vector<OptionSpec> kTable = {
     {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
      "the grain's density: the template's mass is it times the grain's exact volume", c::Export},
     {"frame", "--frame", true, T::Choice, "principal", 0, 0, false, false, "principal|generated", "", "FRAME",
-     "the template's axes: the grain's principal axes of inertia, or the axes it was generated in (the "
-     "centre "
-     "of mass is the origin in both)",
+     "the template's axes: the grain's principal axes of inertia, or the axes it was generated in "
+     "(the centre of mass is the origin in both)",
      c::Export},
     {"templateType", "--type", true, T::Integer, "1", 1, kIntMax, false, false, "", "", "N",
      "the template's number (LIGGGHTS: multisphere types are consecutive from 1)", c::Export},
