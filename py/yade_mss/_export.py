@@ -8,14 +8,16 @@ Every number is written as Python's repr of the double (17 significant digits at
 import argparse
 import os
 import re
+import shutil
 import sys
+import tempfile
 
 import numpy as np
 
 from . import _options
 from ._files import atomicWrite
 
-FORMATS = ('liggghts',)
+FORMATS = ('liggghts', 'kratos', 'mercurydpm')
 SEED = 15485863  # LIGGGHTS wants a prime over 10000 for the template's random numbers
 
 
@@ -89,6 +91,122 @@ def liggghtsTemplate(result, density, frame='principal', templateType=1, atomTyp
     return '\n'.join(lines + [tail]) + '\n'
 
 
+def _name(result):
+    """A one-word name for the template (Kratos reads the word after Name; MercuryDPM names the clump by its
+    folder): the source's stem, with anything but letters, digits, '_', '-' and '.' made '_'."""
+    stem = os.path.splitext(os.path.basename(str(result.source or '')))[0]
+    return re.sub(r'[^A-Za-z0-9_.-]', '_', stem).strip('.') or 'mss_clump'
+
+
+def _principalOnly(fmt, frame):
+    if frame != 'principal':
+        raise ValueError("export: %s takes the template in its principal axes (it reads three principal moments "
+                         "and puts the principal axes along x, y, z): use frame 'principal'" % fmt)
+
+
+def kratosCluster(result, frame='principal'):
+    """The text of a Kratos DEM cluster file (.clu): the spheres (``Begin centers_and_radii``) in the grain's
+    principal axes with its centre of mass at the origin, ``Particle_center_and_diameter`` (the origin and the
+    diameter of the ball about it holding every sphere), ``Size`` (the diameter of the ball of the grain's volume),
+    ``Volume`` (the grain's exact volume) and ``Inertia per unit mass`` (its three principal moments over its
+    mass). Kratos scales the volume and inertia by the material's density, so no density is written."""
+    _principalOnly('kratos', frame)
+    c, r, inertia, R, centroid = templateFrame(result, frame)
+    m = result.targetMass
+    reach = float(np.max(np.linalg.norm(c, axis=1) + r))
+    lines = ['//', '//   Cluster Name: "%s"' % _name(result),
+             '//   written by yade-mss (mss export --format kratos) from %s: %d spheres, Dice mismatch %s on the '
+             'generation grid' % (_safe(result.source or 'unknown'), len(r),
+                                  _number(result.metrics.get('dice', float('nan')))),
+             '//   principal axes, the centre of mass at the origin; a point p is at c + R p where the grain was '
+             'generated:',
+             '//   c = %s' % ' '.join(_number(x) for x in centroid),
+             '//   R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+             "//   Volume and inertia are the grain's own, not the spheres' union; Size is the diameter of a ball "
+             'of that volume',
+             '//', '', 'Name', _name(result), '', 'Begin centers_and_radii']
+    lines += ['%s %s %s %s' % (_number(p[0]), _number(p[1]), _number(p[2]), _number(q)) for p, q in zip(c, r)]
+    lines += ['End centers_and_radii', '', 'Particle_center_and_diameter', '0.0 0.0 0.0 %s' % _number(2 * reach),
+              '', 'Size', _number(2 * (3 * m.volume / (4 * np.pi)) ** (1 / 3)), '', 'Volume', _number(m.volume), '',
+              'Inertia per unit mass'] + [_number(inertia[i, i] / m.volume) for i in range(3)]
+    return '\n'.join(lines) + '\n'
+
+
+def mercuryFiles(result, density, frame='principal'):
+    """MercuryDPM's clump (the layout its MClump tool writes and ``ClumpInput.h`` reads), as {relative path:
+    text}: Clump/Clump.txt (x,y,z,r a pebble a line, the principal axes, the centre of mass at the origin),
+    Inertia/Mass.txt, Inertia/TOI.txt (the inertia tensor, three rows), Inertia/PD.txt (the principal
+    directions, three rows: the axes themselves) and mss_export.txt (how it was made: those files hold numbers
+    only)."""
+    _principalOnly('mercurydpm', frame)
+    c, r, inertia, R, centroid = templateFrame(result, frame)
+    m = result.targetMass
+    rows = lambda a: '\n'.join(','.join(_number(x) for x in row) for row in a) + '\n'  # noqa: E731
+    return {
+        os.path.join('Clump', 'Clump.txt'): rows(np.column_stack([c, r])),
+        os.path.join('Inertia', 'Mass.txt'): _number(density * m.volume) + '\n',
+        os.path.join('Inertia', 'TOI.txt'): rows(density * inertia),
+        os.path.join('Inertia', 'PD.txt'): rows(np.eye(3)),
+        'mss_export.txt': '\n'.join([
+            'MercuryDPM clump written by yade-mss (mss export --format mercurydpm)',
+            'grain: %s; %d pebbles; Dice mismatch %s on the generation grid' % (
+                _safe(result.source or 'unknown'), len(r), _number(result.metrics.get('dice', float('nan')))),
+            "mass and inertia: the grain's own (density %s, volume %s), not the pebbles' union" % (
+                _number(density), _number(m.volume)),
+            'principal axes, the centre of mass at the origin; a point p is at c + R p where the grain was '
+            'generated:',
+            'c = %s' % ' '.join(_number(x) for x in centroid),
+            'R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+            'full doubles are written; MercuryDPM\'s ClumpInput.h reads them with std::stof (single precision)', '']),
+    }
+
+
+MARK = 'mss_export.txt'
+
+
+def _writeFolder(path, files):
+    """Writes *files* ({relative path: text}) as the folder *path*, whole or not at all: built beside it under
+    an unpredictable name, then renamed onto it. An existing folder is replaced only if this command wrote it
+    (it holds mss_export.txt); a file, link or foreign folder there is refused."""
+    path = os.path.abspath(os.fspath(path))
+    if os.path.islink(path) or (os.path.lexists(path) and not os.path.isdir(path)):
+        raise RuntimeError('export: %s: exists and is not a folder: not replaced' % path)
+    if os.path.isdir(path) and not os.path.isfile(os.path.join(path, MARK)):
+        raise RuntimeError('export: %s: a folder mss export did not write (no %s): not replaced' % (path, MARK))
+    parent = os.path.dirname(path)
+    try:
+        tmp = tempfile.mkdtemp(prefix='.%s.' % os.path.basename(path)[:64], dir=parent)
+    except OSError as e:
+        raise RuntimeError('export: %s: cannot write (%s)' % (path, e))
+    old = None
+    try:
+        for rel, text in files.items():
+            os.makedirs(os.path.dirname(os.path.join(tmp, rel)), exist_ok=True)
+            with open(os.path.join(tmp, rel), 'x') as f:
+                f.write(text)
+        os.chmod(tmp, 0o777 & ~_umask())
+        if os.path.isdir(path):
+            old = tempfile.mkdtemp(prefix='.%s.old.' % os.path.basename(path)[:64], dir=parent)
+            os.rename(path, os.path.join(old, 'x'))
+        os.rename(tmp, path)
+    except BaseException as e:
+        shutil.rmtree(tmp, ignore_errors=True)
+        if old is not None and os.path.isdir(os.path.join(old, 'x')) and not os.path.exists(path):
+            os.rename(os.path.join(old, 'x'), path)  # put the earlier one back
+        if isinstance(e, OSError):
+            raise RuntimeError('export: %s: cannot write (%s)' % (path, e))
+        raise
+    finally:
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+
+
+def _umask():
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def _checked(given):
     """The export options in *given* (None: the table's default), checked against the table."""
     return {k: _options.check('export', 'export', k, v if v is not None else _options.default(k, 'export'))
@@ -100,14 +218,22 @@ def exportTemplate(result, path, format=None, density=None, frame=None, template
     (the options are ``mss export``'s; None: the table's default).
 
     :param result: an :class:`MssResult` (generated from a grain, or loaded from its .npz)
-    :param format: 'liggghts' (an input-script file to include)
-    :param float density: mass per world unit cubed; the mass is it times the grain's exact volume
-    :param frame: 'principal' or 'generated' (see :func:`templateFrame`)
+    :param format: 'liggghts' (an input-script file to include), 'kratos' (a .clu cluster file) or 'mercurydpm'
+        (a folder, the clump's name, as MClump writes it)
+    :param float density: mass per world unit cubed; the mass is it times the grain's exact volume (Kratos: not
+        written, the material's density applies)
+    :param frame: 'principal' or 'generated' (see :func:`templateFrame`; kratos and mercurydpm: principal)
     :param int templateType: the template's number (LIGGGHTS: consecutive from 1)
-    :param int atomType: the spheres' atom (material) type
+    :param int atomType: the spheres' atom (material) type (LIGGGHTS)
     """
     o = _checked(dict(format=format, density=density, frame=frame, templateType=templateType, atomType=atomType))
-    text = liggghtsTemplate(result, o['density'], o['frame'], o['templateType'], o['atomType'])
+    if o['format'] == 'mercurydpm':
+        _writeFolder(path, mercuryFiles(result, o['density'], o['frame']))
+        return
+    if o['format'] == 'kratos':
+        text = kratosCluster(result, o['frame'])
+    else:
+        text = liggghtsTemplate(result, o['density'], o['frame'], o['templateType'], o['atomType'])
 
     def write(p):
         with open(p, 'w') as f:

@@ -206,6 +206,135 @@ class Command(unittest.TestCase):
             finally:
                 os.chdir(cwd)
             self.assertFalse(os.path.exists(os.path.join(d, 'PWNED')))
+            from yade_mss._export import kratosCluster
+            text = kratosCluster(r)
+            head = text.split('\nName\n')[0].splitlines()
+            self.assertTrue(all(l.startswith('//') or not l for l in head), head)
+            self.assertEqual(text.split('\nName\n')[1].splitlines()[0], 'e_shell_touch_PWNED_')
+
+
+def readKratos(path):
+    """A .clu file read as Kratos' DEM application reads it (ReadClusterFile in its pre-processing: lines
+    starting '//' skipped, the keywords' values on the lines after them, the centres taken relative to
+    Particle_center_and_diameter's centre)."""
+    out = {}
+    with open(path) as f:
+        lines = [l for l in f.read().splitlines() if not l.startswith('//')]
+    it = iter(lines)
+    for line in it:
+        if line.startswith('Name'):
+            out['name'] = next(it).split()[0]
+        elif line.startswith('Begin centers_and_radii'):
+            rows = []
+            for l in it:
+                if l.startswith('End centers_and_radii'):
+                    break
+                rows.append([float(x) for x in l.split()])
+            out['spheres'] = np.array(rows)
+        elif line.startswith('Particle_center_and_diameter'):
+            v = [float(x) for x in next(it).split()]
+            out['center'], out['diameter'] = np.array(v[:3]), v[3]
+        elif line.startswith('Size'):
+            out['size'] = float(next(it).split()[0])
+        elif line.startswith('Volume'):
+            out['volume'] = float(next(it).split()[0])
+        elif line.startswith('Inertia per unit mass'):
+            out['inertia'] = np.array([float(next(it).split()[0]) for _ in range(3)])
+    out['spheres'][:, :3] -= out['center']
+    return out
+
+
+def readMercury(folder):
+    """A clump folder read as MercuryDPM's ClumpInput.h reads it: Clump/Clump.txt (x,y,z,r a line),
+    Inertia/Mass.txt, Inertia/TOI.txt and Inertia/PD.txt (three comma-separated values a line); in doubles here
+    (MercuryDPM itself parses with std::stof)."""
+    def rows(rel, n):
+        with open(os.path.join(folder, rel)) as f:
+            return np.array([[float(x) for x in l.split(',')[:n]] for l in f if l.strip()])
+    with open(os.path.join(folder, 'Inertia', 'Mass.txt')) as f:
+        mass = float(f.read().split()[0])
+    return rows(os.path.join('Clump', 'Clump.txt'), 4), mass, rows(os.path.join('Inertia', 'TOI.txt'), 3), \
+        rows(os.path.join('Inertia', 'PD.txt'), 3)
+
+
+class OtherCodes(unittest.TestCase):
+    """Kratos and MercuryDPM templates read back by readers written from those codes' own readers: the spheres
+    where they were generated, the mass properties the grain's."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.femur = yade_mss.generate(os.path.join(DATA, 'human_femur.stl'), nSpheres=70)
+
+    def world(self, spheres):
+        """The template's spheres back where they were generated (c + R p, the header's c and R)."""
+        w, R = self.femur.targetMass.principal()
+        return spheres[:, :3] @ R.T + self.femur.targetMass.centroid
+
+    def test_kratos_round_trip(self):
+        r = self.femur
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'femur.clu')
+            r.export(path, format='kratos')
+            k = readKratos(path)
+            text = read(path)
+        size = float(np.ptp(r.centers, axis=0).max())
+        self.assertEqual(k['name'], 'human_femur')
+        np.testing.assert_allclose(self.world(k['spheres']), r.centers, rtol=0, atol=1e-9 * size)
+        np.testing.assert_array_equal(k['spheres'][:, 3], r.radii)
+        m = r.targetMass
+        self.assertEqual(k['volume'], m.volume)
+        np.testing.assert_allclose(k['inertia'] * k['volume'], m.principal()[0], rtol=1e-12)
+        np.testing.assert_array_equal(k['center'], [0, 0, 0])
+        reach = np.linalg.norm(k['spheres'][:, :3], axis=1) + k['spheres'][:, 3]
+        self.assertAlmostEqual(k['diameter'], 2 * reach.max(), delta=1e-9 * size)
+        self.assertAlmostEqual(k['size'], 2 * (3 * m.volume / (4 * np.pi)) ** (1 / 3), delta=1e-12 * size)
+        # the spheres' centre of mass is not the grain's: the file keeps the grain's
+        self.assertGreater(np.linalg.norm(r.unionMass(100).centroid - m.centroid), 1e-3 * size)
+        self.assertEqual(text.count('\nName\nhuman_femur\n'), 1)
+        with self.assertRaises(ValueError):
+            r.export(os.path.join(d, 'g.clu'), format='kratos', frame='generated')
+
+    def test_mercurydpm_round_trip_and_folder_rules(self):
+        r = self.femur
+        with tempfile.TemporaryDirectory() as d:
+            out = os.path.join(d, 'femur')
+            r.export(out, format='mercurydpm', density=2650)
+            pebbles, mass, toi, pd = readMercury(out)
+            size = float(np.ptp(r.centers, axis=0).max())
+            np.testing.assert_allclose(self.world(pebbles), r.centers, rtol=0, atol=1e-9 * size)
+            np.testing.assert_array_equal(pebbles[:, 3], r.radii)
+            m = r.targetMass
+            self.assertAlmostEqual(mass / (2650 * m.volume), 1, delta=1e-15)
+            np.testing.assert_allclose(toi, 2650 * np.diag(m.principal()[0]), rtol=1e-15, atol=0)
+            np.testing.assert_array_equal(pd, np.eye(3))
+            # what MercuryDPM itself reads: single precision
+            self.assertAlmostEqual(float(np.float32(mass)) / mass, 1, delta=1e-7)
+            # written again: replaced whole; a folder it did not write, a file or a link there: refused
+            r.export(out, format='mercurydpm', density=1000)
+            self.assertAlmostEqual(readMercury(out)[1] / (1000 * m.volume), 1, delta=1e-15)
+            self.assertEqual(sorted(os.listdir(d)), ['femur'])  # nothing left beside it
+            os.makedirs(os.path.join(d, 'mine'))
+            open(os.path.join(d, 'mine', 'notes.txt'), 'w').close()
+            open(os.path.join(d, 'afile'), 'w').close()
+            os.symlink(out, os.path.join(d, 'alink'))
+            for name in ('mine', 'afile', 'alink'):
+                with self.assertRaises(RuntimeError) as e:
+                    r.export(os.path.join(d, name), format='mercurydpm')
+                self.assertIn('not replaced', str(e.exception))
+            self.assertEqual(os.listdir(os.path.join(d, 'mine')), ['notes.txt'])
+            self.assertEqual(sorted(os.listdir(d)), ['afile', 'alink', 'femur', 'mine'])
+            with self.assertRaises(ValueError):
+                r.export(os.path.join(d, 'g'), format='mercurydpm', frame='generated')
+
+    def test_cli_formats(self):
+        with tempfile.TemporaryDirectory() as d:
+            for fmt, out in (('kratos', 'e.clu'), ('mercurydpm', 'e_clump')):
+                p = subprocess.run([MSS, 'export', os.path.join(DATA, 'ellipsoid_2_1_1.stl'), '--spheres', '10',
+                                    '--format', fmt, '-o', os.path.join(d, out)], capture_output=True, text=True)
+                self.assertEqual(p.returncode, 0, p.stderr)
+                self.assertIn('%s template of 10 spheres' % fmt, p.stdout)
+            self.assertEqual(len(readKratos(os.path.join(d, 'e.clu'))['spheres']), 10)
+            self.assertEqual(len(readMercury(os.path.join(d, 'e_clump'))[0]), 10)
 
 
 if __name__ == '__main__':

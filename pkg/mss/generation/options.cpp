@@ -41,8 +41,8 @@ const std::vector<OptionSpec> kTable = {
      "command with the spheres inline)",
      c::Export},
     // a template for another DEM code: the grain's exact mass properties with the spheres
-    {"format", "--format", true, T::Choice, "liggghts", 0, 0, false, false, "liggghts", "", "F",
-     "the DEM code whose template is written", c::Export},
+    {"format", "--format", true, T::Choice, "liggghts", 0, 0, false, false, "liggghts|kratos|mercurydpm", "",
+     "F", "the DEM code whose template is written", c::Export},
     {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
      "the grain's density: the template's mass is it times the grain's exact volume", c::Export},
     {"frame", "--frame", true, T::Choice, "principal", 0, 0, false, false, "principal|generated", "", "FRAME",
