@@ -122,3 +122,11 @@ w('zero_triangles.stl', binary_stl([], count=0), 'wb')
 w('huge_count.off', 'OFF\n99999999999 99999999999 0\n0 0 0\n')
 w('vtk_bad_points.vtk', '# vtk DataFile Version 3.0\nspheres\nASCII\nDATASET POLYDATA\nPOINTS 1000000000 double\n'
   '0 0 0\n')
+# other codes' clump templates (mss export writes them; readSpheres reads them back)
+w('template_short.in', 'fix t all particletemplate/multisphere 15485863 nspheres 1000000 ntry 10 spheres &\n'
+  '    0 0 0 1 &\n    type 1\n')
+w('template_file.in', 'fix t all particletemplate/multisphere 15485863 nspheres 2 ntry 10 spheres file p.txt type 1\n')
+w('template_bad_rotation.in', '#   c = 0 0 0\n#   R = 1 0 0 ; 0 1 0 ; 0 0 -1 (rows)\nfix t all '
+  'particletemplate/multisphere 15485863 nspheres 1 ntry 10 spheres 0 0 0 1 type 1\n')
+w('cluster_unended.clu', 'Name\nx\nBegin centers_and_radii\n0 0 0 1\n1 0 0 1\n')
+w('cluster_inf.clu', 'Begin centers_and_radii\n0 0 0 inf\nEnd centers_and_radii\n')

@@ -665,3 +665,46 @@ TEST(MeshIo, test_ply_faces_first_was_refused) {
     expectError([&] { readMesh(p); }, "PLY face 0");
     std::remove(p.c_str());
 }
+
+TEST(SphereIo, ClumpTemplatesOfOtherCodesReadBackWhereGenerated) {
+    // a LIGGGHTS template as mss export writes it: the spheres go back to c + R p
+    const std::string lig = tempPath("t.in");
+    writeText(lig, "# header\n#   c = 1 2 3\n#   R = 0 -1 0 ; 1 0 0 ; 0 0 1 (rows)\nfix t all "
+                   "particletemplate/multisphere 15485863 atom_type 1 density constant 1000 nspheres 2 ntry 1000 "
+                   "spheres &\n    0.5 0 0 1 &\n    -0.5 0 0 0.75 &\n    type 1 mass 1 use_density inertia_tensor "
+                   "1 0 0 1 0 1\n");
+    SphereSet s = readSpheres(lig);
+    ASSERT_EQ(s.size(), 2u);
+    EXPECT_NEAR((s.centers[0] - Vec3(1.0, 2.5, 3.0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((s.centers[1] - Vec3(1.0, 1.5, 3.0)).norm(), 0.0, 1e-15);
+    EXPECT_EQ(s.radii[1], 0.75);
+    // a Kratos cluster of another program (no c, R): relative to Particle_center_and_diameter's centre
+    const std::string clu = tempPath("t.clu");
+    writeText(clu, "//\nName\nx\n\nBegin centers_and_radii\n1 0 0 0.5\n// a comment\n-1 0 0 0.5\nEnd "
+                   "centers_and_radii\n\nParticle_center_and_diameter\n0.5 0 0 3\n\nVolume\n1\n");
+    s = readSpheres(clu);
+    ASSERT_EQ(s.size(), 2u);
+    EXPECT_EQ(s.centers[0], Vec3(0.5, 0.0, 0.0));
+    EXPECT_EQ(s.centers[1], Vec3(-1.5, 0.0, 0.0));
+    // templates it cannot read: named, never guessed
+    writeText(lig, "fix t all particletemplate/multisphere 1 nspheres 3 ntry 1 spheres 0 0 0 1 1 0 0 1 type 1\n");
+    expectError([&] { readSpheres(lig); }, "fewer numbers follow spheres");
+    writeText(lig, "fix t all particletemplate/multisphere 1 nspheres 3 ntry 1 spheres file pebbles.txt type 1\n");
+    expectError([&] { readSpheres(lig); }, "in the file pebbles.txt");
+    writeText(lig, "fix a all particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 0 0 1 type 1\nfix b all "
+                   "particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 0 0 1 type 2\n");
+    expectError([&] { readSpheres(lig); }, "2 fix particletemplate/multisphere commands");
+    writeText(lig, "fix t all particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 nan 0 1 type 1\n");
+    expectError([&] { readSpheres(lig); }, "not a finite number");
+    writeText(lig, "#   R = 2 0 0 ; 0 1 0 ; 0 0 1 (rows)\n#   c = 0 0 0\nfix t all particletemplate/multisphere 1 "
+                   "nspheres 1 ntry 1 spheres 0 0 0 1 type 1\n");
+    expectError([&] { readSpheres(lig); }, "not a rotation");
+    writeText(clu, "Begin centers_and_radii\n1 0 0 0.5\n");
+    expectError([&] { readSpheres(clu); }, "no End centers_and_radii");
+    writeText(clu, "Begin centers_and_radii\n1 0 0\nEnd centers_and_radii\n");
+    expectError([&] { readSpheres(clu); }, "must be x y z r");
+    writeText(clu, "Begin centers_and_radii\n1 0 0 -1\nEnd centers_and_radii\n");
+    expectError([&] { readSpheres(clu); }, "readSpheres");
+    std::remove(lig.c_str());
+    std::remove(clu.c_str());
+}

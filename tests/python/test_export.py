@@ -326,6 +326,27 @@ class OtherCodes(unittest.TestCase):
             with self.assertRaises(ValueError):
                 r.export(os.path.join(d, 'g'), format='mercurydpm', frame='generated')
 
+    def test_read_back_and_compared_where_generated(self):
+        """readSpheres and mss compare read every template written here, the spheres back where the grain is
+        (the header's c and R): the same D as the spheres' own file."""
+        r = self.femur
+        with tempfile.TemporaryDirectory() as d:
+            paths = [os.path.join(d, 'f.csv')]
+            r.save(paths[0])
+            for fmt, name in (('liggghts', 'f.in'), ('kratos', 'f.clu'), ('mercurydpm', 'f_clump')):
+                paths.append(os.path.join(d, name))
+                r.export(paths[-1], format=fmt)
+                back = yade_mss.readSpheres(paths[-1])
+                np.testing.assert_allclose(back.centers, r.centers, rtol=0, atol=1e-12 * np.ptp(r.centers))
+                np.testing.assert_array_equal(back.radii, r.radii)
+            p = subprocess.run([MSS, 'compare', os.path.join(DATA, 'human_femur.stl')] + paths, capture_output=True,
+                               text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            rows = [l.split() for l in p.stdout.splitlines() if l.split() and l.split()[0] in paths]
+            self.assertEqual(len(rows), 4, p.stdout)
+            self.assertEqual(len({tuple(x[1:]) for x in rows}), 1, p.stdout)  # every figure the same
+            self.assertLess(float(rows[0][2]), 0.05)
+
     def test_cli_formats(self):
         with tempfile.TemporaryDirectory() as d:
             for fmt, out in (('kratos', 'e.clu'), ('mercurydpm', 'e_clump')):

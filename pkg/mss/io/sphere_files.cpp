@@ -2,6 +2,7 @@
 #include "mss/io.hpp"
 #include "mss/io/atomic_file.hpp"
 #include "mss/io/input_file.hpp"
+#include "mss/io/template_spheres.hpp"
 #include "mss/mesh.hpp"
 
 #include <cmath>
@@ -35,6 +36,16 @@ long long clumpIdOf(const std::string& tok) {
 } // namespace
 
 SphereSet readSpheres(const std::string& path, long long clumpId) {
+    {
+        SphereSet t; // another DEM code's template (mss export): one clump, no ids
+        if (detail::readTemplateSpheres(path, t)) {
+            if (clumpId >= 0)
+                throw std::invalid_argument("readSpheres: " + path +
+                                            ": a clump template holds one clump: no clump id to choose");
+            validateSpheres(t, "readSpheres: " + path);
+            return t;
+        }
+    }
     detail::requireRegularFile("readSpheres", path);
     std::ifstream in(path);
     if (!in) throw std::invalid_argument("readSpheres: " + path + ": cannot open file");
