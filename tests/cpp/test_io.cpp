@@ -669,10 +669,11 @@ TEST(MeshIo, test_ply_faces_first_was_refused) {
 TEST(SphereIo, ClumpTemplatesOfOtherCodesReadBackWhereGenerated) {
     // a LIGGGHTS template as mss export writes it: the spheres go back to c + R p
     const std::string lig = tempPath("t.in");
-    writeText(lig, "# header\n#   c = 1 2 3\n#   R = 0 -1 0 ; 1 0 0 ; 0 0 1 (rows)\nfix t all "
-                   "particletemplate/multisphere 15485863 atom_type 1 density constant 1000 nspheres 2 ntry 1000 "
-                   "spheres &\n    0.5 0 0 1 &\n    -0.5 0 0 0.75 &\n    type 1 mass 1 use_density inertia_tensor "
-                   "1 0 0 1 0 1\n");
+    writeText(lig,
+              "# header\n#   c = 1 2 3\n#   R = 0 -1 0 ; 1 0 0 ; 0 0 1 (rows)\nfix t all "
+              "particletemplate/multisphere 15485863 atom_type 1 density constant 1000 nspheres 2 ntry 1000 "
+              "spheres &\n    0.5 0 0 1 &\n    -0.5 0 0 0.75 &\n    type 1 mass 1 use_density inertia_tensor "
+              "1 0 0 1 0 1\n");
     SphereSet s = readSpheres(lig);
     ASSERT_EQ(s.size(), 2u);
     EXPECT_NEAR((s.centers[0] - Vec3(1.0, 2.5, 3.0)).norm(), 0.0, 1e-15);
@@ -687,17 +688,21 @@ TEST(SphereIo, ClumpTemplatesOfOtherCodesReadBackWhereGenerated) {
     EXPECT_EQ(s.centers[0], Vec3(0.5, 0.0, 0.0));
     EXPECT_EQ(s.centers[1], Vec3(-1.5, 0.0, 0.0));
     // templates it cannot read: named, never guessed
-    writeText(lig, "fix t all particletemplate/multisphere 1 nspheres 3 ntry 1 spheres 0 0 0 1 1 0 0 1 type 1\n");
+    writeText(lig,
+              "fix t all particletemplate/multisphere 1 nspheres 3 ntry 1 spheres 0 0 0 1 1 0 0 1 type 1\n");
     expectError([&] { readSpheres(lig); }, "fewer numbers follow spheres");
-    writeText(lig, "fix t all particletemplate/multisphere 1 nspheres 3 ntry 1 spheres file pebbles.txt type 1\n");
+    writeText(lig,
+              "fix t all particletemplate/multisphere 1 nspheres 3 ntry 1 spheres file pebbles.txt type 1\n");
     expectError([&] { readSpheres(lig); }, "in the file pebbles.txt");
-    writeText(lig, "fix a all particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 0 0 1 type 1\nfix b all "
-                   "particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 0 0 1 type 2\n");
+    writeText(lig,
+              "fix a all particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 0 0 1 type 1\nfix b all "
+              "particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 0 0 1 type 2\n");
     expectError([&] { readSpheres(lig); }, "2 fix particletemplate/multisphere commands");
     writeText(lig, "fix t all particletemplate/multisphere 1 nspheres 1 ntry 1 spheres 0 nan 0 1 type 1\n");
     expectError([&] { readSpheres(lig); }, "not a finite number");
-    writeText(lig, "#   R = 2 0 0 ; 0 1 0 ; 0 0 1 (rows)\n#   c = 0 0 0\nfix t all particletemplate/multisphere 1 "
-                   "nspheres 1 ntry 1 spheres 0 0 0 1 type 1\n");
+    writeText(lig,
+              "#   R = 2 0 0 ; 0 1 0 ; 0 0 1 (rows)\n#   c = 0 0 0\nfix t all particletemplate/multisphere 1 "
+              "nspheres 1 ntry 1 spheres 0 0 0 1 type 1\n");
     expectError([&] { readSpheres(lig); }, "not a rotation");
     writeText(clu, "Begin centers_and_radii\n1 0 0 0.5\n");
     expectError([&] { readSpheres(clu); }, "no End centers_and_radii");
