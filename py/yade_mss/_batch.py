@@ -470,7 +470,7 @@ class _LocalPool(object):
 @_options.documented('batch')
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
           voxelSize=None, origin=None, progress=True, previews=False, security=None, density=1000.0, young=1e9,
-          **options):
+          format=None, **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
     assembly, as ``mss batch`` does (the options are the same, spelled for Python).
 
@@ -493,6 +493,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     from ._args import integer
     workers = integer('batch', 'workers', workers, 1, 1024)
     density, young = (_options.check('batch', 'batch', n, v) for n, v in (('density', density), ('young', young)))
+    if format is not None:
+        format = _options.check('batch', 'batch', 'format', format)
     tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
     out = Batch()
     t0 = time.perf_counter()
@@ -550,6 +552,9 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
             _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
         out.seconds = time.perf_counter() - t0
         _report.writeOutputs(outdir, out, density, young)
+        if format is not None:
+            from ._export import writeTemplates
+            writeTemplates(outdir, out, format, density)
     out.seconds = time.perf_counter() - t0
     if progress:
         print(_report.summary(out, total, density, young), flush=True)
@@ -583,7 +588,7 @@ def main(argv=None):
     try:
         v = _options.parsed('batch', a)
         own = ('output', 'workers', 'scheduler', 'tlsCaFile', 'tlsCert', 'tlsKey', 'minVoxels', 'excludeBorder',
-               'labels', 'previews', 'voxelSize', 'origin', 'density', 'young')
+               'labels', 'previews', 'voxelSize', 'origin', 'density', 'young', 'format')
         gen = {k: x for k, x in v.items() if k not in own}
         labels = [int(x) for x in v['labels'].split(',')] if v.get('labels') else None
         b = batch(a.inputs, v['output'], workers=v.get('workers'), scheduler=v.get('scheduler'),
@@ -591,7 +596,7 @@ def main(argv=None):
                   security=clusterSecurity(None, v.get('tlsCaFile'), v.get('tlsCert'), v.get('tlsKey')),
                   excludeBorder=v.get('excludeBorder', False), labels=labels, voxelSize=v.get('voxelSize'),
                   origin=v.get('origin'), previews=v.get('previews', False), density=v.get('density', 1000.0),
-                  young=v.get('young', 1e9), **gen)
+                  young=v.get('young', 1e9), format=v.get('format'), **gen)
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)

@@ -18,7 +18,16 @@ from . import _options
 from ._files import atomicWrite
 
 FORMATS = ('liggghts', 'kratos', 'mercurydpm')
-SEED = 15485863  # LIGGGHTS wants a prime over 10000 for the template's random numbers
+
+
+def seed(templateType):
+    """The template's random seed: LIGGGHTS wants a prime over 10000, and different ones for every template of
+    a distribution and for its insertion fix, so each type gets its own (the first prime from 20,000,000 + 1000
+    type: the seeds its manual's examples use stay free)."""
+    n = 20000000 + 1000 * int(templateType)
+    while any(n % d == 0 for d in range(2, int(n ** 0.5) + 1)):
+        n += 1
+    return n
 
 
 def _number(x):
@@ -81,7 +90,7 @@ def liggghtsTemplate(result, density, frame='principal', templateType=1, atomTyp
             'mass and inertia left to LIGGGHTS\' Monte Carlo estimate of the union (ntry %d)' % ntry),
         '# use: include this file, then e.g. fix pdd all particledistribution/discrete 32452843 1 %s 1.0' % name,
         'fix %s all particletemplate/multisphere %d atom_type %d density constant %s nspheres %d ntry %d spheres &'
-        % (name, SEED, atomType, _number(density), len(r), ntry),
+        % (name, seed(templateType), atomType, _number(density), len(r), ntry),
     ]
     lines += ['    %s %s %s %s &' % (_number(p[0]), _number(p[1]), _number(p[2]), _number(q)) for p, q in zip(c, r)]
     tail = '    type %d' % templateType
@@ -205,6 +214,60 @@ def _umask():
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+def quaternion(R):
+    """The unit quaternion (w, x, y, z), w >= 0, of the rotation matrix *R* (the largest of the four candidates
+    is computed first, so that none divides by a small number)."""
+    R = np.asarray(R, dtype=float)
+    t = np.trace(R)
+    cands = [t, R[0, 0], R[1, 1], R[2, 2]]
+    i = int(np.argmax(cands))
+    if i == 0:
+        w = np.sqrt(1 + t) / 2
+        q = [w, (R[2, 1] - R[1, 2]) / (4 * w), (R[0, 2] - R[2, 0]) / (4 * w), (R[1, 0] - R[0, 1]) / (4 * w)]
+    else:
+        a, b, c = (i - 1, i % 3, (i + 1) % 3)
+        v = np.sqrt(1 + R[a, a] - R[b, b] - R[c, c]) / 2
+        q = [0.0, 0.0, 0.0, 0.0]
+        q[0] = (R[c, b] - R[b, c]) / (4 * v)
+        q[1 + a], q[1 + b], q[1 + c] = v, (R[b, a] + R[a, b]) / (4 * v), (R[c, a] + R[a, c]) / (4 * v)
+    q = np.array(q)
+    return q if q[0] >= 0 else -q
+
+
+def writeTemplates(outdir, b, fmt, density):
+    """A batch's grains as *fmt*'s templates, one per grain in the principal axes (OUTDIR/templates/, written
+    whole: a rerun leaves none of an earlier run's), and OUTDIR/placements.csv: where each goes (its centre of
+    mass and the rotation from template to world as a quaternion w x y z; a template point p is at c + R p) and
+    its mass. LIGGGHTS: the templates are types 1, 2, ... in the batch's order, and templates/templates.in
+    includes them all."""
+    files, rows = {MARK: 'templates written by mss batch --format %s (density %s): one per grain, placements '
+                   'in ../placements.csv\n' % (fmt, _number(density))}, []
+    ext = {'liggghts': '.in', 'kratos': '.clu', 'mercurydpm': ''}[fmt]
+    for i, (key, r) in enumerate(b.results.items(), 1):
+        name = key + ext
+        if fmt == 'liggghts':
+            files[name] = liggghtsTemplate(r, density, 'principal', i)
+        elif fmt == 'kratos':
+            files[name] = kratosCluster(r)
+        else:
+            files.update({os.path.join(key, rel): text for rel, text in mercuryFiles(r, density).items()})
+        m = r.targetMass
+        _, R = m.principal()
+        rows.append([key, b.rows[key]['label'], os.path.join('templates', name), i] + [_number(x) for x in m.centroid]
+                    + [_number(x) for x in quaternion(R)] + [_number(density * m.volume)])
+    if fmt == 'liggghts':
+        files['templates.in'] = ''.join('include templates/%s\n' % (key + ext) for key in b.results)
+    _writeFolder(os.path.join(outdir, 'templates'), files)
+
+    def table(p):
+        import csv
+        with open(p, 'w', newline='') as f:
+            w = csv.writer(f)
+            w.writerow(['grain', 'label', 'template', 'type', 'x', 'y', 'z', 'qw', 'qx', 'qy', 'qz', 'mass'])
+            w.writerows(rows)
+    atomicWrite(os.path.join(outdir, 'placements.csv'), table, 'batch')
 
 
 def _checked(given):

@@ -358,5 +358,66 @@ class OtherCodes(unittest.TestCase):
             self.assertEqual(len(readMercury(os.path.join(d, 'e_clump'))[0]), 10)
 
 
+class BatchTemplates(unittest.TestCase):
+    """mss batch --format: a template per grain and placements.csv; LIGGGHTS inserts them all with our masses,
+    and the placements put each template's spheres back where its grain lies."""
+
+    def test_specimen_templates(self):
+        import csv
+        L = yade_mss.voronoiBall(16, 3, seed=2)
+        with tempfile.TemporaryDirectory() as d:
+            np.save(os.path.join(d, 'v.npy'), L)
+            out = os.path.join(d, 'out')
+            p = subprocess.run([MSS, 'batch', os.path.join(d, 'v.npy'), '-o', out, '--spheres', '6', '--workers', '1',
+                                '--format', 'liggghts', '--density', '2500'], capture_output=True, text=True)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            with open(os.path.join(out, 'placements.csv')) as f:
+                place = list(csv.DictReader(f))
+            self.assertEqual([r['grain'] for r in place], ['label_1', 'label_2', 'label_3'])
+            self.assertEqual(sorted(os.listdir(os.path.join(out, 'templates'))),
+                             ['label_1.in', 'label_2.in', 'label_3.in', 'mss_export.txt', 'templates.in'])
+            # LIGGGHTS, run in the batch's folder, takes the three templates (types 1-3, seeds all different)
+            script = SCRIPT.format(L=200, l=100, skin=1, fmt16='%.17g').replace(
+                'include template.in', 'include templates/templates.in').replace(
+                'particledistribution/discrete 32452843 1 mss_template_1 1.0',
+                'particledistribution/discrete 32452843 3 mss_template_1 0.25 mss_template_2 0.25 mss_template_3 0.5'
+            ).replace('particles_in_region 1', 'particles_in_region 30')
+            script = script[:script.index('compute inert')] + ('compute ct all multisphere property clumptype\nrun 1\n'
+                                                              'dump d all local 1 bodies.txt c_mass c_ct\n'
+                                                              'dump_modify d format "%.17g %.17g"\nrun 1\n')
+            with open(os.path.join(out, 'in.specimen'), 'w') as f:
+                f.write(script)
+            run = subprocess.run(['liggghts', '-in', 'in.specimen', '-echo', 'none'], cwd=out, capture_output=True,
+                                 text=True, timeout=600)
+            self.assertEqual(run.returncode, 0, run.stdout[-3000:])
+            bodies, entries = [], False
+            with open(os.path.join(out, 'bodies.txt')) as f:
+                for l in f:  # the rows after each ITEM: ENTRIES (not the box's bounds)
+                    entries = l.startswith('ITEM: ENTRIES') or (entries and not l.startswith('ITEM'))
+                    if entries and not l.startswith('ITEM'):
+                        bodies.append(l.split())
+            masses = {int(float(t)): float(m) for m, t in bodies}
+            self.assertEqual(sorted(masses), [1, 2, 3])
+            for r in place:
+                self.assertAlmostEqual(masses[int(r['type'])] / float(r['mass']), 1, delta=1e-12)
+            # the placements put the templates' spheres where the grains are (Kratos clusters: no header used)
+            b = yade_mss.batch([os.path.join(d, 'v.npy')], out, nSpheres=6, workers=1, progress=False,
+                               format='kratos', density=2500)
+            self.assertEqual(sorted(os.listdir(os.path.join(out, 'templates'))),
+                             ['label_1.clu', 'label_2.clu', 'label_3.clu', 'mss_export.txt'])  # none of the last run
+            with open(os.path.join(out, 'placements.csv')) as f:
+                place = list(csv.DictReader(f))
+            for r in place:
+                k = readKratos(os.path.join(out, r['template']))
+                w, x, y, z = (float(r[q]) for q in ('qw', 'qx', 'qy', 'qz'))
+                R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                              [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                              [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+                c = np.array([float(r[a]) for a in 'xyz'])
+                res = b.results[r['grain']]
+                np.testing.assert_allclose(k['spheres'][:, :3] @ R.T + c, res.centers, rtol=0, atol=1e-9)
+                np.testing.assert_array_equal(k['spheres'][:, 3], res.radii)
+
+
 if __name__ == '__main__':
     unittest.main()

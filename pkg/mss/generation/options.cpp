@@ -193,7 +193,12 @@ const std::vector<OptionSpec> kTable = {
      "skip grains cut by the volume's border", c::Batch},
     // the time step each grain allows (YADE's PWaveTimeStep: the smallest radius times sqrt(density / young))
     {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
-     "the grains' density, for the time step each allows (default: YADE's FrictMat)", c::Batch},
+     "the grains' density, for the time step each allows and the templates' mass (default: YADE's FrictMat)",
+     c::Batch},
+    {"format", "--format", true, T::Choice, "", 0, 0, false, false, "liggghts|kratos|mercurydpm", "", "F",
+     "also write each grain as this DEM code's template (templates/, as mss export) and where each goes "
+     "(placements.csv)",
+     c::Batch},
     {"young", "--young", true, T::Number, "1e9", 0, kInf, true, true, "", "mass / (world unit s^2)", "E",
      "the grains' Young's modulus, for the time step each allows (default: YADE's FrictMat)", c::Batch},
     // spheropolygons (2-D, the second paper)
