@@ -15,7 +15,7 @@ import tempfile
 import numpy as np
 
 from . import _options
-from ._files import atomicWrite
+from ._files import _umask, atomicWrite
 
 FORMATS = ('liggghts', 'kratos', 'mercurydpm')
 
@@ -208,12 +208,6 @@ def _writeFolder(path, files):
     finally:
         if old is not None:
             shutil.rmtree(old, ignore_errors=True)
-
-
-def _umask():
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
 
 
 def quaternion(R):
