@@ -495,6 +495,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     density, young = (_options.check('batch', 'batch', n, v) for n, v in (('density', density), ('young', young)))
     if format is not None:
         format = _options.check('batch', 'batch', 'format', format)
+        if outdir is None:
+            raise ValueError('batch: format %r writes templates into the output folder: give outdir' % format)
     tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
     out = Batch()
     t0 = time.perf_counter()

@@ -189,6 +189,11 @@ class Command(unittest.TestCase):
                 r.export(os.path.join(d, 'y.in'), frame='body')
             with self.assertRaises(ValueError):
                 r.export(os.path.join(d, 'y.in'), density=float('nan'))
+            with self.assertRaises(ValueError) as e:  # templates need a folder to go to
+                yade_mss.batch([os.path.join(DATA, 'cube.stl')], None, nSpheres=2, format='kratos', progress=False)
+            self.assertIn('give outdir', str(e.exception))
+            with self.assertRaises(ValueError):
+                yade_mss.batch([os.path.join(DATA, 'cube.stl')], d, nSpheres=2, format='pfc', progress=False)
 
     def test_a_hostile_file_name_stays_a_comment(self):
         """A grain named with newlines and a LIGGGHTS command: the name is a comment, LIGGGHTS runs nothing else."""
