@@ -498,6 +498,11 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         if outdir is None:
             raise ValueError('batch: format %r writes templates into the output folder: give outdir' % format)
     tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+    if format == 'liggghts':
+        from ._export import MAX_TEMPLATES
+        if len(tasks) > MAX_TEMPLATES:  # said before the grains are generated, not after
+            raise ValueError('batch: %d grains: LIGGGHTS templates are numbered by 32-bit seeds, at most %d'
+                             % (len(tasks), MAX_TEMPLATES))
     out = Batch()
     t0 = time.perf_counter()
     if outdir is not None:

@@ -14,10 +14,11 @@ import tempfile
 
 import numpy as np
 
-from . import _options
+from . import _mss, _options
 from ._files import _umask, atomicWrite
 
 FORMATS = ('liggghts', 'kratos', 'mercurydpm')
+_SPHERE_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'spheres')  # the format table's
 
 
 def seed(templateType):
@@ -27,7 +28,13 @@ def seed(templateType):
     n = 20000000 + 1000 * int(templateType)
     while any(n % d == 0 for d in range(2, int(n ** 0.5) + 1)):
         n += 1
+    if n > 2 ** 31 - 1:  # LIGGGHTS reads a seed with atoi: a larger one would wrap
+        raise ValueError('export: template type %d: its seed %d does not fit LIGGGHTS\' 32-bit integers '
+                         '(at most %d templates)' % (templateType, n, MAX_TEMPLATES))
     return n
+
+
+MAX_TEMPLATES = 2000000  # seed(MAX_TEMPLATES) is under 2^31
 
 
 def _number(x):
@@ -308,7 +315,7 @@ def _result(source, gen):
                              % (source, ', '.join(sorted(gen))))
         return MssResult.load(source)
     ext = os.path.splitext(source)[1].lower() if isinstance(source, str) else ''
-    if ext in ('.csv', '.txt', '.vtk'):
+    if ext in _SPHERE_EXT:
         raise ValueError('export: %s is a sphere file without its grain: export the grain (mesh or volume) or its '
                          'saved result (.npz), so that the mass properties are the grain\'s' % source)
     return _generate(source, gen)

@@ -10,7 +10,8 @@ import unittest
 import numpy as np
 
 import yade_mss
-from yade_mss._export import liggghtsTemplate
+from yade_mss._clumps import quaternionMatrix, randomRotation
+from yade_mss._export import MAX_TEMPLATES, liggghtsTemplate, quaternion, seed
 
 DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'data')
 MSS = os.environ.get('MSS_BINARY', 'mss')
@@ -194,6 +195,21 @@ class Command(unittest.TestCase):
             self.assertIn('give outdir', str(e.exception))
             with self.assertRaises(ValueError):
                 yade_mss.batch([os.path.join(DATA, 'cube.stl')], d, nSpheres=2, format='pfc', progress=False)
+
+    def test_quaternion_and_seeds(self):
+        rng = np.random.default_rng(5)
+        for R in [randomRotation(rng) for _ in range(500)] + [np.diag(d) for d in ((1, 1, 1), (1, -1, -1),
+                                                                                (-1, 1, -1), (-1, -1, 1))]:
+            q = quaternion(R)
+            self.assertGreaterEqual(q[0], 0)
+            np.testing.assert_allclose(quaternionMatrix(q), R, atol=1e-12)
+        seeds = [seed(t) for t in range(1, 200)] + [seed(MAX_TEMPLATES)]
+        self.assertEqual(len(set(seeds)), len(seeds))
+        self.assertLess(seeds[-1], 2 ** 31)
+        for n in seeds[:20]:
+            self.assertTrue(n > 10000 and all(n % d for d in range(2, int(n ** 0.5) + 1)))
+        with self.assertRaises(ValueError):
+            seed(MAX_TEMPLATES + 200000)
 
     def test_a_hostile_file_name_stays_a_comment(self):
         """A grain named with newlines and a LIGGGHTS command: the name is a comment, LIGGGHTS runs nothing else."""
@@ -414,10 +430,7 @@ class BatchTemplates(unittest.TestCase):
                 place = list(csv.DictReader(f))
             for r in place:
                 k = readKratos(os.path.join(out, r['template']))
-                w, x, y, z = (float(r[q]) for q in ('qw', 'qx', 'qy', 'qz'))
-                R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                              [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                              [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+                R = quaternionMatrix([float(r[q]) for q in ('qw', 'qx', 'qy', 'qz')])
                 c = np.array([float(r[a]) for a in 'xyz'])
                 res = b.results[r['grain']]
                 np.testing.assert_allclose(k['spheres'][:, :3] @ R.T + c, res.centers, rtol=0, atol=1e-9)

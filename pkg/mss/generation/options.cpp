@@ -49,7 +49,7 @@ const std::vector<OptionSpec> kTable = {
      "the template's axes: the grain's principal axes of inertia, or the axes it was generated in "
      "(the centre of mass is the origin in both)",
      c::Export},
-    {"templateType", "--type", true, T::Integer, "1", 1, kIntMax, false, false, "", "", "N",
+    {"templateType", "--type", true, T::Integer, "1", 1, 2000000, false, false, "", "", "N",
      "the template's number (LIGGGHTS: multisphere types are consecutive from 1)", c::Export},
     {"atomType", "--atom-type", true, T::Integer, "1", 1, kIntMax, false, false, "", "", "N",
      "the spheres' atom (material) type", c::Export},
