@@ -17,7 +17,8 @@ import numpy as np
 from . import _mss, _options
 from ._files import _umask, atomicWrite
 
-FORMATS = ('liggghts', 'kratos', 'mercurydpm')
+FORMATS = ('liggghts', 'kratos', 'mercurydpm', 'pfc', 'yade')
+EXTENSIONS = {'liggghts': '.in', 'kratos': '.clu', 'mercurydpm': '', 'pfc': '.p3dat', 'yade': '.txt'}  # batch's
 _SPHERE_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'spheres')  # the format table's
 
 
@@ -177,6 +178,67 @@ def mercuryFiles(result, density, frame='principal'):
     }
 
 
+def _placed(result, frame):
+    """The template's pebbles and inertia per unit density, with the centre of mass they are about: in the
+    principal frame the pebbles about the origin, in the generated frame where they were generated (the centre
+    of mass the grain's own)."""
+    c, r, inertia, R, centroid = templateFrame(result, frame)
+    if frame == 'generated':
+        return c + centroid, r, inertia, centroid, R, centroid
+    return c, r, inertia, np.zeros(3), R, centroid
+
+
+def pfcTemplate(result, frame='principal'):
+    """The text of an Itasca PFC3D data file (.p3dat) holding a ``clump template create`` command: the pebbles
+    (``pebbles N r x y z ...``), the grain's exact ``volume``, its ``inertia`` tensor for unit density (I11 I22
+    I33 I12 I13 I23, as PFC takes a template's) and the ``position`` of its centroid. PFC translates the
+    pebbles so that the centroid is at the template's origin and keeps the position for ``clump replicate
+    original-position``; templates are of unit density (``clump replicate density`` scales them)."""
+    p, r, inertia, at, R, centroid = _placed(result, frame)
+    m = result.targetMass
+    name = _name(result)
+    lines = [
+        '; PFC3D clump template, written by yade-mss (mss export --format pfc)',
+        '; grain: %s; %d pebbles; Dice mismatch %s on the generation grid'
+        % (_safe(result.source or 'unknown'), len(r), _number(result.metrics.get('dice', float('nan')))),
+        '; frame: %s axes; a template point p (about its centroid) is at c + R p where the grain was generated,'
+        % frame,
+        ';   c = %s' % ' '.join(_number(x) for x in centroid),
+        ';   R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+        "; volume and inertia are the grain's own, not the pebbles' union; inertia for unit density, lengths as "
+        "the grain's",
+        'clump template create name \'%s\' ...' % name,
+        '    pebbles %d ...' % len(r)]
+    lines += ['    %s %s %s %s ...' % (_number(q), _number(x[0]), _number(x[1]), _number(x[2])) for x, q in zip(p, r)]
+    lines += ['    volume %s ...' % _number(m.volume),
+              '    inertia %s ...' % ' '.join(_number(inertia[i, j]) for i, j in ((0, 0), (1, 1), (2, 2), (0, 1),
+                                                                                   (0, 2), (1, 2))),
+              '    position %s' % ' '.join(_number(x) for x in at)]
+    return '\n'.join(lines) + '\n'
+
+
+def yadeClumps(result, density, frame='principal'):
+    """The text of a yade-mss clumps file (what :func:`yade_mss.writeClumps` writes and
+    :func:`yade_mss.readClumps` reads): ``x y z r 0`` a sphere (YADE's ``ymport.textClumps`` reads them) and a
+    ``#mss clump`` line with the grain's exact mass, centre of mass and inertia tensor for *density*."""
+    from ._clumpfiles import HEADER
+    p, r, inertia, R, centroid = templateFrame(result, frame)  # the centre of mass at the origin, as templates
+    m = result.targetMass
+    I = density * inertia
+    lines = [HEADER.rstrip('\n'),
+             '# written by mss export --format yade from %s: %d spheres, Dice mismatch %s on the generation grid'
+             % (_safe(result.source or 'unknown'), len(r), _number(result.metrics.get('dice', float('nan')))),
+             '# frame: %s axes; a point p (about the centre of mass) is at c + R p where the grain was generated,'
+             % frame,
+             '#   c = %s' % ' '.join(_number(x) for x in centroid),
+             '#   R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+             '#mss clump 0 density %s mass %s centroid %s inertia %s' % (
+                 _number(density), _number(density * m.volume), ' '.join(_number(x) for x in np.zeros(3)),
+                 ' '.join(_number(I[i, j]) for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))))]
+    lines += ['%s %s %s %s 0' % (_number(x[0]), _number(x[1]), _number(x[2]), _number(q)) for x, q in zip(p, r)]
+    return '\n'.join(lines) + '\n'
+
+
 MARK = 'mss_export.txt'
 
 
@@ -245,13 +307,17 @@ def writeTemplates(outdir, b, fmt, density):
     includes them all."""
     files, rows = {MARK: 'templates written by mss batch --format %s (density %s): one per grain, placements '
                    'in ../placements.csv\n' % (fmt, _number(density))}, []
-    ext = {'liggghts': '.in', 'kratos': '.clu', 'mercurydpm': ''}[fmt]
+    ext = EXTENSIONS[fmt]
     for i, (key, r) in enumerate(b.results.items(), 1):
         name = key + ext
         if fmt == 'liggghts':
             files[name] = liggghtsTemplate(r, density, 'principal', i)
         elif fmt == 'kratos':
             files[name] = kratosCluster(r)
+        elif fmt == 'pfc':
+            files[name] = pfcTemplate(r)
+        elif fmt == 'yade':
+            files[name] = yadeClumps(r, density)
         else:
             files.update({os.path.join(key, rel): text for rel, text in mercuryFiles(r, density).items()})
         m = r.targetMass
@@ -282,11 +348,13 @@ def exportTemplate(result, path, format=None, density=None, frame=None, template
     (the options are ``mss export``'s; None: the table's default).
 
     :param result: an :class:`MssResult` (generated from a grain, or loaded from its .npz)
-    :param format: 'liggghts' (an input-script file to include), 'kratos' (a .clu cluster file) or 'mercurydpm'
-        (a folder, the clump's name, as MClump writes it)
-    :param float density: mass per world unit cubed; the mass is it times the grain's exact volume (Kratos: not
-        written, the material's density applies)
-    :param frame: 'principal' or 'generated' (see :func:`templateFrame`; kratos and mercurydpm: principal)
+    :param format: 'liggghts' (an input-script file to include), 'kratos' (a .clu cluster file), 'mercurydpm'
+        (a folder, the clump's name, as MClump writes it), 'pfc' (a PFC3D data file with ``clump template
+        create``) or 'yade' (a yade-mss clumps file, for :func:`yade_mss.readClumps`)
+    :param float density: mass per world unit cubed; the mass is it times the grain's exact volume (Kratos and
+        PFC: not written, the material's or replication's density applies)
+    :param frame: 'principal' or 'generated' (see :func:`templateFrame`; kratos and mercurydpm: principal; pfc
+        and yade: the generated frame keeps the pebbles where they were generated)
     :param int templateType: the template's number (LIGGGHTS: consecutive from 1)
     :param int atomType: the spheres' atom (material) type (LIGGGHTS)
     """
@@ -296,6 +364,10 @@ def exportTemplate(result, path, format=None, density=None, frame=None, template
         return
     if o['format'] == 'kratos':
         text = kratosCluster(result, o['frame'])
+    elif o['format'] == 'pfc':
+        text = pfcTemplate(result, o['frame'])
+    elif o['format'] == 'yade':
+        text = yadeClumps(result, o['density'], o['frame'])
     else:
         text = liggghtsTemplate(result, o['density'], o['frame'], o['templateType'], o['atomType'])
 

@@ -130,3 +130,6 @@ w('template_bad_rotation.in', '#   c = 0 0 0\n#   R = 1 0 0 ; 0 1 0 ; 0 0 -1 (ro
   'particletemplate/multisphere 15485863 nspheres 1 ntry 10 spheres 0 0 0 1 type 1\n')
 w('cluster_unended.clu', 'Name\nx\nBegin centers_and_radii\n0 0 0 1\n1 0 0 1\n')
 w('cluster_inf.clu', 'Begin centers_and_radii\n0 0 0 inf\nEnd centers_and_radii\n')
+w('pfc_short.p3dat', "clump template create name 'x' ...\n    pebbles 1000000 ...\n    1 0 0 0 ...\n    volume 1\n")
+w('pfc_bubblepack.p3dat', "clump template create name 'x' geometry 'g' bubblepack distance 120 surfcalculate\n")
+w('yade_export_bad_row.txt', '# written by mss export --format yade from x.stl\n0 0 0 1 0\n1 0 0\n')

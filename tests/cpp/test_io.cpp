@@ -713,3 +713,51 @@ TEST(SphereIo, ClumpTemplatesOfOtherCodesReadBackWhereGenerated) {
     std::remove(lig.c_str());
     std::remove(clu.c_str());
 }
+
+TEST(SphereIo, PfcAndYadeTemplatesReadBack) {
+    // PFC: continuation '...', ';' comments, a vector in parentheses; with the header, the pebbles about the
+    // position go to c + R p
+    const std::string pfc = tempPath("t.p3dat");
+    writeText(
+        pfc,
+        ";   c = 1 2 3\n;   R = 0 -1 0 ; 1 0 0 ; 0 0 1 (rows)\nclump template create name 'x' ... ; here\n"
+        "  pebbles 2 ...\n  1 10.5 0 0 ...\n  0.75 9.5 0 0 ...\n  volume 1 inertia 1 1 1 0 0 0 ...\n"
+        "  position (10,0,0)\n");
+    SphereSet s = readSpheres(pfc);
+    ASSERT_EQ(s.size(), 2u);
+    EXPECT_NEAR((s.centers[0] - Vec3(1.0, 2.5, 3.0)).norm(), 0.0, 1e-15);
+    EXPECT_NEAR((s.centers[1] - Vec3(1.0, 1.5, 3.0)).norm(), 0.0, 1e-15);
+    EXPECT_EQ(s.radii[0], 1.0);
+    // another program's template (no header): the pebbles as written, keywords in any case
+    writeText(
+        pfc,
+        "CLUMP TEMPLATE CREATE NAME y PEBBLES 1 0.5 1 2 3 VOLUME 1 INERTIA 1 1 1 0 0 0 POSITION 1 2 3\n");
+    s = readSpheres(pfc);
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_EQ(s.centers[0], Vec3(1.0, 2.0, 3.0));
+    writeText(pfc, "clump template create name y pebbles 3 0.5 1 2 3 volume 1\n");
+    expectError([&] { readSpheres(pfc); }, "pebbles 3 but fewer numbers follow");
+    writeText(pfc, "clump template create name y geometry g bubblepack distance 120 surfcalculate\n");
+    expectError([&] { readSpheres(pfc); }, "no pebbles keyword");
+    writeText(
+        pfc,
+        "clump template create name a pebbles 1 1 0 0 0\nclump template create name b pebbles 1 1 0 0 0\n");
+    expectError([&] { readSpheres(pfc); }, "2 clump template create commands");
+    writeText(pfc, "clump template create name y pebbles 1e300 1 0 0 0\n");
+    expectError([&] { readSpheres(pfc); }, "pebbles must be an integer");
+    writeText(pfc, "clump template create name y pebbles 1 -1 0 0 0\n");
+    expectError([&] { readSpheres(pfc); }, "readSpheres");
+    // the yade-mss clumps file of mss export: about the centre of mass, put back by the header
+    const std::string txt = tempPath("t.txt");
+    writeText(
+        txt,
+        "# written by mss export --format yade from g.stl\n#   c = 1 2 3\n#   R = 0 -1 0 ; 1 0 0 ; 0 0 1 "
+        "(rows)\n#mss clump 0 density 1 mass 1 centroid 0 0 0 inertia 1 1 1 0 0 0\n0.5 0 0 1 0\n");
+    s = readSpheres(txt);
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_NEAR((s.centers[0] - Vec3(1.0, 2.5, 3.0)).norm(), 0.0, 1e-15);
+    writeText(txt, "# written by mss export --format yade\n0.5 0 0 1\n");
+    expectError([&] { readSpheres(txt); }, "must be x y z r clumpId");
+    std::remove(pfc.c_str());
+    std::remove(txt.c_str());
+}

@@ -194,7 +194,7 @@ class Command(unittest.TestCase):
                 yade_mss.batch([os.path.join(DATA, 'cube.stl')], None, nSpheres=2, format='kratos', progress=False)
             self.assertIn('give outdir', str(e.exception))
             with self.assertRaises(ValueError):
-                yade_mss.batch([os.path.join(DATA, 'cube.stl')], d, nSpheres=2, format='pfc', progress=False)
+                yade_mss.batch([os.path.join(DATA, 'cube.stl')], d, nSpheres=2, format='abaqus', progress=False)
 
     def test_quaternion_and_seeds(self):
         rng = np.random.default_rng(5)
@@ -278,6 +278,47 @@ def readMercury(folder):
         rows(os.path.join('Inertia', 'PD.txt'), 3)
 
 
+def readPfc(path):
+    """A .p3dat file read as PFC3D's command processor reads ``clump template create`` (its manual): ';' starts
+    a comment, '...' continues a line; ``pebbles N`` then N times radius x y z; ``volume V``; ``inertia I11 I22
+    I33 I12 I13 I23`` (unit density); ``position x y z``, the clump's centroid, to which PFC translates the
+    origin (the pebbles are stored relative to it)."""
+    with open(path) as f:
+        text = f.read()
+    command, commands = '', []
+    for line in text.splitlines():
+        line = line.split(';')[0].rstrip()
+        more = line.endswith('...')
+        command += ' ' + (line[:-3] if more else line)
+        if not more:
+            commands.append(command.split())
+            command = ''
+    found = [w for w in commands if [x.lower() for x in w[:3]] == ['clump', 'template', 'create']]
+    assert len(found) == 1, found
+    w, out = found[0], {}
+    i = 3
+    while i < len(w):
+        k = w[i].lower()
+        if k == 'name':
+            out['name'], i = w[i + 1].strip("'"), i + 2
+        elif k == 'pebbles':
+            n = int(w[i + 1])
+            out['pebbles'] = np.array([float(x) for x in w[i + 2:i + 2 + 4 * n]]).reshape(n, 4)[:, [1, 2, 3, 0]]
+            i += 2 + 4 * n
+        elif k == 'volume':
+            out['volume'], i = float(w[i + 1]), i + 2
+        elif k == 'inertia':
+            v = [float(x) for x in w[i + 1:i + 7]]
+            out['inertia'] = np.array([[v[0], v[3], v[4]], [v[3], v[1], v[5]], [v[4], v[5], v[2]]])
+            i += 7
+        elif k == 'position':
+            out['position'], i = np.array([float(x) for x in w[i + 1:i + 4]]), i + 4
+        else:
+            raise AssertionError('unknown keyword %r' % w[i])
+    out['relative'] = out['pebbles'][:, :3] - out['position']  # as PFC keeps them
+    return out
+
+
 class OtherCodes(unittest.TestCase):
     """Kratos and MercuryDPM templates read back by readers written from those codes' own readers: the spheres
     where they were generated, the mass properties the grain's."""
@@ -347,6 +388,57 @@ class OtherCodes(unittest.TestCase):
             with self.assertRaises(ValueError):
                 r.export(os.path.join(d, 'g'), format='mercurydpm', frame='generated')
 
+    def test_pfc_round_trip_both_frames(self):
+        r = self.femur
+        m = r.targetMass
+        size = float(np.ptp(r.centers, axis=0).max())
+        with tempfile.TemporaryDirectory() as d:
+            r.export(os.path.join(d, 'p.p3dat'), format='pfc')
+            r.export(os.path.join(d, 'g.p3dat'), format='pfc', frame='generated')
+            p, g = readPfc(os.path.join(d, 'p.p3dat')), readPfc(os.path.join(d, 'g.p3dat'))
+        self.assertEqual(p['name'], 'human_femur')
+        for t in (p, g):
+            self.assertEqual(t['volume'], m.volume)
+            np.testing.assert_array_equal(t['pebbles'][:, 3], r.radii)
+        # principal: the pebbles about the origin in the principal axes, the inertia diagonal
+        np.testing.assert_array_equal(p['position'], [0, 0, 0])
+        np.testing.assert_allclose(self.world(p['relative']), r.centers, rtol=0, atol=1e-9 * size)
+        np.testing.assert_array_equal(p['inertia'], np.diag(m.principal()[0]))
+        # generated: the pebbles where they were generated, the position the grain's centroid (not the
+        # pebbles'), the inertia the grain's in world axes
+        np.testing.assert_array_equal(g['pebbles'][:, :3], r.centers)
+        np.testing.assert_array_equal(g['position'], m.centroid)
+        np.testing.assert_allclose(g['inertia'], m.inertia, rtol=1e-15, atol=1e-15 * np.abs(m.inertia).max())
+        self.assertGreater(np.linalg.norm(r.unionMass(100).centroid - m.centroid), 1e-3 * size)
+
+    def test_yade_clumps_round_trip(self):
+        """The yade format is the clumps file of writeClumps: readClumps' own parser takes it (the real YADE
+        reading is tests/yade/test_export_yade.py)."""
+        from yade_mss._clumpfiles import _parse
+        r = self.femur
+        m = r.targetMass
+        size = float(np.ptp(r.centers, axis=0).max())
+        with tempfile.TemporaryDirectory() as d:
+            for frame in ('principal', 'generated'):
+                path = os.path.join(d, frame + '.txt')
+                r.export(path, format='yade', density=2650, frame=frame)
+                groups, headers = _parse(path)
+                self.assertEqual(list(groups), [0])
+                a = np.array(groups[0])
+                h = headers[0]
+                self.assertEqual(h[0], 2650)
+                self.assertAlmostEqual(h[1] / (2650 * m.volume), 1, delta=1e-15)
+                np.testing.assert_array_equal(h[2:5], [0, 0, 0])
+                xx, yy, zz, xy, xz, yz = h[5:]
+                I = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]) / 2650
+                if frame == 'principal':
+                    np.testing.assert_allclose(I, np.diag(m.principal()[0]), rtol=1e-15)
+                    np.testing.assert_allclose(self.world(a), r.centers, rtol=0, atol=1e-9 * size)
+                else:
+                    np.testing.assert_allclose(I, m.inertia, rtol=1e-14, atol=1e-15 * np.abs(m.inertia).max())
+                    np.testing.assert_allclose(a[:, :3] + m.centroid, r.centers, rtol=0, atol=1e-12 * size)
+                np.testing.assert_array_equal(a[:, 3], r.radii)
+
     def test_read_back_and_compared_where_generated(self):
         """readSpheres and mss compare read every template written here, the spheres back where the grain is
         (the header's c and R): the same D as the spheres' own file."""
@@ -354,7 +446,8 @@ class OtherCodes(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             paths = [os.path.join(d, 'f.csv')]
             r.save(paths[0])
-            for fmt, name in (('liggghts', 'f.in'), ('kratos', 'f.clu'), ('mercurydpm', 'f_clump')):
+            for fmt, name in (('liggghts', 'f.in'), ('kratos', 'f.clu'), ('mercurydpm', 'f_clump'), ('pfc', 'f.p3dat'),
+                              ('yade', 'f.txt')):
                 paths.append(os.path.join(d, name))
                 r.export(paths[-1], format=fmt)
                 back = yade_mss.readSpheres(paths[-1])
@@ -364,19 +457,21 @@ class OtherCodes(unittest.TestCase):
                                text=True)
             self.assertEqual(p.returncode, 0, p.stderr)
             rows = [l.split() for l in p.stdout.splitlines() if l.split() and l.split()[0] in paths]
-            self.assertEqual(len(rows), 4, p.stdout)
+            self.assertEqual(len(rows), 6, p.stdout)
             self.assertEqual(len({tuple(x[1:]) for x in rows}), 1, p.stdout)  # every figure the same
             self.assertLess(float(rows[0][2]), 0.05)
 
     def test_cli_formats(self):
         with tempfile.TemporaryDirectory() as d:
-            for fmt, out in (('kratos', 'e.clu'), ('mercurydpm', 'e_clump')):
+            for fmt, out in (('kratos', 'e.clu'), ('mercurydpm', 'e_clump'), ('pfc', 'e.p3dat'), ('yade', 'e.txt')):
                 p = subprocess.run([MSS, 'export', os.path.join(DATA, 'ellipsoid_2_1_1.stl'), '--spheres', '10',
                                     '--format', fmt, '-o', os.path.join(d, out)], capture_output=True, text=True)
                 self.assertEqual(p.returncode, 0, p.stderr)
                 self.assertIn('%s template of 10 spheres' % fmt, p.stdout)
             self.assertEqual(len(readKratos(os.path.join(d, 'e.clu'))['spheres']), 10)
             self.assertEqual(len(readMercury(os.path.join(d, 'e_clump'))[0]), 10)
+            self.assertEqual(len(readPfc(os.path.join(d, 'e.p3dat'))['pebbles']), 10)
+            self.assertEqual(len(yade_mss.readSpheres(os.path.join(d, 'e.txt'))), 10)
 
 
 class BatchTemplates(unittest.TestCase):
@@ -435,6 +530,31 @@ class BatchTemplates(unittest.TestCase):
                 res = b.results[r['grain']]
                 np.testing.assert_allclose(k['spheres'][:, :3] @ R.T + c, res.centers, rtol=0, atol=1e-9)
                 np.testing.assert_array_equal(k['spheres'][:, 3], res.radii)
+            # PFC and the YADE clumps file: the same placements, the templates' own centroid at the origin
+            for fmt, ext in (('pfc', '.p3dat'), ('yade', '.txt')):
+                b = yade_mss.batch([os.path.join(d, 'v.npy')], out, nSpheres=6, workers=1, progress=False,
+                                   format=fmt, density=2500)
+                with open(os.path.join(out, 'placements.csv')) as f:
+                    place = list(csv.DictReader(f))
+                self.assertEqual(sorted(os.listdir(os.path.join(out, 'templates'))),
+                                 ['label_1' + ext, 'label_2' + ext, 'label_3' + ext, 'mss_export.txt'])
+                for r in place:
+                    path = os.path.join(out, r['template'])
+                    res = b.results[r['grain']]
+                    if fmt == 'pfc':
+                        t = readPfc(path)
+                        p, rad = t['relative'], t['pebbles'][:, 3]
+                        self.assertAlmostEqual(t['volume'] * 2500 / float(r['mass']), 1, delta=1e-15)
+                    else:
+                        from yade_mss._clumpfiles import _parse
+                        groups, headers = _parse(path)
+                        a = np.array(groups[0])
+                        p, rad = a[:, :3], a[:, 3]
+                        self.assertEqual(headers[0][1], float(r['mass']))
+                    R = quaternionMatrix([float(r[q]) for q in ('qw', 'qx', 'qy', 'qz')])
+                    c = np.array([float(r[a]) for a in 'xyz'])
+                    np.testing.assert_allclose(p @ R.T + c, res.centers, rtol=0, atol=1e-9)
+                    np.testing.assert_array_equal(rad, res.radii)
 
 
 if __name__ == '__main__':

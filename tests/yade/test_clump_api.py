@@ -311,6 +311,35 @@ class SideBySide(Base):
             O.materials.append(FrictMat(density=RHO))
             self.assertEqual(len(ymport.textClumps(f)), 2)
 
+    def test_exported_clumps_file(self):
+        """mss export --format yade: readClumps builds the grain with its exact mass properties (at the material's
+        density), in the template's frame; YADE's ymport.textClumps reads the same spheres."""
+        r = femur20()
+        M, C, I = exactFemur()
+        w, R = np.linalg.eigh(I)
+        with tempfile.TemporaryDirectory() as d:
+            for frame in ('principal', 'generated'):
+                f = os.path.join(d, frame + '.txt')
+                r.export(f, format='yade', density=1.0, frame=frame)
+                O.reset()
+                mat = O.materials.append(FrictMat(density=RHO))
+                (cid, ids), = readClumps(f, material=mat)
+                st = O.bodies[cid].state
+                self.assertLess(abs(st.mass - M) / M, 1e-9)
+                self.assertLess(np.linalg.norm(vec(st.pos)), 1e-9 * 100)  # the centre of mass at the origin
+                # the world tensor it simulates with: the grain's, in the file's axes
+                J = tensor(st)
+                if frame == 'principal':
+                    np.testing.assert_allclose(np.sort(np.diag(J)), np.sort(w), rtol=1e-8)
+                    self.assertLess(np.abs(J - np.diag(np.diag(J))).max(), 1e-8 * w.max())
+                else:
+                    self.assertLess(relErr(J, I), 1e-8)
+                self.assertEqual(len(ids), len(r))
+                O.reset()
+                O.materials.append(FrictMat(density=RHO))
+                self.assertEqual(len(ymport.textClumps(f)), 1)
+                self.assertEqual(len([b for b in O.bodies if b.isClumpMember]), len(r))
+
     def test_periodic_cell(self):
         O.periodic = True
         O.cell.hSize = Matrix3(500, 0, 0, 0, 500, 0, 0, 0, 500)

@@ -37,17 +37,19 @@ const std::vector<OptionSpec> kTable = {
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
      "the charts to write; OUT.csv beside it (and with minCost the clump chosen, OUT_best.csv)", c::Ochart},
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "OUT",
-     "the template to write (liggghts: an input-script file to include, the fix particletemplate/multisphere "
-     "command with the spheres inline)",
+     "the template to write (liggghts: an input-script file to include; kratos: a .clu cluster; mercurydpm: "
+     "a "
+     "folder; pfc: a .p3dat data file with clump template create; yade: a clumps .txt for readClumps)",
      c::Export},
     // a template for another DEM code: the grain's exact mass properties with the spheres
-    {"format", "--format", true, T::Choice, "liggghts", 0, 0, false, false, "liggghts|kratos|mercurydpm", "",
-     "F", "the DEM code whose template is written", c::Export},
+    {"format", "--format", true, T::Choice, "liggghts", 0, 0, false, false,
+     "liggghts|kratos|mercurydpm|pfc|yade", "", "F", "the DEM code whose template is written", c::Export},
     {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
      "the grain's density: the template's mass is it times the grain's exact volume", c::Export},
     {"frame", "--frame", true, T::Choice, "principal", 0, 0, false, false, "principal|generated", "", "FRAME",
      "the template's axes: the grain's principal axes of inertia, or the axes it was generated in "
-     "(the centre of mass is the origin in both)",
+     "(the centre of mass is the origin in both; pfc: the generated frame keeps the pebbles where they were "
+     "generated, PFC moves them)",
      c::Export},
     {"templateType", "--type", true, T::Integer, "1", 1, 2000000, false, false, "", "", "N",
      "the template's number (LIGGGHTS: multisphere types are consecutive from 1)", c::Export},
@@ -195,7 +197,8 @@ const std::vector<OptionSpec> kTable = {
     {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
      "the grains' density, for the time step each allows and the templates' mass (default: YADE's FrictMat)",
      c::Batch},
-    {"format", "--format", true, T::Choice, "", 0, 0, false, false, "liggghts|kratos|mercurydpm", "", "F",
+    {"format", "--format", true, T::Choice, "", 0, 0, false, false, "liggghts|kratos|mercurydpm|pfc|yade", "",
+     "F",
      "also write each grain as this DEM code's template (templates/, as mss export) and where each goes "
      "(placements.csv)",
      c::Batch},

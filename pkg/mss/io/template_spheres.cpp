@@ -1,13 +1,15 @@
 // Sphere sets read back from other DEM codes' clump templates, as `mss export` writes them: a LIGGGHTS
-// include file (fix particletemplate/multisphere, spheres inline), a Kratos cluster (.clu) and a MercuryDPM
-// clump folder. A template holds the spheres in its own frame (the centre of mass at the origin); where the
-// header says where the grain was generated (c and R, a point p at c + R p), the spheres go back there, so
-// that `mss compare` scores them against the grain they came from.
+// include file (fix particletemplate/multisphere, spheres inline), a Kratos cluster (.clu), a MercuryDPM
+// clump folder, a PFC data file (clump template create with its pebbles) and a yade-mss clumps file. A
+// template holds the spheres in its own frame (the centre of mass at the origin); where the header says where
+// the grain was generated (c and R, a point p at c + R p), the spheres go back there, so that `mss compare`
+// scores them against the grain they came from.
 #include "mss/io/template_spheres.hpp"
 
 #include "mss/io.hpp"
 #include "mss/io/input_file.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -195,6 +197,107 @@ SphereSet kratosSpheres(const std::string& path, const std::string& text) {
     return s;
 }
 
+/// The PFC data file's commands: ';' comments dropped, lines ending in '...' joined, vectors' parentheses and
+/// commas made spaces (PFC reads "(x,y,z)" and "x y z" alike).
+std::vector<std::string> pfcCommands(const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream is(text);
+    std::string line, command;
+    while (std::getline(is, line)) {
+        const auto semi = line.find(';');
+        if (semi != std::string::npos) line.resize(semi);
+        while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
+            line.pop_back();
+        const bool more = line.size() >= 3 && line.compare(line.size() - 3, 3, "...") == 0;
+        if (more) line.resize(line.size() - 3);
+        for (char& ch : line)
+            if (ch == '(' || ch == ')' || ch == ',') ch = ' ';
+        command += line + " ";
+        if (!more) {
+            out.push_back(command);
+            command.clear();
+        }
+    }
+    if (!command.empty()) out.push_back(command);
+    return out;
+}
+
+std::string lower(std::string w) {
+    for (char& ch : w) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    return w;
+}
+
+SphereSet pfcSpheres(const std::string& path, const std::string& text) {
+    std::vector<std::vector<std::string>> found;
+    for (const std::string& c : pfcCommands(text)) {
+        std::vector<std::string> w = words(c);
+        if (w.size() > 3 && lower(w[0]) == "clump" && lower(w[1]) == "template" && lower(w[2]) == "create")
+            found.push_back(w);
+    }
+    if (found.size() != 1)
+        fail(path, "the file holds " + std::to_string(found.size()) +
+                       " clump template create commands (one is read)");
+    const std::vector<std::string>& w = found[0];
+    SphereSet s;
+    Vec3 at = Vec3::Zero();
+    bool havePebbles = false;
+    for (std::size_t i = 3; i < w.size(); ++i) {
+        const std::string k = lower(w[i]);
+        if (k == "pebbles" && !havePebbles && i + 1 < w.size()) {
+            const double v = number(path, w[i + 1], "pebbles");
+            if (!(v >= 1 && v <= 1e8 && v == std::floor(v))) fail(path, "pebbles must be an integer >= 1");
+            const auto n = static_cast<std::size_t>(v);
+            if (i + 2 + 4 * n > w.size())
+                fail(path, "pebbles " + std::to_string(n) + " but fewer numbers follow");
+            for (std::size_t k2 = 0; k2 < n; ++k2) {
+                const std::size_t q = i + 2 + 4 * k2;
+                const double r = number(path, w[q], "a pebble's radius");
+                s.add(Vec3(number(path, w[q + 1], "a pebble's x"), number(path, w[q + 2], "a pebble's y"),
+                           number(path, w[q + 3], "a pebble's z")),
+                      r);
+            }
+            havePebbles = true;
+            i += 1 + 4 * n;
+        } else if (k == "position" && i + 3 < w.size()) {
+            at = Vec3(number(path, w[i + 1], "the position's x"), number(path, w[i + 2], "the position's y"),
+                      number(path, w[i + 3], "the position's z"));
+            i += 3;
+        }
+    }
+    if (!havePebbles)
+        fail(path,
+             "the clump template has no pebbles keyword (a bubblepack or surface template: its pebbles are "
+             "made by PFC)");
+    Vec3 c;
+    Eigen::Matrix3d R;
+    if (placement(path, text, ";", c, R)) { // PFC's template: the pebbles about the centroid at the position
+        for (Vec3& p : s.centers) p -= at;
+        place(s, c, R);
+    }
+    return s;
+}
+
+/// A clumps file written by mss export --format yade: "x y z r clumpId" rows (one clump) about the centre of
+/// mass, put back where the header says the grain was generated.
+SphereSet yadeExportSpheres(const std::string& path, const std::string& text) {
+    SphereSet s;
+    std::istringstream is(text);
+    std::string line;
+    while (std::getline(is, line)) {
+        const auto hash = line.find('#');
+        if (hash != std::string::npos) line.resize(hash);
+        std::vector<std::string> w = words(line);
+        if (w.empty()) continue;
+        if (w.size() != 5) fail(path, "a sphere line must be x y z r clumpId: '" + line + "'");
+        s.add(Vec3(number(path, w[0], "x"), number(path, w[1], "y"), number(path, w[2], "z")),
+              number(path, w[3], "r"));
+    }
+    Vec3 c;
+    Eigen::Matrix3d R;
+    if (placement(path, text, "#", c, R)) place(s, c, R);
+    return s;
+}
+
 } // namespace
 
 bool readTemplateSpheres(const std::string& path, SphereSet& out) {
@@ -224,6 +327,14 @@ bool readTemplateSpheres(const std::string& path, SphereSet& out) {
     }
     if (head.find("particletemplate/multisphere") != std::string::npos) {
         out = liggghtsSpheres(path, readWhole(path));
+        return true;
+    }
+    if (head.find("mss export --format yade") != std::string::npos) {
+        out = yadeExportSpheres(path, readWhole(path));
+        return true;
+    }
+    if (lower(head).find("clump template create") != std::string::npos) {
+        out = pfcSpheres(path, readWhole(path));
         return true;
     }
     if (head.find("Begin centers_and_radii") != std::string::npos) {
