@@ -413,6 +413,32 @@ int cmdInfo(const Args& a) {
     return 0;
 }
 
+int cmdSurface(const Args& a) {
+    if (a.positional.size() != 1) throw std::invalid_argument("surface needs one SPHERES file");
+    const mss::Settings st = mss::settingsFrom(values(a, mss::command::Surface), mss::command::Surface);
+    if (!a.has("output")) throw std::invalid_argument("surface needs -o MESH (.stl, .obj or .ply)");
+    const std::string out = a.text("output");
+    const mss::FileFormat* f = mss::findFormat(out, mss::FileKind::Mesh);
+    if (!f || !f->formatMesh) // before the work: the extension decides the writer
+        throw std::invalid_argument(out + ": unknown mesh extension '" + mss::fileExtension(out) +
+                                    "' (expected " + mss::formatList(mss::FileKind::Mesh, true) + ")");
+    const mss::SphereSet s = mss::readSpheres(a.positional[0], st.clumpId);
+    mss::SurfaceReport r;
+    const mss::TriangleMesh mesh = mss::unionSurface(s, st.surface, &r);
+    mss::writeMesh(mesh, out);
+    std::cout << std::setprecision(8) << "wrote         " << out << "\n"
+              << "spheres       " << s.size() << "\n"
+              << "vertices      " << mesh.vertices.size() << "\n"
+              << "triangles     " << mesh.triangles.size() << "\n"
+              << "subdivisions  " << r.subdivisions << "\n"
+              << "volume        " << r.volume << "\n"
+              << "union_volume  " << r.unionVolume << "  (exact)\n"
+              << "volume_error  " << (r.volume / r.unionVolume - 1.0) << "\n"
+              << "longest_edge  " << r.longestEdge << "\n"
+              << "smallest_angle " << r.smallestAngle << " degrees\n";
+    return 0;
+}
+
 // ---- the command line (CLI11): subcommands, per-subcommand help; values are kept as text and converted by
 // the helpers above, so that every bad value gets the same message as before
 
@@ -517,6 +543,18 @@ CLI::App* infoCommand(CLI::App& app, Args& a) {
     return i;
 }
 
+CLI::App* surfaceCommand(CLI::App& app, Args& a) {
+    CLI::App* c =
+        app.add_subcommand("surface", "the boundary of the spheres' union as a closed triangle mesh: mss "
+                                      "surface SPHERES -o clump.stl|.obj|.ply");
+    c->add_option_function<std::string>(
+         "SPHERES", [&a](const std::string& v) { a.positional.push_back(v); },
+         "a sphere file (.csv, .txt, .vtk, or a template of mss export)")
+        ->required();
+    tableOptions(c, a, mss::command::Surface);
+    return c;
+}
+
 /// The cores this run may use (its affinity mask, as OpenMP counts them), the threads it will start
 /// (--threads T if given, else one per core; 0 when not given) and the cores nobody else is running on now
 /// (mss::othersRunning: the least of five looks, as a shell starting the rest of a pipeline runs for a
@@ -541,7 +579,7 @@ CoreUse coreUse(int argc, char** argv) {
 
 /// Whether subcommand @p command runs in this process (the others run in python3).
 bool runsHere(const std::string& command) {
-    return command == "generate" || command == "compare" || command == "info";
+    return command == "generate" || command == "compare" || command == "info" || command == "surface";
 }
 
 /// Set for the run of this program: the threads to pin to cores of their own.
@@ -650,6 +688,7 @@ int main(int argc, char** argv) {
     CLI::App* gen = generateCommand(app, a);
     CLI::App* cmp = compareCommand(app, a);
     CLI::App* inf = infoCommand(app, a);
+    CLI::App* sur = surfaceCommand(app, a);
     app.add_subcommand("preview",
                        "draw a clump against its grain (PNG): mss preview GRAIN SPHERES -o OUT.png");
     app.add_subcommand(
@@ -675,10 +714,10 @@ int main(int argc, char** argv) {
         }
     }
     if (!first.empty() && first[0] != '-' && !runsHere(first)) {
-        std::cerr
-            << "mss: unknown command '" << argv[1]
-            << "' (generate, compare, info, preview, curve, ochart, export, batch or spheropolygon; mss "
-               "--help)\n";
+        std::cerr << "mss: unknown command '" << argv[1]
+                  << "' (generate, compare, info, surface, preview, curve, ochart, export, batch or "
+                     "spheropolygon; mss "
+                     "--help)\n";
         return 2;
     }
     try {
@@ -686,7 +725,11 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::ExtrasError& e) {
-        CLI::App* sub = gen->parsed() ? gen : cmp->parsed() ? cmp : inf->parsed() ? inf : &app;
+        CLI::App* sub = gen->parsed()   ? gen
+                        : cmp->parsed() ? cmp
+                        : inf->parsed() ? inf
+                        : sur->parsed() ? sur
+                                        : &app;
         std::vector<std::string> extras = sub->remaining();
         std::cerr << "mss " << sub->get_name() << ": error: " << unknownOption(sub, extras) << "\n"
                   << "run 'mss " << sub->get_name() << " --help' for the options\n";
@@ -696,10 +739,14 @@ int main(int argc, char** argv) {
         std::cerr << "mss: error: " << e.what() << "\nrun 'mss --help' or 'mss COMMAND --help'\n";
         return 2;
     }
-    const std::string cmd = gen->parsed() ? "generate" : cmp->parsed() ? "compare" : "info";
+    const std::string cmd = gen->parsed()   ? "generate"
+                            : cmp->parsed() ? "compare"
+                            : sur->parsed() ? "surface"
+                                            : "info";
     try {
         if (cmd == "generate") return cmdGenerate(a);
         if (cmd == "compare") return cmdCompare(a);
+        if (cmd == "surface") return cmdSurface(a);
         return cmdInfo(a);
     } catch (const std::bad_alloc&) { // --memory-limit allows more than this machine could give
         std::cerr

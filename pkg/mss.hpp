@@ -16,4 +16,5 @@
 #include "mss/score.hpp"         // scoring sphere sets (eq. 7, 27)
 #include "mss/spheres.hpp"       // sphere sets
 #include "mss/spheropolygon.hpp" // 2-D: spheropolygons from particle images (the second paper)
+#include "mss/surface.hpp"       // the surface of a clump: its spheres' union as a mesh
 #include "mss/voxelize.hpp"      // voxelisation (section 2.2) and grid resolution

@@ -228,7 +228,7 @@ unsigned commandBit(const std::string& name) {
         {"info", mss::command::Info},         {"batch", mss::command::Batch},
         {"preview", mss::command::Preview},   {"curve", mss::command::Curve},
         {"ochart", mss::command::Ochart},     {"spheropolygon", mss::command::Spheropolygon},
-        {"export", mss::command::Export}};
+        {"export", mss::command::Export},     {"surface", mss::command::Surface}};
     for (const auto& [word, bit] : kCommands)
         if (name == word) return bit;
     throw std::invalid_argument("options: no command '" + name + "'");
@@ -270,7 +270,8 @@ py::list fileFormats() {
                                                       : "spheres";
         d["description"] = f.description;
         d["readByCore"] = f.readByCore;
-        d["written"] = f.formatSpheres != nullptr;
+        d["written"] = f.formatSpheres != nullptr; // spheres written (generate -o)
+        d["meshWritten"] = f.formatMesh != nullptr; // a mesh written (surface -o)
         out.append(d);
     }
     return out;
@@ -283,7 +284,7 @@ py::list optionTable() {
         {mss::command::Info, "info"},         {mss::command::Batch, "batch"},
         {mss::command::Preview, "preview"},   {mss::command::Curve, "curve"},
         {mss::command::Ochart, "ochart"},     {mss::command::Spheropolygon, "spheropolygon"},
-        {mss::command::Export, "export"}};
+        {mss::command::Export, "export"},     {mss::command::Surface, "surface"}};
     py::list out;
     for (const mss::OptionSpec& s : mss::optionTable()) {
         py::dict d;
@@ -525,6 +526,40 @@ py::dict massSpheres(const py::object& centers, const py::object& radii, int res
     return mass(mss::sphereUnionMassProperties(spheres(centers, radii), resolution));
 }
 
+/// The union's boundary as a mesh: {vertices: bytes of (n, 3) doubles, triangles: bytes of (m, 3) int32, and
+/// the report's figures}; @p options: mss surface's (tolerance, maxEdge, maxTriangles).
+py::dict unionSurface(const py::object& centers, const py::object& radii, const py::dict& options) {
+    const mss::Settings st = settings(options, mss::command::Surface);
+    const mss::SphereSet s = spheres(centers, radii);
+    mss::SurfaceReport r;
+    const mss::TriangleMesh m = mss::unionSurface(s, st.surface, &r);
+    std::vector<double> v;
+    v.reserve(3 * m.vertices.size());
+    for (const mss::Vec3& p : m.vertices) v.insert(v.end(), {p.x(), p.y(), p.z()});
+    std::vector<std::int32_t> t;
+    t.reserve(3 * m.triangles.size());
+    for (const auto& tri : m.triangles) t.insert(t.end(), tri.begin(), tri.end());
+    py::dict d;
+    d["vertices"] = py::object(py::handle<>(
+        PyBytes_FromStringAndSize(reinterpret_cast<const char*>(v.data()), Py_ssize_t(v.size() * 8))));
+    d["triangles"] = py::object(py::handle<>(
+        PyBytes_FromStringAndSize(reinterpret_cast<const char*>(t.data()), Py_ssize_t(t.size() * 4))));
+    d["subdivisions"] = r.subdivisions;
+    d["volume"] = r.volume;
+    d["unionVolume"] = r.unionVolume;
+    d["longestEdge"] = r.longestEdge;
+    d["smallestAngle"] = r.smallestAngle;
+    return d;
+}
+
+void writeMesh(const py::object& vertices, const py::object& triangles, const std::string& path) {
+    mss::writeMesh(mesh(vertices, triangles), path);
+}
+
+double sphereUnionVolume(const py::object& centers, const py::object& radii) {
+    return mss::sphereUnionVolume(spheres(centers, radii));
+}
+
 py::dict scoreMesh(const py::object& vertices, const py::object& triangles, const py::object& centers,
                    const py::object& radii, int resolution, double offset, int supersample,
                    const py::object& cuts) {
@@ -727,6 +762,12 @@ BOOST_PYTHON_MODULE(_mss) {
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"),
              py::arg("planes") = py::list()));
     py::def("massSpheres", massSpheres, (py::arg("centers"), py::arg("radii"), py::arg("resolution") = 200));
+    py::def("unionSurface", unionSurface, (py::arg("centers"), py::arg("radii"), py::arg("options")),
+            "The boundary of the spheres' union as a closed mesh (mss surface).");
+    py::def("writeMesh", writeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("path")),
+            "Writes a mesh by extension (.stl, .obj, .ply), atomically.");
+    py::def("sphereUnionVolume", sphereUnionVolume, (py::arg("centers"), py::arg("radii")),
+            "The exact volume of the spheres' union.");
     py::def("scoreMesh", scoreMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("centers"), py::arg("radii"),
              py::arg("resolution") = 100, py::arg("offset") = 0.37, py::arg("supersample") = 1,

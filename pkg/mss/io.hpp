@@ -26,6 +26,8 @@ struct FileFormat {
     std::string (*formatSpheres)(const SphereSet& spheres);
     /// Whether the core reads it (a voxel stack in .tif is read by the Python package, with tifffile).
     bool readByCore;
+    /// Mesh: the whole file of a mesh in this format (writeMesh writes it atomically), else null.
+    std::string (*formatMesh)(const TriangleMesh& mesh);
 };
 
 /// The table: every format of every kind.
@@ -55,6 +57,11 @@ TriangleMesh readMesh(const std::string& path);
 /// interrupted run never leaves a half-written file. @throws std::invalid_argument on an unknown extension or
 /// unwritable path.
 void writeSpheres(const SphereSet& s, const std::string& path);
+
+/// Writes a mesh by extension: .stl (binary), .obj (full precision), .ply (binary little-endian, doubles),
+/// atomically. @throws std::invalid_argument on a mesh validateMesh refuses, an unknown extension or an
+/// unwritable path.
+void writeMesh(const TriangleMesh& mesh, const std::string& path);
 
 /// Reads spheres from CSV (x,y,z,r with optional header; CLUMP's output, Python %.18e or MATLAB %10f, CRLF
 /// too), a legacy VTK file (readVtkSpheres), or a YADE text clump file

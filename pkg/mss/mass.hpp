@@ -35,4 +35,10 @@ MassProperties voxelMassProperties(const VoxelGrid& volume);
 /// O(h / R) in the volume. @throws std::invalid_argument on bad spheres or resolution.
 MassProperties sphereUnionMassProperties(const SphereSet& spheres, int resolution = 200);
 
+/// The volume of the union of spheres (overlaps counted once) to near machine precision: the divergence
+/// theorem over each sphere's exposed surface, the arcs its neighbours cover in closed form along each
+/// latitude and Gauss-Legendre across them (core/union_volume.cpp). O(n k^3) for k neighbours a sphere (k^2
+/// intervals of k caps), after an O(n log n + pairs) sweep. @throws std::invalid_argument on bad spheres.
+double sphereUnionVolume(const SphereSet& spheres);
+
 } // namespace mss

@@ -7,6 +7,7 @@
 #include "mss/compare.hpp"
 #include "mss/generate.hpp"
 #include "mss/planes.hpp"
+#include "mss/surface.hpp"
 #include "mss/voxelize.hpp"
 
 #include <map>
@@ -34,7 +35,7 @@ enum class OptionType {
 /// the Python function of the same name (compare: compareMany) take the same options.
 namespace command {
 constexpr unsigned Generate = 1, Compare = 2, Info = 4, Batch = 8, Preview = 16, Curve = 32,
-                   Spheropolygon = 64, Ochart = 128, Export = 256;
+                   Spheropolygon = 64, Ochart = 128, Export = 256, Surface = 512;
 }
 
 /// One row of the table.
@@ -103,6 +104,7 @@ struct Settings {
     long long label = -1;     ///< -1 = not given
     long long clumpId = -1;   ///< -1 = not given
     bool keepContacts = true; ///< a labelled volume's grain: reach its neighbours (GenerateOptions::contacts)
+    SurfaceOptions surface;   ///< mss surface: the mesh of the spheres' union
 };
 
 /// Settings from the values of command @p cmd (a command:: bit): each value checked against its row (type,

@@ -107,6 +107,31 @@ class MssResult(object):
             self._unionMass = (resolution, MassProperties._fromDict(d))
         return self._unionMass[1]
 
+    def unionVolume(self):
+        """The exact volume of the union of the spheres (overlaps counted once): the divergence theorem over each
+        sphere's exposed surface (C++ ``mss::sphereUnionVolume``), to near machine precision."""
+        return _mss.sphereUnionVolume(self.centers.ravel().tolist(), self.radii.tolist())
+
+    def surface(self, path=None, **options):
+        """The boundary of the union of the spheres as a closed, manifold triangle mesh with outward normals
+        (``mss surface``): CGAL's union of balls, subdivided until its volume is within *tolerance* of the
+        union's exact volume (and, with *maxEdge*, no edge is longer).
+
+        :param path: also write it there: .stl (binary), .obj or .ply (binary), atomically
+        :param options: tolerance (default 0.002), maxEdge (world units, default 0: no bound), maxTriangles
+            (default 20,000,000: refused beyond)
+        :return: :class:`ClumpSurface`
+        """
+        from ._keywords import split
+        o, = split('MssResult.surface', options, ('tolerance', 'maxEdge', 'maxTriangles'))
+        d = _mss.unionSurface(self.centers.ravel().tolist(), self.radii.tolist(), o)
+        s = ClumpSurface(np.frombuffer(d['vertices'], dtype=np.float64).reshape(-1, 3).copy(),
+                         np.frombuffer(d['triangles'], dtype=np.int32).reshape(-1, 3).copy(),
+                         {k: d[k] for k in ('subdivisions', 'volume', 'unionVolume', 'longestEdge', 'smallestAngle')})
+        if path is not None:
+            s.save(path)
+        return s
+
     def timeStep(self, density, young):
         """The critical time step these spheres allow as YADE's ``PWaveTimeStep`` computes it for a clump's
         members: the smallest radius times sqrt(density / young) (a linear contact: sqrt(m / k) ~ r sqrt(rho / E)).
@@ -244,3 +269,22 @@ def readSpheres(path, clumpId=None):
     clump = -1 if clumpId is None else integer('readSpheres', 'clumpId', clumpId, 0, INT64_MAX)
     c, r = _mss.readSpheres(os.fspath(path), clump)
     return MssResult(c, r, source=os.path.basename(os.fspath(path)))
+
+
+class ClumpSurface(object):
+    """A clump's surface (:meth:`MssResult.surface`): ``vertices`` (n, 3) in world units, ``triangles`` (m, 3)
+    vertex indices, counter-clockwise seen from outside; ``volume`` (the mesh's), ``unionVolume`` (the spheres'
+    union's, exact), ``subdivisions``, ``longestEdge`` and ``smallestAngle`` (degrees)."""
+
+    def __init__(self, vertices, triangles, report):
+        self.vertices, self.triangles = vertices, triangles
+        for k, v in report.items():
+            setattr(self, k, v)
+
+    def save(self, path):
+        """Writes the mesh by extension: .stl (binary), .obj or .ply (binary), atomically."""
+        _mss.writeMesh(self.vertices.ravel().tolist(), self.triangles.ravel().tolist(), os.fspath(path))
+
+    def __repr__(self):
+        return 'ClumpSurface(%d vertices, %d triangles, volume %.6g of the union\'s %.6g)' % (
+            len(self.vertices), len(self.triangles), self.volume, self.unionVolume)

@@ -474,6 +474,83 @@ class OtherCodes(unittest.TestCase):
             self.assertEqual(len(yade_mss.readSpheres(os.path.join(d, 'e.txt'))), 10)
 
 
+class Surface(unittest.TestCase):
+    """mss surface and MssResult.surface: the union's boundary closed, outward and within the tolerance of the
+    union's exact volume, which the grid integration confirms; read by mss info as closed."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.femur = yade_mss.generate(os.path.join(DATA, 'human_femur.stl'), nSpheres=70)
+
+    def test_femur_seventy_closed_and_within_half_a_percent(self):
+        r = self.femur
+        exact = r.unionVolume()
+        self.assertAlmostEqual(r.unionMass(300).volume / exact, 1, delta=1e-4)  # an independent integration
+        with tempfile.TemporaryDirectory() as d:
+            spheres = os.path.join(d, 'femur.csv')
+            r.save(spheres)
+            out = os.path.join(d, 'femur_surface.stl')
+            p = subprocess.run([MSS, 'surface', spheres, '-o', out], capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            said = dict(l.split(None, 1) for l in p.stdout.splitlines())
+            self.assertEqual(float(said['spheres']), 70)
+            info = subprocess.run([MSS, 'info', out], capture_output=True, text=True, timeout=600)
+            self.assertEqual(info.returncode, 0, info.stderr)
+            got = dict(l.split(None, 1) for l in info.stdout.splitlines())
+            self.assertEqual(got['closed'].strip(), 'yes')
+            self.assertEqual(got['oriented'].strip(), 'yes')
+            self.assertEqual(int(got['self_intersections']), 0)
+            self.assertLess(abs(float(got['volume']) / exact - 1), 0.005)
+            self.assertLess(abs(float(got['volume']) / exact - 1), 0.002 + 1e-6)  # the default tolerance (STL: floats)
+            # the same from Python, and from the LIGGGHTS template (the spheres put back where generated)
+            s = r.surface(os.path.join(d, 'f.ply'))
+            self.assertEqual(len(s.triangles), int(got['triangles']))
+            self.assertLess(abs(s.volume / exact - 1), 0.002)
+            self.assertEqual(s.unionVolume, exact)
+            back = yade_mss._mss.readMesh(os.path.join(d, 'f.ply'))
+            np.testing.assert_array_equal(np.reshape(back[0], (-1, 3)), s.vertices)
+            r.export(os.path.join(d, 't.in'))
+            p = subprocess.run([MSS, 'surface', os.path.join(d, 't.in'), '-o', os.path.join(d, 't.obj'),
+                                '--tolerance', '0.01'], capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            said = dict(l.split(None, 1) for l in p.stdout.splitlines())
+            self.assertLess(abs(float(said['volume_error'])), 0.01)
+            self.assertLess(int(said['triangles']), len(s.triangles))  # a looser bound, fewer triangles
+            self.assertAlmostEqual(float(said['union_volume'].split()[0]) / exact, 1, delta=1e-7)
+
+    def test_errors_name_the_problem(self):
+        r = self.femur
+        with tempfile.TemporaryDirectory() as d:
+            spheres = os.path.join(d, 'f.csv')
+            r.save(spheres)
+            two = os.path.join(d, 'two.txt')
+            with open(two, 'w') as f:
+                f.write('0 0 0 1 0\n1 0 0 1 0\n5 0 0 1 1\n')
+            cases = [([spheres, '-o', os.path.join(d, 'x.off')], "unknown mesh extension '.off'"),
+                     ([spheres, '-o', os.path.join(d, 'x.stl'), '--tolerance', '0'], '--tolerance'),
+                     ([spheres, '-o', os.path.join(d, 'x.stl'), '--max-triangles', '100'], 'has 4960 triangles, more'),
+                     ([spheres, '-o', os.path.join(d, 'x.stl'), '--max-triangles', '10000'],
+                      'need more than 10000 triangles'),
+                     ([spheres, '-o', os.path.join(d, 'x.stl'), '--tolerence', '0.1'], "did you mean '--tolerance'"),
+                     ([two, '-o', os.path.join(d, 'x.stl')], 'clump'),
+                     ([os.path.join(d, 'missing.csv'), '-o', os.path.join(d, 'x.stl')], 'missing.csv')]
+            for args, words in cases:
+                p = subprocess.run([MSS, 'surface'] + args, capture_output=True, text=True, timeout=600)
+                self.assertIn(p.returncode, (1, 2), args)
+                self.assertIn(words, p.stderr, args)
+            self.assertFalse(os.path.exists(os.path.join(d, 'x.stl')))
+            p = subprocess.run([MSS, 'surface', two, '--clump', '1', '-o', os.path.join(d, 'one.stl')],
+                               capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertIn('spheres       1', p.stdout)
+            with self.assertRaises(TypeError):
+                r.surface(tolerence=0.1)
+            with self.assertRaises(ValueError):
+                r.surface(tolerance=0.5)
+            with self.assertRaises(ValueError):
+                r.surface(os.path.join(d, 'x.off'), tolerance=0.1)
+
+
 class BatchTemplates(unittest.TestCase):
     """mss batch --format: a template per grain and placements.csv; LIGGGHTS inserts them all with our masses,
     and the placements put each template's spheres back where its grain lies."""

@@ -55,6 +55,15 @@ const std::vector<OptionSpec> kTable = {
      "the template's number (LIGGGHTS: multisphere types are consecutive from 1)", c::Export},
     {"atomType", "--atom-type", true, T::Integer, "1", 1, kIntMax, false, false, "", "", "N",
      "the spheres' atom (material) type", c::Export},
+    // the surface of a clump (mss surface): the mesh of its spheres' union
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "MESH",
+     "the mesh to write: .stl (binary), .obj or .ply (binary)", c::Surface},
+    {"tolerance", "--tolerance", true, T::Number, "0.002", 0, 0.5, true, true, "", "", "X",
+     "refine until the mesh's volume is within this fraction of the union's exact volume", c::Surface},
+    {"maxEdge", "--max-edge", true, T::Number, "0", 0, kInf, false, true, "", "world units", "L",
+     "and until no edge is longer than this; 0: no bound", c::Surface},
+    {"maxTriangles", "--max-triangles", true, T::Integer, "20000000", 1, kIntMax, false, false, "", "", "N",
+     "refuse bounds that need more triangles than this", c::Surface},
     // termination (paper section 3.5): generation stops at the first met
     {"nSpheres", "--spheres", true, T::Integer, "", 1, 65535, false, false, "", "", "N",
      "at most this many spheres (problem (i) of the paper, eq. 2)", kGen},
@@ -145,7 +154,7 @@ const std::vector<OptionSpec> kTable = {
      "default: as written, a set in another frame refused",
      c::Compare},
     {"clumpId", "--clump", true, T::Integer, "", 0, kInt64Max, false, false, "", "", "ID",
-     "the clump with this id, of a YADE text file of several", c::Compare},
+     "the clump with this id, of a YADE text file of several", c::Compare | c::Surface},
     {"csv", "--csv", false, T::Text, "", 0, 0, false, false, "", "", "OUT", "also write the rows as CSV",
      c::Compare},
     // pictures
@@ -264,6 +273,8 @@ std::string commandName(unsigned cmd) {
         return "ochart";
     case c::Export:
         return "export";
+    case c::Surface:
+        return "surface";
     case c::Spheropolygon:
         return "spheropolygon";
     default:
@@ -519,6 +530,12 @@ void apply(Settings& st, const std::string& name, const OptionValue& v) {
         st.compare.checkFrame = false; // an explicit none scores the set as written
     } else if (name == "clumpId")
         st.clumpId = std::get<long long>(v);
+    else if (name == "tolerance")
+        st.surface.tolerance = asNumber(v);
+    else if (name == "maxEdge")
+        st.surface.maxEdge = asNumber(v);
+    else if (name == "maxTriangles")
+        st.surface.maxTriangles = static_cast<std::size_t>(asInt(v));
 }
 
 } // namespace

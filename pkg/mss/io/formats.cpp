@@ -3,8 +3,10 @@
 // lists of extensions are made from it (the binding's fileFormats()). A new format: its reader or writer file
 // in io/ and a row here.
 #include "mss/io.hpp"
+#include "mss/io/atomic_file.hpp"
 #include "mss/io/input_file.hpp"
 #include "mss/io/mesh_readers.hpp"
+#include "mss/io/mesh_writers.hpp"
 #include "mss/io/sphere_writers.hpp"
 
 #include <algorithm>
@@ -18,22 +20,25 @@ namespace {
 
 using K = FileKind;
 
-// extension, kind, description, mesh reader, sphere writer, read by the core
+// extension, kind, description, mesh reader, sphere writer, read by the core, mesh writer
 const std::vector<FileFormat> kFormats = {
-    {".stl", K::Mesh, "STL, ASCII or binary (corners merged into vertices)", detail::readStl, nullptr, true},
-    {".obj", K::Mesh, "Wavefront OBJ (polygons split into fans)", detail::readObj, nullptr, true},
-    {".off", K::Mesh, "Object File Format", detail::readOff, nullptr, true},
-    {".ply", K::Mesh, "Polygon File Format, ASCII or binary", detail::readPly, nullptr, true},
-    {".npy", K::Voxels, "numpy array, 3-D, boolean or integer (labels)", nullptr, nullptr, true},
+    {".stl", K::Mesh, "STL, ASCII or binary (corners merged into vertices)", detail::readStl, nullptr, true,
+     detail::formatStl},
+    {".obj", K::Mesh, "Wavefront OBJ (polygons split into fans)", detail::readObj, nullptr, true,
+     detail::formatObj},
+    {".off", K::Mesh, "Object File Format", detail::readOff, nullptr, true, nullptr},
+    {".ply", K::Mesh, "Polygon File Format, ASCII or binary", detail::readPly, nullptr, true,
+     detail::formatPly},
+    {".npy", K::Voxels, "numpy array, 3-D, boolean or integer (labels)", nullptr, nullptr, true, nullptr},
     {".tif", K::Voxels, "TIFF stack, as CT software exports it (the Python package reads it)", nullptr,
-     nullptr, false},
-    {".tiff", K::Voxels, "TIFF stack (as .tif)", nullptr, nullptr, false},
+     nullptr, false, nullptr},
+    {".tiff", K::Voxels, "TIFF stack (as .tif)", nullptr, nullptr, false, nullptr},
     {".csv", K::Spheres, "x,y,z,r (CLUMP's columns; its Python and MATLAB forms are read too)", nullptr,
-     detail::formatCsv, true},
+     detail::formatCsv, true, nullptr},
     {".txt", K::Spheres, "YADE text clump: x y z r clumpId (ymport.textClumps)", nullptr,
-     detail::formatYadeText, true},
+     detail::formatYadeText, true, nullptr},
     {".vtk", K::Spheres, "legacy VTK points with a radius array (ParaView's glyphs; CLUMP's outputVTK=)",
-     nullptr, detail::formatVtk, true},
+     nullptr, detail::formatVtk, true, nullptr},
 };
 
 } // namespace
@@ -61,7 +66,8 @@ const FileFormat* findFormat(const std::string& path, FileKind kind) {
 std::string formatList(FileKind kind, bool writable) {
     std::vector<std::string> exts;
     for (const FileFormat& f : kFormats)
-        if (f.kind == kind && f.readByCore && (!writable || f.formatSpheres)) exts.push_back(f.extension);
+        if (f.kind == kind && f.readByCore && (!writable || f.formatSpheres || f.formatMesh))
+            exts.push_back(f.extension);
     std::string out;
     for (std::size_t i = 0; i < exts.size(); ++i)
         out += (i == 0 ? "" : i + 1 == exts.size() ? " or " : ", ") + exts[i];
@@ -81,6 +87,15 @@ TriangleMesh readMesh(const std::string& path) {
     TriangleMesh mesh = f->readMesh(path);
     validateMesh(mesh, "readMesh: " + path);
     return mesh;
+}
+
+void writeMesh(const TriangleMesh& mesh, const std::string& path) {
+    validateMesh(mesh, "writeMesh");
+    const FileFormat* f = findFormat(path, FileKind::Mesh);
+    if (!f || !f->formatMesh)
+        throw std::invalid_argument("writeMesh: " + path + ": unknown extension '" + fileExtension(path) +
+                                    "' (expected " + formatList(FileKind::Mesh, true) + ")");
+    detail::writeFileAtomically("writeMesh", path, f->formatMesh(mesh));
 }
 
 } // namespace mss

@@ -1,0 +1,124 @@
+// The boundary of a union of spheres, meshed by CGAL's Skin_surface_3 (shrink factor 1: the union of balls).
+#include "mss/surface.hpp"
+#include "mss/mass.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polyhedron_3.h>
+#include <CGAL/Skin_surface_traits_3.h>
+#include <CGAL/Union_of_balls_3.h>
+#include <CGAL/mesh_union_of_balls_3.h>
+#include <CGAL/subdivide_union_of_balls_mesh_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mss {
+
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Traits = CGAL::Skin_surface_traits_3<Kernel>;
+using Union = CGAL::Union_of_balls_3<Traits>;
+using Polyhedron = CGAL::Polyhedron_3<Kernel>;
+
+double meshVolume(const Polyhedron& p) {
+    double v = 0.0;
+    for (auto f = p.facets_begin(); f != p.facets_end(); ++f) {
+        const auto h = f->halfedge();
+        const auto& a = h->vertex()->point();
+        const auto& b = h->next()->vertex()->point();
+        const auto& c = h->next()->next()->vertex()->point();
+        v += CGAL::to_double(CGAL::determinant(a - CGAL::ORIGIN, b - CGAL::ORIGIN, c - CGAL::ORIGIN)) / 6.0;
+    }
+    return v;
+}
+
+double longestEdge(const Polyhedron& p) {
+    double e = 0.0;
+    for (auto h = p.edges_begin(); h != p.edges_end(); ++h)
+        e = std::max(e, CGAL::to_double(
+                            CGAL::squared_distance(h->vertex()->point(), h->opposite()->vertex()->point())));
+    return std::sqrt(e);
+}
+
+} // namespace
+
+TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& options, SurfaceReport* report) {
+    validateSpheres(spheres, "unionSurface");
+    if (!(options.tolerance > 0.0 && options.tolerance < 0.5))
+        throw std::invalid_argument("unionSurface: tolerance must be in (0, 0.5), got " +
+                                    std::to_string(options.tolerance));
+    if (!(options.maxEdge >= 0.0) || !std::isfinite(options.maxEdge))
+        throw std::invalid_argument("unionSurface: maxEdge must be >= 0 and finite, got " +
+                                    std::to_string(options.maxEdge));
+    if (options.maxTriangles < 1) throw std::invalid_argument("unionSurface: maxTriangles must be >= 1");
+    std::vector<Union::Weighted_point> balls;
+    balls.reserve(spheres.size());
+    for (std::size_t i = 0; i < spheres.size(); ++i) {
+        const Vec3& c = spheres.centers[i];
+        balls.emplace_back(Union::Bare_point(c.x(), c.y(), c.z()), spheres.radii[i] * spheres.radii[i]);
+    }
+    const Union uob(balls.begin(), balls.end());
+    Polyhedron p;
+    CGAL::mesh_union_of_balls_3(uob, p);
+    if (p.size_of_facets() > options.maxTriangles)
+        throw std::invalid_argument(
+            "unionSurface: the first mesh of the union has " + std::to_string(p.size_of_facets()) +
+            " triangles, more than maxTriangles (" + std::to_string(options.maxTriangles) + ")");
+    const double exact = sphereUnionVolume(spheres);
+    // Subdivision moves the new vertices onto the boundary, so the mesh's volume tends to the union's (its
+    // error falls about fourfold a subdivision); the exact volume says when to stop.
+    double volume = meshVolume(p);
+    int subdivisions = 0;
+    while (std::abs(exact - volume) > options.tolerance * exact ||
+           (options.maxEdge > 0.0 && longestEdge(p) > options.maxEdge)) {
+        if (4 * p.size_of_facets() > options.maxTriangles) {
+            std::ostringstream m;
+            m << "unionSurface: the bounds (tolerance " << options.tolerance << ", maxEdge "
+              << options.maxEdge << ") need more than " << options.maxTriangles
+              << " triangles: loosen them or raise maxTriangles";
+            throw std::invalid_argument(m.str());
+        }
+        CGAL::subdivide_union_of_balls_mesh_3(uob, p);
+        ++subdivisions;
+        volume = meshVolume(p);
+    }
+    TriangleMesh mesh;
+    std::map<Polyhedron::Vertex_const_handle, int> index;
+    for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v) {
+        index[v] = int(mesh.vertices.size());
+        const auto& q = v->point();
+        mesh.vertices.emplace_back(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+    }
+    double smallest = 180.0;
+    for (auto f = p.facets_begin(); f != p.facets_end(); ++f) {
+        const auto h = f->halfedge();
+        if (h->next()->next()->next() != h)
+            throw std::logic_error("unionSurface: CGAL's mesh has a facet that is not a triangle");
+        const std::array<int, 3> t = {index[h->vertex()], index[h->next()->vertex()],
+                                      index[h->next()->next()->vertex()]};
+        mesh.triangles.push_back(t);
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = mesh.vertices[std::size_t(t[std::size_t(k)])];
+            const Vec3 u = mesh.vertices[std::size_t(t[std::size_t((k + 1) % 3)])] - a;
+            const Vec3 w = mesh.vertices[std::size_t(t[std::size_t((k + 2) % 3)])] - a;
+            smallest =
+                std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / 3.14159265358979323846);
+        }
+    }
+    if (report) {
+        report->subdivisions = subdivisions;
+        report->volume = volume;
+        report->unionVolume = exact;
+        report->longestEdge = longestEdge(p);
+        report->smallestAngle = smallest;
+    }
+    return mesh;
+}
+
+} // namespace mss
