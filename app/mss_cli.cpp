@@ -244,16 +244,48 @@ void printMetrics(const mss::Result& r) {
               << "  refine " << m.secondsRefine << "  total " << m.secondsTotal << "\n";
 }
 
+/// The DEM code whose template the extension of generate's output names, where that is unambiguous: a
+/// template that takes no density (Kratos' and PFC's scale by the material's); "" for none. LIGGGHTS' .in and
+/// MercuryDPM's folder need a density, and .txt is already YADE's text clump: those are mss export's.
+std::string templateFormat(const std::string& path) {
+    const std::string ext = mss::fileExtension(path);
+    return ext == ".clu" ? "kratos" : ext == ".p3dat" ? "pfc" : "";
+}
+
+/// generate -o T.clu|T.p3dat: the generation's options passed to `mss export` (which writes the template
+/// with the grain's exact mass properties); an option export does not take is refused by name first.
+int generateTemplate(const Args& a, const std::string& format) {
+    std::vector<std::string> args{"export", a.positional[0], "--format", format};
+    for (const auto& [name, text] : a.opts) {
+        const mss::OptionSpec* s = mss::findOption(name, mss::command::Generate);
+        if (name == "output") {
+            args.insert(args.end(), {"-o", text});
+        } else if (!s || !(s->commands & mss::command::Export)) {
+            throw std::invalid_argument(flagOf(name) + " does not apply to a template (-o " +
+                                        a.text("output") + " runs mss export)");
+        } else if (s->type == mss::OptionType::Flag) {
+            if (text != s->fallback) args.push_back(flagOf(name));
+        } else {
+            args.insert(args.end(), {flagOf(name), text});
+        }
+    }
+    for (const std::string& p : a.planes) args.insert(args.end(), {"--plane", p});
+    return runPython(args);
+}
+
 int cmdGenerate(const Args& a) {
     if (a.positional.size() != 1) throw std::invalid_argument("generate needs one INPUT file");
     const std::string written = mss::formatList(mss::FileKind::Spheres, true);
     if (!a.has("output")) throw std::invalid_argument("generate needs -o OUT (" + written + ")");
     const std::string in = a.positional[0], out = a.text("output");
+    if (const std::string format = templateFormat(out); !format.empty()) return generateTemplate(a, format);
     {
         const mss::FileFormat* f = mss::findFormat(out, mss::FileKind::Spheres);
         if (!f || !f->formatSpheres)
             throw std::invalid_argument(out + ": unknown output extension '" + mss::fileExtension(out) +
-                                        "' (expected " + written + ")");
+                                        "' (expected " + written +
+                                        "); a template with the grain's mass properties: .clu (Kratos) or "
+                                        ".p3dat (PFC), or mss export");
     }
     const mss::Settings st = mss::settingsFrom(values(a, mss::command::Generate), mss::command::Generate);
     mss::GenerateOptions o = st.generate;

@@ -27,8 +27,12 @@ COMMANDS = (('generate', 'mss generate INPUT -o OUT [options]', 'Spheres for a m
             ('ochart', 'mss ochart GRAIN -o OUT.png [--counts A:B --radii A:B] [--dice X --min-cost]', 'D, the '
              'simulation cost T = n / r_min and O = T x D over sphere counts and radius bounds (the O-chart in '
              '3-D), with the Pareto front; ``--dice X --min-cost`` writes the cheapest clump meeting D <= X.'),
-            ('export', 'mss export GRAIN|RESULT.npz --format liggghts -o OUT [options]', 'A clump as another DEM '
-             'code\'s template with the grain\'s exact mass, centre and inertia (see :doc:`/guide/export`).'),
+            ('export', 'mss export GRAIN|RESULT.npz --format liggghts|kratos|mercurydpm|pfc|yade -o OUT [options]',
+             'A clump as another DEM code\'s template with the grain\'s exact mass, centre and inertia (see '
+             ':doc:`/guide/export`).'),
+            ('surface', 'mss surface SPHERES -o MESH.stl|.obj|.ply [options]', 'The boundary of the spheres\' '
+             'union as a closed, outward triangle mesh, within ``--tolerance`` of the union\'s exact volume (see '
+             ':doc:`/guide/surface`).'),
             ('spheropolygon', 'mss spheropolygon IMAGE -o OUT.json [options]', '2-D particle images (.npy, .png) '
              'to spheropolygons (the second paper), with the O-chart.'))
 

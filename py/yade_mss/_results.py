@@ -51,6 +51,9 @@ class MassProperties(object):
         return {'volume': self.volume, 'centroid': self.centroid.tolist(), 'inertia': self.inertia.ravel().tolist()}
 
 
+# the templates whose extension names their code and that need no density (mss generate -o writes them too)
+TEMPLATE_EXTENSIONS = {'.clu': 'kratos', '.p3dat': 'pfc'}
+
 class MssResult(object):
     """A sphere set and where it came from: what :func:`generate` returns and :func:`mssClump` accepts.
 
@@ -184,8 +187,9 @@ class MssResult(object):
 
     def save(self, path, compress=True):
         """Writes the result by extension: ``.npz`` (everything, for :meth:`load`), or the sphere files of the
-        command line: ``.csv`` (x,y,z,r), ``.txt`` (YADE text clump, ``ymport.textClumps``), ``.vtk`` (ParaView).
-        Written atomically.
+        command line: ``.csv`` (x,y,z,r), ``.txt`` (YADE text clump, ``ymport.textClumps``), ``.vtk`` (ParaView),
+        or the templates that take no density, with the grain's mass properties: ``.clu`` (Kratos) and ``.p3dat``
+        (PFC), as :meth:`export` writes them. Written atomically.
 
         :param path: the file to write
         :param bool compress: ``.npz``: compressed
@@ -195,9 +199,12 @@ class MssResult(object):
         if ext in ('.csv', '.txt', '.vtk'):
             _mss.writeSpheres(self.centers.ravel().tolist(), self.radii.tolist(), path)
             return
+        if ext in TEMPLATE_EXTENSIONS:  # no density in these: the material's applies
+            self.export(path, format=TEMPLATE_EXTENSIONS[ext])
+            return
         if ext != '.npz':
-            raise ValueError("MssResult.save: %s: unknown extension '%s' (expected .npz, .csv, .txt or .vtk)"
-                             % (path, ext))
+            raise ValueError("MssResult.save: %s: unknown extension '%s' (expected .npz, .csv, .txt or .vtk, or a "
+                             "template: .clu or .p3dat)" % (path, ext))
         meta = {'metrics': self.metrics, 'grid': self.grid, 'source': self.source,
                 'targetMass': self.targetMass._toDict() if self.targetMass is not None else None, 'version': 1}
         from ._files import atomicWrite

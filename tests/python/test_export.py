@@ -551,6 +551,42 @@ class Surface(unittest.TestCase):
                 r.surface(os.path.join(d, 'x.off'), tolerance=0.1)
 
 
+class GenerateWritesTemplates(unittest.TestCase):
+    """mss generate -o T.clu|T.p3dat and MssResult.save: the templates that take no density, as mss export
+    writes them; an option a template cannot take is refused by name."""
+
+    def test_generate_and_save(self):
+        grain = os.path.join(DATA, 'ellipsoid_2_1_1.stl')
+        r = yade_mss.generate(grain, nSpheres=10)
+        with tempfile.TemporaryDirectory() as d:
+            for out, read in (('e.clu', lambda p: readKratos(p)['volume']), ('e.p3dat', lambda p: readPfc(p)['volume'])):
+                path = os.path.join(d, out)
+                p = subprocess.run([MSS, 'generate', grain, '--spheres', '10', '--resolution', '100', '--threads', '1',
+                                    '-o', path], capture_output=True, text=True, timeout=600)
+                self.assertEqual(p.returncode, 0, p.stderr)
+                self.assertIn('template of 10 spheres', p.stdout)
+                self.assertEqual(read(path), r.targetMass.volume)
+                with open(path) as f:
+                    cli = f.read()
+                r.save(os.path.join(d, 'saved' + out[1:]))
+                with open(os.path.join(d, 'saved' + out[1:])) as f:
+                    self.assertEqual(f.read(), cli)  # the same file both ways
+            p = subprocess.run([MSS, 'generate', grain, '--spheres', '10', '--clip', '--plane', '0,0,0,1,0,0', '-o',
+                                os.path.join(d, 'half.p3dat')], capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            half = readPfc(os.path.join(d, 'half.p3dat'))
+            self.assertAlmostEqual(half['volume'] / r.targetMass.volume, 0.5, delta=1e-3)  # the plane's half
+            p = subprocess.run([MSS, 'generate', grain, '--spheres', '10', '--preview', os.path.join(d, 'x.png'),
+                                '-o', os.path.join(d, 'x.clu')], capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 1)
+            self.assertIn('--preview does not apply to a template', p.stderr)
+            self.assertFalse(os.path.exists(os.path.join(d, 'x.clu')))
+            p = subprocess.run([MSS, 'generate', grain, '--spheres', '10', '-o', os.path.join(d, 'x.in')],
+                               capture_output=True, text=True, timeout=600)
+            self.assertEqual(p.returncode, 1)
+            self.assertIn('.clu (Kratos) or .p3dat (PFC)', p.stderr)
+
+
 class BatchTemplates(unittest.TestCase):
     """mss batch --format: a template per grain and placements.csv; LIGGGHTS inserts them all with our masses,
     and the placements put each template's spheres back where its grain lies."""

@@ -27,7 +27,9 @@ constexpr unsigned kGen = c::Generate | c::Batch | c::Export; // a generation's 
 const std::vector<OptionSpec> kTable = {
     // what is written
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "OUT",
-     "the sphere file: .csv (x,y,z,r), .txt (YADE's text clump: x y z r clumpId) or .vtk", c::Generate},
+     "the sphere file: .csv (x,y,z,r), .txt (YADE's text clump: x y z r clumpId) or .vtk; or a template with "
+     "the grain's mass properties (as mss export): .clu (Kratos) or .p3dat (PFC)",
+     c::Generate},
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "DIR",
      "the output folder (a rerun resumes in it)", c::Batch},
     {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "PNG", "the picture to write",
@@ -87,7 +89,7 @@ const std::vector<OptionSpec> kTable = {
      kGrain},
     {"resolution", "--resolution", true, T::Integer, "100", 1, kIntMax, false, false, "", "voxels", "N",
      "a mesh's generation grid: this many voxels along the shortest bounding-box edge (the paper uses 205)",
-     c::Generate | c::Batch},
+     kGen},
     {"resolution", "--resolution", true, T::Integer, "100", 1, kIntMax, false, false, "", "voxels", "N",
      "the scoring grid: this many voxels along the grain's shortest bounding-box edge", c::Compare},
     {"resolution", "--resolution", true, T::Integer, "160", 1, kIntMax, false, false, "", "voxels", "N",
@@ -97,8 +99,7 @@ const std::vector<OptionSpec> kTable = {
      "of 100, offset 0.37)",
      c::Curve | c::Ochart},
     {"supersample", "--supersample", true, T::Integer, "1", 1, 16, false, false, "", "", "K",
-     "K^3 samples per voxel (K this) when voxelising a mesh (1: voxel centres)",
-     c::Generate | c::Batch | c::Compare},
+     "K^3 samples per voxel (K this) when voxelising a mesh (1: voxel centres)", kGen | c::Compare},
     {"memoryLimit", "--memory-limit", true, T::Number, "8", 0, kMaxMemoryGiB, true, false, "", "GiB", "GIB",
      "refuse a mesh's grid whose working memory would exceed this; mss batch reads a labelled volume "
      "in slabs of a 128th of it",
@@ -108,7 +109,7 @@ const std::vector<OptionSpec> kTable = {
     {"label", "--label", true, T::Integer, "", 0, kInt64Max, false, false, "", "", "L",
      "a labelled voxel volume: the solid is the voxels of this label (required when the volume holds "
      "several labels)",
-     c::Generate | c::Compare | c::Info | c::Preview | c::Curve | c::Ochart},
+     c::Generate | c::Compare | c::Info | c::Preview | c::Curve | c::Ochart | c::Export},
     // the method
     {"method", "--method", true, T::Choice, "optimized", 0, 0, false, false, "optimized|paper", "", "M",
      "optimized: MSS's candidates and a denser medial sampling, chosen greedily and tuned; paper: the "
@@ -121,13 +122,13 @@ const std::vector<OptionSpec> kTable = {
     {"contacts", "--no-contacts", true, T::Flag, "true", 0, 0, false, false, "", "", "",
      "a labelled volume: keep the grain's contacts with its neighbours (each one's spheres reach a point of "
      "the faces they share, so that grains touching in the scan touch in the assembly)",
-     c::Generate | c::Batch},
+     kGen},
     {"neighbourProtrusion", "--neighbour-protrusion", true, T::Number, "1", 0, 1, false, false, "", "", "F",
      "a labelled volume's grain: the share of the protrusion bound its spheres may reach into a neighbouring "
      "grain (0.5: two neighbours' clumps overlap by at most the bound, at a cost in D; 1: as elsewhere)",
-     c::Generate | c::Batch},
+     kGen},
     {"threads", "--threads", true, T::Integer, "0", 0, 1024, false, false, "", "", "T",
-     "OpenMP threads, 0: OpenMP's default; the result does not depend on it", c::Generate},
+     "OpenMP threads, 0: OpenMP's default; the result does not depend on it", c::Generate | c::Export},
     // the bound on protrusion (paper section 3.5)
     {"clip", "--clip", true, T::Flag, "false", 0, 0, false, false, "", "", "",
      "no sphere protrudes from the grain (a mesh: the exact distance to its surface; a voxel volume: the "
@@ -145,7 +146,7 @@ const std::vector<OptionSpec> kTable = {
     {"planes", "--plane", true, T::Planes, "", 0, 0, false, false, "", "world units", "PX,PY,PZ,NX,NY,NZ",
      "planes no sphere crosses, each a point and a normal (spheres stay on the normal's side; the flag may "
      "repeat); planes that cut the grain make the target its part on their side (a fragment)",
-     c::Generate | c::Compare},
+     c::Generate | c::Compare | c::Export},
     // comparing
     {"offset", "--offset", true, T::Number, "0.37", -kInf, kInf, true, true, "", "voxels", "F",
      "shift of the scoring grid against the grain's bounding box", c::Compare},
