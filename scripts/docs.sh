@@ -16,7 +16,7 @@ rm -rf "$XML"
 mkdir -p "$XML"
 doxygen - > "$BUILD/doxygen.log" 2>&1 <<DOXY || { tail -20 "$BUILD/doxygen.log"; exit 1; }
 PROJECT_NAME = mss
-INPUT = pkg/mss/generate.hpp pkg/mss/options.hpp pkg/mss/score.hpp pkg/mss/compare.hpp pkg/mss/mass.hpp pkg/mss/io.hpp pkg/mss/planes.hpp
+INPUT = pkg/mss/generate.hpp pkg/mss/options.hpp pkg/mss/score.hpp pkg/mss/compare.hpp pkg/mss/mass.hpp pkg/mss/io.hpp pkg/mss/planes.hpp pkg/mss/surface.hpp
 GENERATE_XML = YES
 GENERATE_HTML = NO
 GENERATE_LATEX = NO
@@ -45,6 +45,8 @@ expect index.html "multi-sphere shape generator"
 expect api/cli.html "--max-protrusion"
 expect api/python.html "nSpheres"
 expect api/cpp.html "settingsFrom"
+expect api/cpp.html "unionSurface"
+expect guide/surface.html "317,440"
 expect results.html "femur 70"
 [ $fail -eq 0 ] || exit 1
 echo "docs: $BUILD/docs/html/index.html"
