@@ -353,6 +353,15 @@ void printComparison(const mss::Comparison& c) {
     std::cout << "mass_error    " << c.massError << "   (union of the spheres vs the grain)\n";
     std::cout << "centroid_error " << c.centroidError << "   (of the grain's bounding-box diagonal)\n";
     std::cout << "inertia_error " << c.inertiaError << "\n";
+    if (const mss::ExactScore& e = c.exact; e.samples > 0) {
+        std::cout << "dice_exact    " << e.dice << " +- " << e.diceError
+                  << "   (Monte Carlo on the exact shapes: " << e.samples << " points, seed " << e.seed
+                  << "; +- one standard error)\n";
+        std::cout << "eta_exact     " << e.eta << " +- " << e.etaError << "\n";
+        std::cout << "volume_exact  " << e.targetVolume << " +- " << e.targetVolumeError
+                  << "   (the grain)\n";
+        std::cout << "spheres_volume_exact " << e.sphereVolume << " +- " << e.sphereVolumeError << "\n";
+    }
 }
 
 /// One table (text, and CSV with --csv) for several sphere files.
@@ -365,11 +374,11 @@ void printTable(const std::vector<std::string>& files, const std::vector<mss::Co
               << "D" << std::setw(9) << "eta" << std::setw(9) << "vol" << std::setw(11) << "protr"
               << std::setw(10) << "r_min" << std::setw(11) << "mass" << std::setw(11) << "centroid"
               << std::setw(11) << "inertia"
-              << "\n";
+              << (rows.empty() || rows[0].exact.samples == 0 ? "" : "   D_exact +- se") << "\n";
     std::ostringstream out;
     out << std::setprecision(10)
         << "file,n,dice,eta,volume_ratio,protrusion,smallest_radius,mass_error,centroid_error,inertia_"
-           "error\n";
+           "error,dice_exact,dice_exact_se\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const mss::Comparison& c = rows[i];
         std::string name = files[i];
@@ -379,13 +388,26 @@ void printTable(const std::vector<std::string>& files, const std::vector<mss::Co
                   << c.score.eta << std::setw(9) << c.score.volumeRatio << std::defaultfloat
                   << std::setprecision(4) << std::setw(11) << c.protrusion << std::setw(10)
                   << c.smallestRadius << std::setw(11) << c.massError << std::setw(11) << c.centroidError
-                  << std::setw(11) << c.inertiaError << "\n";
+                  << std::setw(11) << c.inertiaError;
+        if (c.exact.samples > 0)
+            std::cout << std::fixed << std::setprecision(4) << std::setw(9) << c.exact.dice << " +- "
+                      << std::setprecision(5) << c.exact.diceError << std::defaultfloat;
+        std::cout << "\n";
         out << '"' << files[i] << "\"," << c.spheres << ',' << c.score.dice << ',' << c.score.eta << ','
             << c.score.volumeRatio << ',' << c.protrusion << ',' << c.smallestRadius << ',' << c.massError
-            << ',' << c.centroidError << ',' << c.inertiaError << '\n';
+            << ',' << c.centroidError << ',' << c.inertiaError << ',';
+        if (c.exact.samples > 0)
+            out << c.exact.dice << ',' << c.exact.diceError;
+        else
+            out << ',';
+        out << '\n';
     }
     std::cout << "D: Dice mismatch (eq. 27) on the scoring grid; vol: |spheres| / |grain|; protr: largest "
-                 "protrusion (world units); mass, centroid, inertia: the union's errors against the grain\n";
+                 "protrusion (world units); mass, centroid, inertia: the union's errors against the grain"
+              << (rows.empty() || rows[0].exact.samples == 0
+                      ? ""
+                      : "; D_exact: on the exact shapes by Monte Carlo, +- one standard error")
+              << "\n";
     if (!csv.empty()) writeTextAtomically(csv, out.str());
 }
 

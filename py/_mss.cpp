@@ -270,7 +270,7 @@ py::list fileFormats() {
                                                       : "spheres";
         d["description"] = f.description;
         d["readByCore"] = f.readByCore;
-        d["written"] = f.formatSpheres != nullptr; // spheres written (generate -o)
+        d["written"] = f.formatSpheres != nullptr;  // spheres written (generate -o)
         d["meshWritten"] = f.formatMesh != nullptr; // a mesh written (surface -o)
         out.append(d);
     }
@@ -578,6 +578,23 @@ mss::CompareOptions compareOptions(const py::dict& d) {
     return settings(d, mss::command::Compare).compare;
 }
 
+/// Monte Carlo scores: dice, diceError, eta, etaError, targetVolume(+Error), sphereVolume(+Error), samples,
+/// seed.
+py::dict exactScore(const mss::ExactScore& e) {
+    py::dict d;
+    d["dice"] = e.dice;
+    d["diceError"] = e.diceError;
+    d["eta"] = e.eta;
+    d["etaError"] = e.etaError;
+    d["targetVolume"] = e.targetVolume;
+    d["targetVolumeError"] = e.targetVolumeError;
+    d["sphereVolume"] = e.sphereVolume;
+    d["sphereVolumeError"] = e.sphereVolumeError;
+    d["samples"] = e.samples;
+    d["seed"] = e.seed;
+    return d;
+}
+
 py::dict comparison(const mss::Comparison& c) {
     py::dict d = score(c.score);
     d["spheres"] = c.spheres;
@@ -595,6 +612,7 @@ py::dict comparison(const mss::Comparison& c) {
         for (int j = 0; j < 3; ++j) R.append(c.transform.rotation(i, j));
     d["rotation"] = R;
     d["translation"] = list(c.transform.translation);
+    if (c.exact.samples > 0) d["exact"] = exactScore(c.exact);
     return d;
 }
 
@@ -609,6 +627,21 @@ py::dict compareVoxels(const py::object& data, const py::object& shape, double v
                        const py::dict& opts) {
     return comparison(mss::compareSpheres(voxels(data, shape, voxelSize, origin), spheres(centers, radii),
                                           compareOptions(opts)));
+}
+
+py::dict scoreExactMesh(const py::object& vertices, const py::object& triangles, const py::object& centers,
+                        const py::object& radii, long long samples, long long seed, const py::object& cuts) {
+    if (samples < 0 || seed < 0) throw std::invalid_argument("scoreExact: samples and seed must be >= 0");
+    return exactScore(mss::scoreSpheresExact(mesh(vertices, triangles), spheres(centers, radii),
+                                             std::size_t(samples), std::uint64_t(seed), planes(cuts)));
+}
+
+py::dict scoreExactVoxels(const py::object& data, const py::object& shape, double voxelSize,
+                          const py::object& origin, const py::object& centers, const py::object& radii,
+                          long long samples, long long seed, const py::object& cuts) {
+    if (samples < 0 || seed < 0) throw std::invalid_argument("scoreExact: samples and seed must be >= 0");
+    return exactScore(mss::scoreSpheresExact(voxels(data, shape, voxelSize, origin), spheres(centers, radii),
+                                             std::size_t(samples), std::uint64_t(seed), planes(cuts)));
 }
 
 mss::Image2 image2(const py::object& data, int nx, int ny, double pixel, const py::object& origin) {
@@ -775,6 +808,12 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("scoreVoxels", scoreVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
              py::arg("radii"), py::arg("planes") = py::list()));
+    py::def("scoreExactMesh", scoreExactMesh,
+            (py::arg("vertices"), py::arg("triangles"), py::arg("centers"), py::arg("radii"),
+             py::arg("samples"), py::arg("seed"), py::arg("planes") = py::list()));
+    py::def("scoreExactVoxels", scoreExactVoxels,
+            (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("centers"),
+             py::arg("radii"), py::arg("samples"), py::arg("seed"), py::arg("planes") = py::list()));
     py::def("compareMesh", compareMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("centers"), py::arg("radii"),
              py::arg("options")));

@@ -34,7 +34,10 @@ struct CompareOptions {
     /// Without alignment: refuse a set most of whose volume lies outside the grain's bounding box (another
     /// frame). Off: score it as written all the same ("--align none").
     bool checkFrame = true;
-    int protrusionSamples = 400; ///< points per sphere surface for the largest protrusion
+    int protrusionSamples = 400;   ///< points per sphere surface for the largest protrusion
+    bool exact = false;            ///< also score on the exact shapes (scoreSpheresExact)
+    std::size_t samples = 1000000; ///< its Monte Carlo points
+    std::uint64_t seed = 1;        ///< and their seed
 };
 
 /// One row of a comparison: the score (eq. 7, 27) and what a DEM user checks besides.
@@ -49,6 +52,7 @@ struct Comparison {
     double inertiaError = 0.0;            ///< ||I_union - I|| / ||I|| (Frobenius, about each one's centroid)
     double insideBox = 0.0;   ///< share of the spheres' volume inside the grain's bounding box, as given
     RigidTransform transform; ///< applied before scoring (identity without alignment)
+    ExactScore exact;         ///< with CompareOptions::exact (else samples 0)
 };
 
 /// Compares a sphere set with a mesh. Without alignment, a set most of whose volume (over half) lies outside

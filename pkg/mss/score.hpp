@@ -6,6 +6,9 @@
 #include "mss/planes.hpp"
 #include "mss/spheres.hpp"
 
+#include <cstddef>
+#include <cstdint>
+
 namespace mss {
 
 /// How well a sphere set matches a target, on one scoring grid.
@@ -28,6 +31,30 @@ Score scoreSpheres(const TriangleMesh& target, const SphereSet& spheres, int res
 
 /// Scores spheres against a binary volume on the volume's own grid (extended to hold the spheres).
 Score scoreSpheres(const VoxelGrid& target, const SphereSet& spheres, const std::vector<Plane>& planes = {});
+
+/// The scores on the exact shapes, estimated by Monte Carlo, each with its standard error.
+struct ExactScore {
+    double dice = 0.0, diceError = 0.0;                 ///< eq. 27 on the exact sets
+    double eta = 0.0, etaError = 0.0;                   ///< eq. 7
+    double targetVolume = 0.0, targetVolumeError = 0.0; ///< world units^3
+    double sphereVolume = 0.0, sphereVolumeError = 0.0; ///< the union's
+    std::size_t samples = 0;
+    std::uint64_t seed = 0;
+};
+
+/// Scores spheres against the exact grain, not a voxelisation of it: @p samples uniform points of a box that
+/// holds both, the same points for the grain (the mesh's winding number; with @p planes, its part on their
+/// allowed side) and the spheres. Point i depends on @p seed and i alone (SplitMix64), so a run gives the
+/// same figures on any machine and any number of threads. The standard errors are the delta method's; for
+/// D they fall as 1 / sqrt(samples). O(samples (log T + spheres per cell)).
+/// @throws std::invalid_argument on bad input or samples outside [1000, 1e9].
+ExactScore scoreSpheresExact(const TriangleMesh& target, const SphereSet& spheres,
+                             std::size_t samples = 1000000, std::uint64_t seed = 1,
+                             const std::vector<Plane>& planes = {});
+
+/// The same against a voxel volume, whose exact shape is the union of its solid voxels' cubes.
+ExactScore scoreSpheresExact(const VoxelGrid& target, const SphereSet& spheres, std::size_t samples = 1000000,
+                             std::uint64_t seed = 1, const std::vector<Plane>& planes = {});
 
 /// Relative mismatch eq. 7 and Dice mismatch eq. 27 of two volumes on the same grid.
 struct Mismatch {

@@ -72,28 +72,37 @@ GENERATE_OPTIONS = tuple(p for p in inspect.signature(generate).parameters if p 
 
 
 @_options.documented('compare')
-def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=None, label=None, planes=()):
+def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=None, label=None, planes=(),
+          exact=False, samples=None, seed=None):
     """Scores a sphere set (an :class:`MssResult` or a sphere file) against a target on a grid of its own, as
     ``mss compare`` does (with fewer figures: :func:`compareMany` gives them all).
 
     :param target: the grain: a mesh file, voxel file, array or (vertices, triangles), as :func:`generate` takes
     :param spheres: an :class:`MssResult` or a sphere file
     OPTIONS
-    :return: dict with dice (eq. 27), eta (eq. 7), volumeRatio, coverage, outside, and the grid
+    :return: dict with dice (eq. 27), eta (eq. 7), volumeRatio, coverage, outside, and the grid; with *exact*
+        also exact: dice, diceError, eta, etaError, targetVolume, targetVolumeError, sphereVolume,
+        sphereVolumeError (Monte Carlo on the exact shapes, one standard error each), samples, seed
     """
-    opts = _options.collect('score', 'compare', dict(resolution=resolution, offset=offset, planes=planes))
+    opts = _options.collect('score', 'compare', dict(resolution=resolution, offset=offset, planes=planes,
+                                                     exact=exact, samples=samples, seed=seed))
     resolution, offset, cuts = opts['resolution'], opts['offset'], opts.get('planes', [])
     sp = spheres if isinstance(spheres, MssResult) else readSpheres(spheres)
     s = _source(target, voxelSize, origin, label)
     if isinstance(s, _Mesh):
-        return _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), resolution, offset, 1,
-                              cuts)
-    return _mss.scoreVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist(), cuts)
+        d = _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), resolution, offset, 1, cuts)
+    else:
+        d = _mss.scoreVoxels(*s.args(), _flat(sp.centers), sp.radii.tolist(), cuts)
+    if opts.get('exact'):
+        n, seed = opts.get('samples', 1000000), opts.get('seed', 1)
+        f = _mss.scoreExactMesh if isinstance(s, _Mesh) else _mss.scoreExactVoxels
+        d['exact'] = f(*s.args(), _flat(sp.centers), sp.radii.tolist(), n, seed, cuts)
+    return d
 
 
 @_options.documented('compare')
 def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes=(), clumpId=None, voxelSize=None,
-                origin=None, label=None, supersample=1):
+                origin=None, label=None, supersample=1, exact=False, samples=None, seed=None):
     """Compares sphere files (or :class:`MssResult` objects) of any generator with a grain, one row each, as
     ``mss compare GRAIN A B C`` prints them.
 
@@ -103,11 +112,12 @@ def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes
     OPTIONS
     :return: list of dicts: file, spheres, dice, eta, volumeRatio, coverage, outside, protrusion (largest, world
         units), smallestRadius, massError, centroidError, inertiaError (the union against the grain), rotation
-        (3x3) and translation of the registration applied
+        (3x3) and translation of the registration applied; with *exact* also exact (as :func:`score` gives it)
     """
     items = list(spheres) if isinstance(spheres, (list, tuple)) else [spheres]
     opts = _options.collect('compareMany', 'compare', dict(resolution=resolution, offset=offset, align=align,
-                                                           planes=planes, supersample=supersample))
+                                                           planes=planes, supersample=supersample, exact=exact,
+                                                           samples=samples, seed=seed))
     s = _source(target, voxelSize, origin, label)
     if isinstance(s, _Mesh) and (voxelSize is not None or origin is not None or label is not None):
         raise ValueError('compareMany: %s: voxelSize, origin and label apply to voxel volumes; this is a mesh '

@@ -161,6 +161,7 @@ Comparison compareSpheres(const TriangleMesh& target, const SphereSet& spheres, 
     c.transform = alignment(o.align, spheres, grain, info.lower, info.upper, dice);
     const SphereSet s = transformSpheres(spheres, c.transform);
     c.score = scoreSpheres(target, s, o.resolution, o.offset, o.supersample, o.planes);
+    if (o.exact) c.exact = scoreSpheresExact(target, s, o.samples, o.seed, o.planes);
     massFigures(c, s, grain, info.lower, info.upper);
     const MeshQuery q(grainMesh);
     const std::vector<Vec3> dirs = spherePoints(std::max(o.protrusionSamples, 1));
@@ -201,6 +202,7 @@ Comparison compareSpheres(const VoxelGrid& target, const SphereSet& spheres, con
     c.transform = alignment(o.align, spheres, grain, lo, hi, dice);
     const SphereSet s = transformSpheres(spheres, c.transform);
     c.score = scoreSpheres(target, s, o.planes);
+    if (o.exact) c.exact = scoreSpheresExact(target, s, o.samples, o.seed, o.planes);
     massFigures(c, s, grain, lo, hi);
     // distance of each background voxel to the nearest solid voxel centre: the EDT of the complement
     VoxelGrid background(g, 0);

@@ -158,6 +158,15 @@ const std::vector<OptionSpec> kTable = {
      "the clump with this id, of a YADE text file of several", c::Compare | c::Surface},
     {"csv", "--csv", false, T::Text, "", 0, 0, false, false, "", "", "OUT", "also write the rows as CSV",
      c::Compare},
+    {"exact", "--exact", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "also score on the exact shapes by Monte Carlo (the mesh's winding number, the spheres), with standard "
+     "errors: no lattice bias",
+     c::Compare},
+    {"samples", "--samples", true, T::Integer, "1000000", 1000, 1e9, false, false, "", "", "N",
+     "--exact: the Monte Carlo points (the standard error falls as 1 / sqrt(N))", c::Compare},
+    {"seed", "--seed", true, T::Integer, "1", 0, kInt64Max, false, false, "", "", "S",
+     "--exact: the points' seed (the same seed, the same points on any machine and thread count)",
+     c::Compare},
     // pictures
     {"preview", "--preview", false, T::Text, "", 0, 0, false, false, "", "", "PNG",
      "also draw the clump against the grain (as mss preview)", c::Generate},
@@ -531,6 +540,12 @@ void apply(Settings& st, const std::string& name, const OptionValue& v) {
         st.compare.checkFrame = false; // an explicit none scores the set as written
     } else if (name == "clumpId")
         st.clumpId = std::get<long long>(v);
+    else if (name == "exact")
+        st.compare.exact = std::get<bool>(v);
+    else if (name == "samples")
+        st.compare.samples = static_cast<std::size_t>(std::get<long long>(v));
+    else if (name == "seed")
+        st.compare.seed = static_cast<std::uint64_t>(std::get<long long>(v));
     else if (name == "tolerance")
         st.surface.tolerance = asNumber(v);
     else if (name == "maxEdge")
