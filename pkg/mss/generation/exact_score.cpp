@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -84,6 +85,75 @@ private:
     std::vector<std::vector<int>> cells_;
 };
 
+/// A closed mesh's inside, answered for most points by a lookup: the mesh's box in cells, a cell that no part
+/// of the surface comes within its half-diagonal of lies wholly inside or wholly outside, and face-adjacent
+/// such cells are on the same side (their union holds no surface), so one winding number decides each
+/// connected group of them. Only points in the cells the surface passes through are asked of the mesh: on the
+/// femur about a tenth of them.
+class InsideCells {
+public:
+    InsideCells(const MeshQuery& q, const Vec3& lo, const Vec3& hi) : q_(q), lo_(lo) {
+        const double longest = (hi - lo).maxCoeff();
+        cell_ = longest / 48.0;
+        for (int a = 0; a < 3; ++a) n_[a] = std::max(1, int(std::ceil((hi[a] - lo[a]) / cell_)));
+        const std::size_t total = std::size_t(n_[0]) * n_[1] * n_[2];
+        state_.assign(total, kUnknown);
+        const double half = 0.5 * std::sqrt(3.0) * cell_;
+#pragma omp parallel for schedule(dynamic, 16)
+        for (long long c = 0; c < (long long)total; ++c)
+            state_[std::size_t(c)] = q_.fartherThan(centre(std::size_t(c)), half) ? kUnknown : kSurface;
+        std::vector<std::size_t> stack;
+        for (std::size_t c = 0; c < total; ++c) {
+            if (state_[c] != kUnknown) continue;
+            const std::uint8_t side = q_.inside(centre(c)) ? kInside : kOutside;
+            state_[c] = side;
+            stack.assign(1, c);
+            while (!stack.empty()) {
+                const std::size_t k = stack.back();
+                stack.pop_back();
+                const int x = int(k % std::size_t(n_[0])),
+                          y = int(k / std::size_t(n_[0]) % std::size_t(n_[1])),
+                          z = int(k / (std::size_t(n_[0]) * n_[1]));
+                const int nb[6][3] = {{x - 1, y, z}, {x + 1, y, z}, {x, y - 1, z},
+                                      {x, y + 1, z}, {x, y, z - 1}, {x, y, z + 1}};
+                for (const auto& b : nb) {
+                    if (b[0] < 0 || b[1] < 0 || b[2] < 0 || b[0] >= n_[0] || b[1] >= n_[1] || b[2] >= n_[2])
+                        continue;
+                    const std::size_t j = index(b[0], b[1], b[2]);
+                    if (state_[j] != kUnknown) continue;
+                    state_[j] = side;
+                    stack.push_back(j);
+                }
+            }
+        }
+    }
+    bool inside(const Vec3& p) const {
+        int c[3];
+        for (int a = 0; a < 3; ++a) {
+            c[a] = int(std::floor((p[a] - lo_[a]) / cell_));
+            if (c[a] < 0 || c[a] >= n_[a]) return false; // outside the mesh's box
+        }
+        const std::uint8_t s = state_[index(c[0], c[1], c[2])];
+        return s == kSurface ? q_.inside(p) : s == kInside;
+    }
+
+private:
+    static constexpr std::uint8_t kUnknown = 0, kSurface = 1, kInside = 2, kOutside = 3;
+    std::size_t index(int x, int y, int z) const {
+        return (std::size_t(z) * std::size_t(n_[1]) + std::size_t(y)) * std::size_t(n_[0]) + std::size_t(x);
+    }
+    Vec3 centre(std::size_t k) const {
+        const std::size_t x = k % std::size_t(n_[0]), y = k / std::size_t(n_[0]) % std::size_t(n_[1]),
+                          z = k / (std::size_t(n_[0]) * n_[1]);
+        return lo_ + cell_ * Vec3(double(x) + 0.5, double(y) + 0.5, double(z) + 0.5);
+    }
+    const MeshQuery& q_;
+    Vec3 lo_;
+    double cell_ = 1.0;
+    int n_[3] = {1, 1, 1};
+    std::vector<std::uint8_t> state_;
+};
+
 ExactScore monteCarlo(const Vec3& targetLo, const Vec3& targetHi,
                       const std::function<bool(const Vec3&)>& target, const SphereSet& spheres,
                       std::size_t samples, std::uint64_t seed) {
@@ -137,12 +207,16 @@ ExactScore scoreSpheresExact(const TriangleMesh& target, const SphereSet& sphere
     validateSpheres(spheres, "scoreSpheresExact");
     const MeshQuery q(target);
     const MeshInfo info = analyzeMesh(target);
+    // an open mesh's winding number varies smoothly across its holes, away from any surface: asked point by
+    // point
+    std::unique_ptr<InsideCells> cells;
+    if (info.closed) cells = std::make_unique<InsideCells>(q, info.lower, info.upper);
     return monteCarlo(
         info.lower, info.upper,
         [&](const Vec3& p) {
             for (const Plane& pl : planes)
                 if (planeDistance(pl, p) < 0) return false;
-            return q.inside(p);
+            return cells ? cells->inside(p) : q.inside(p);
         },
         spheres, samples, seed);
 }
