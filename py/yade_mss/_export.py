@@ -48,6 +48,13 @@ def _safe(text):
     return re.sub(r'[^ -~]', '?', str(text))
 
 
+def _whereGenerated(mark, centroid, R):
+    """The header's two lines that put a template back where its grain was generated (readSpheres reads them):
+    "c = x y z" and "R = rows", after the comment mark *mark*."""
+    return ['%sc = %s' % (mark, ' '.join(_number(x) for x in centroid)),
+            '%sR = %s (rows)' % (mark, ' ; '.join(' '.join(_number(x) for x in row) for row in R))]
+
+
 def templateFrame(result, frame='principal'):
     """The spheres and the grain's inertia in the template's frame, whose origin is the grain's centre of mass.
 
@@ -87,8 +94,7 @@ def liggghtsTemplate(result, density, frame='principal', templateType=1, atomTyp
         % (_safe(result.source or 'unknown'), len(r), _number(result.metrics.get('dice', float('nan')))),
         '# frame: %s axes, the centre of mass at the origin; a template point p is at c + R p where the grain '
         'was generated,' % frame,
-        '#   c = %s' % ' '.join(_number(x) for x in centroid),
-        '#   R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+        *_whereGenerated('#   ', centroid, R),
         '# mass properties: the grain\'s own (not the spheres\' union): density %s, volume %s, mass %s;'
         % (_number(density), _number(m.volume), _number(mass)),
         '#   inertia about the centre of mass in the template\'s axes: %s' % ' '.join(
@@ -137,8 +143,7 @@ def kratosCluster(result, frame='principal'):
                                   _number(result.metrics.get('dice', float('nan')))),
              '//   principal axes, the centre of mass at the origin; a point p is at c + R p where the grain was '
              'generated:',
-             '//   c = %s' % ' '.join(_number(x) for x in centroid),
-             '//   R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+             *_whereGenerated('//   ', centroid, R),
              "//   Volume and inertia are the grain's own, not the spheres' union; Size is the diameter of a ball "
              'of that volume',
              '//', '', 'Name', _name(result), '', 'Begin centers_and_radii']
@@ -172,8 +177,7 @@ def mercuryFiles(result, density, frame='principal'):
                 _number(density), _number(m.volume)),
             'principal axes, the centre of mass at the origin; a point p is at c + R p where the grain was '
             'generated:',
-            'c = %s' % ' '.join(_number(x) for x in centroid),
-            'R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+            *_whereGenerated('', centroid, R),
             'full doubles are written; MercuryDPM\'s ClumpInput.h reads them with std::stof (single precision)', '']),
     }
 
@@ -203,8 +207,7 @@ def pfcTemplate(result, frame='principal'):
         % (_safe(result.source or 'unknown'), len(r), _number(result.metrics.get('dice', float('nan')))),
         '; frame: %s axes; a template point p (about its centroid) is at c + R p where the grain was generated,'
         % frame,
-        ';   c = %s' % ' '.join(_number(x) for x in centroid),
-        ';   R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+        *_whereGenerated(';   ', centroid, R),
         "; volume and inertia are the grain's own, not the pebbles' union; inertia for unit density, lengths as "
         "the grain's",
         'clump template create name \'%s\' ...' % name,
@@ -230,8 +233,7 @@ def yadeClumps(result, density, frame='principal'):
              % (_safe(result.source or 'unknown'), len(r), _number(result.metrics.get('dice', float('nan')))),
              '# frame: %s axes; a point p (about the centre of mass) is at c + R p where the grain was generated,'
              % frame,
-             '#   c = %s' % ' '.join(_number(x) for x in centroid),
-             '#   R = %s (rows)' % ' ; '.join(' '.join(_number(x) for x in row) for row in R),
+             *_whereGenerated('#   ', centroid, R),
              '#mss clump 0 density %s mass %s centroid %s inertia %s' % (
                  _number(density), _number(density * m.volume), ' '.join(_number(x) for x in np.zeros(3)),
                  ' '.join(_number(I[i, j]) for i, j in ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))))]

@@ -92,27 +92,37 @@ void place(SphereSet& s, const Vec3& c, const Eigen::Matrix3d& R) {
     for (Vec3& p : s.centers) p = c + R * p;
 }
 
-/// The LIGGGHTS input file's commands: '#' comments dropped, lines ending in '&' joined (as LIGGGHTS reads
-/// them).
-std::vector<std::string> liggghtsCommands(const std::string& text) {
+/// A command file's commands: from @p comment to the end of a line dropped, a line ending in @p more joined
+/// with the next, and with @p vectors a vector's parentheses and commas made spaces.
+std::vector<std::string> commandsOf(const std::string& text, char comment, const std::string& more,
+                                    bool vectors) {
     std::vector<std::string> out;
     std::istringstream is(text);
     std::string line, command;
     while (std::getline(is, line)) {
-        const auto hash = line.find('#');
-        if (hash != std::string::npos) line.resize(hash);
+        const auto at = line.find(comment);
+        if (at != std::string::npos) line.resize(at);
         while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
             line.pop_back();
-        const bool more = !line.empty() && line.back() == '&';
-        if (more) line.pop_back();
+        const bool joined =
+            line.size() >= more.size() && line.compare(line.size() - more.size(), more.size(), more) == 0;
+        if (joined) line.resize(line.size() - more.size());
+        if (vectors)
+            for (char& ch : line)
+                if (ch == '(' || ch == ')' || ch == ',') ch = ' ';
         command += line + " ";
-        if (!more) {
+        if (!joined) {
             out.push_back(command);
             command.clear();
         }
     }
     if (!command.empty()) out.push_back(command);
     return out;
+}
+
+/// The LIGGGHTS input file's commands, as LIGGGHTS reads them: '#' comments, '&' continuations.
+std::vector<std::string> liggghtsCommands(const std::string& text) {
+    return commandsOf(text, '#', "&", false);
 }
 
 SphereSet liggghtsSpheres(const std::string& path, const std::string& text) {
@@ -197,29 +207,10 @@ SphereSet kratosSpheres(const std::string& path, const std::string& text) {
     return s;
 }
 
-/// The PFC data file's commands: ';' comments dropped, lines ending in '...' joined, vectors' parentheses and
-/// commas made spaces (PFC reads "(x,y,z)" and "x y z" alike).
+/// The PFC data file's commands: ';' comments, '...' continuations, vectors "(x,y,z)" read as "x y z" (PFC
+/// takes both).
 std::vector<std::string> pfcCommands(const std::string& text) {
-    std::vector<std::string> out;
-    std::istringstream is(text);
-    std::string line, command;
-    while (std::getline(is, line)) {
-        const auto semi = line.find(';');
-        if (semi != std::string::npos) line.resize(semi);
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
-            line.pop_back();
-        const bool more = line.size() >= 3 && line.compare(line.size() - 3, 3, "...") == 0;
-        if (more) line.resize(line.size() - 3);
-        for (char& ch : line)
-            if (ch == '(' || ch == ')' || ch == ',') ch = ' ';
-        command += line + " ";
-        if (!more) {
-            out.push_back(command);
-            command.clear();
-        }
-    }
-    if (!command.empty()) out.push_back(command);
-    return out;
+    return commandsOf(text, ';', "...", true);
 }
 
 std::string lower(std::string w) {
