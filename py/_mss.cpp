@@ -526,13 +526,8 @@ py::dict massSpheres(const py::object& centers, const py::object& radii, int res
     return mass(mss::sphereUnionMassProperties(spheres(centers, radii), resolution));
 }
 
-/// The union's boundary as a mesh: {vertices: bytes of (n, 3) doubles, triangles: bytes of (m, 3) int32, and
-/// the report's figures}; @p options: mss surface's (tolerance, maxEdge, maxTriangles).
-py::dict unionSurface(const py::object& centers, const py::object& radii, const py::dict& options) {
-    const mss::Settings st = settings(options, mss::command::Surface);
-    const mss::SphereSet s = spheres(centers, radii);
-    mss::SurfaceReport r;
-    const mss::TriangleMesh m = mss::unionSurface(s, st.surface, &r);
+/// A mesh for Python: {vertices: bytes of (n, 3) doubles, triangles: bytes of (m, 3) int32}.
+py::dict meshBytes(const mss::TriangleMesh& m) {
     std::vector<double> v;
     v.reserve(3 * m.vertices.size());
     for (const mss::Vec3& p : m.vertices) v.insert(v.end(), {p.x(), p.y(), p.z()});
@@ -544,11 +539,34 @@ py::dict unionSurface(const py::object& centers, const py::object& radii, const 
         PyBytes_FromStringAndSize(reinterpret_cast<const char*>(v.data()), Py_ssize_t(v.size() * 8))));
     d["triangles"] = py::object(py::handle<>(
         PyBytes_FromStringAndSize(reinterpret_cast<const char*>(t.data()), Py_ssize_t(t.size() * 4))));
+    return d;
+}
+
+/// The union's boundary as a mesh (meshBytes) and the report's figures; @p options: mss surface's
+/// (tolerance, maxEdge, maxTriangles).
+py::dict unionSurface(const py::object& centers, const py::object& radii, const py::dict& options) {
+    const mss::Settings st = settings(options, mss::command::Surface);
+    const mss::SphereSet s = spheres(centers, radii);
+    mss::SurfaceReport r;
+    py::dict d = meshBytes(mss::unionSurface(s, st.surface, &r));
     d["subdivisions"] = r.subdivisions;
     d["volume"] = r.volume;
     d["unionVolume"] = r.unionVolume;
     d["longestEdge"] = r.longestEdge;
     d["smallestAngle"] = r.smallestAngle;
+    return d;
+}
+
+/// The pieces of a mesh cut by a plane (6 numbers: point, normal): {above: [meshBytes], below: [...]}.
+py::dict splitMesh(const py::object& vertices, const py::object& triangles, const py::object& plane) {
+    const std::vector<mss::Plane> p = planes(py::list(py::make_tuple(plane)));
+    const mss::MeshSplit split = mss::splitMeshByPlane(mesh(vertices, triangles), p[0]);
+    py::dict d;
+    for (const auto& [name, side] : {std::pair{"above", &split.above}, std::pair{"below", &split.below}}) {
+        py::list l;
+        for (const mss::TriangleMesh& m : *side) l.append(meshBytes(m));
+        d[name] = l;
+    }
     return d;
 }
 
@@ -797,6 +815,8 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("massSpheres", massSpheres, (py::arg("centers"), py::arg("radii"), py::arg("resolution") = 200));
     py::def("unionSurface", unionSurface, (py::arg("centers"), py::arg("radii"), py::arg("options")),
             "The boundary of the spheres' union as a closed mesh (mss surface).");
+    py::def("splitMesh", splitMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("plane")),
+            "The pieces of a closed mesh on either side of a plane, each closed: {above, below}.");
     py::def("writeMesh", writeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("path")),
             "Writes a mesh by extension (.stl, .obj, .ply), atomically.");
     py::def("sphereUnionVolume", sphereUnionVolume, (py::arg("centers"), py::arg("radii")),

@@ -29,6 +29,20 @@ double planeDistance(const Plane& p, const Vec3& x);
 /// is left. @throws std::invalid_argument on a bad plane.
 TriangleMesh clipMeshByPlanes(const TriangleMesh& mesh, const std::vector<Plane>& planes);
 
+/// A closed mesh cut by one plane into its pieces: the connected parts on either side, each closed by its
+/// own cap (a signed fan over its cut segments from a point of the plane, exact for the integrals of
+/// meshMassProperties, as in clipMeshByPlanes). Each piece is an indexed mesh (vertices shared between its
+/// triangles), so a piece can be split again. Vertices on the plane count on the allowed side; cut points are
+/// computed once per edge, so both sides and neighbouring triangles share them. Connectivity is through
+/// shared vertices: the input is welded first (equal coordinates are one vertex). O(T log T).
+struct MeshSplit {
+    std::vector<TriangleMesh> above; ///< pieces on the side the normal points to
+    std::vector<TriangleMesh> below; ///< pieces on the other side
+};
+
+/// @throws std::invalid_argument on a bad plane or mesh.
+MeshSplit splitMeshByPlane(const TriangleMesh& mesh, const Plane& plane);
+
 /// The voxels of @p volume whose centre lies on the allowed side of every plane (a fragment at voxel
 /// accuracy). @throws std::invalid_argument on a bad plane.
 VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& planes);
