@@ -15,7 +15,7 @@ Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, the
 ``_clumps`` (YADE clumps), ``_records`` (their records), ``_restore`` (exact properties back),
 ``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings),
 ``_specimen`` (labelled volumes, synthetic specimens), ``_batch`` (mss batch), ``_assembly`` (specimens in YADE),
-``_pictures`` (mss preview, mss curve), ``_ochart`` (mss ochart: the clumps' cost), ``_spheropolygon`` (2-D: spheropolygons, the O-chart).
+``_pictures`` (mss preview, mss curve), ``_ochart`` (mss ochart: the clumps' cost), ``_spheropolygon`` (2-D: spheropolygons, the O-chart), ``_breakage`` (grains that break: mssSplit, MssBreakage).
 """
 
 import os as _os
@@ -37,9 +37,11 @@ from ._assembly import mssAssembly  # noqa: E402
 from ._specimen import findContacts, regions, syntheticSpecimen, voronoiBall  # noqa: E402
 from ._spheropolygon import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
 from ._ochart import clumpOchart  # noqa: E402
+from ._breakage import MssBreakage, breakageLog, mssSplit  # noqa: E402
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
            'restoreClumpProperties', 'totalMass', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
            'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen', 'voronoiBall', 'findContacts',
-           'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart', 'clumpOchart']
+           'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit',
+           'MssBreakage', 'breakageLog']

@@ -32,11 +32,11 @@ import warnings
 
 import numpy as np
 
-from ._args import INT64_MAX, integer, number, vector3
+from ._args import INT64_MAX, flag, integer, number, vector3
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._loads import memberLoads
-from ._records import attach, encodeMany
+from ._records import attach, encodeGrain, encodeMany
 from ._results import MssResult
 
 _colours = random.Random()  # utils.randomColor's uniform colours, without reseeding the user's `random`
@@ -221,7 +221,7 @@ class _Plan(object):
     """One clump at unit density: its members (centres, radii), the wanted volume, centre of mass and tensor,
     and the loads that make YADE's sums give them (:func:`yade_mss._loads.memberLoads`: masses *m*, member 0's
     tensor, eigenvalues *j* with eigenvectors *V*)."""
-    __slots__ = ('centers', 'radii', 'volume', 'centroid', 'inertia', 'moments', 'm', 'j', 'V', 'offset')
+    __slots__ = ('centers', 'radii', 'volume', 'centroid', 'inertia', 'moments', 'm', 'j', 'V', 'offset', 'frame')
 
     @staticmethod
     def of(centers, radii, volume, centroid, inertia):
@@ -233,7 +233,15 @@ class _Plan(object):
         p.volume, p.centroid, p.offset = float(volume), L.centroid, L.offset
         p.moments = np.linalg.eigvalsh(p.inertia)
         p.m, p.j, p.V = L.m, L.j, L.V
+        p.frame = None
         return p
+
+    def world(self, points):
+        """Points (n, 3) of the plan's own frame (its result's) where this placement puts them."""
+        if self.frame is None:
+            return np.asarray(points, dtype=float)
+        c0, s, R, C = self.frame
+        return C + s * (np.asarray(points, dtype=float) - c0).dot(R.T)
 
     def placed(self, c0, s, R, C):
         """This plan moved so that its point *c0* goes to *C*, turned by *R* and scaled by *s* about it: the
@@ -246,6 +254,7 @@ class _Plan(object):
         q.inertia = s ** 5 * R.dot(self.inertia).dot(R.T)
         q.moments = s ** 5 * self.moments
         q.m, q.j, q.V, q.offset = s ** 3 * self.m, s ** 5 * self.j, R.dot(self.V), s * self.offset
+        q.frame = (c0, s, R, C)
         return q
 
     def placedMany(self, c0, s, R, C):
@@ -261,6 +270,7 @@ class _Plan(object):
                 centroid[k], inertia[k]
             q.moments, q.m, q.j, q.V, q.offset = s ** 5 * self.moments, s ** 3 * self.m, s ** 5 * self.j, V[k], \
                 s * self.offset
+            q.frame = (c0, s, R[k], C[k])
             out.append(q)
         return out
 
@@ -348,9 +358,10 @@ def _checkMany(func, cids, states, M, C, moments):
                                'principal moments %s vs %s)' % (func, cids[k], m, Mk, got, want))
 
 
-def _build(func, plans, members, warn=None):
+def _build(func, plans, members, warn=None, grains=None):
     """Appends one clump per plan, members made by *members* (:class:`_Members`); nothing is left in O.bodies
-    if anything fails. :return: [(clumpId, [memberIds])]"""
+    if anything fails. *grains*: per plan, the grain's mesh (world vertices (n, 3), triangles) for a clump that
+    can break (:func:`yade_mss.mssSplit`), or None. :return: [(clumpId, [memberIds])]"""
     utils, O, me = _yade()
     made = []
     try:
@@ -373,8 +384,11 @@ def _build(func, plans, members, warn=None):
                            np.array([p.j for p in plans]),
                            np.array([np.eye(3) if len(p.radii) > 1 else p.V.T for p in plans]))
         from yade.wrapper import Material
-        for (cid, ids), text in zip(made, texts):
-            attach(O.bodies[cid], text, Material)
+        for k, ((cid, ids), text) in enumerate(zip(made, texts)):
+            g = grains[k] if grains is not None else None
+            # in the record's frame: member 0's position, member 1's orientation (the identity: YADE's)
+            attach(O.bodies[cid], text, Material,
+                   encodeGrain(g[0] - plans[k].centers[0], g[1]) if g is not None and len(ids) > 1 else '')
     except Exception:
         for cid, ids in made:
             O.bodies.erase(cid, True)
@@ -418,7 +432,32 @@ def _plans(func, r, mass, placements):
     return [base.placed(c0, s, R, c0 if C is None else C) for C, R, s in placements]
 
 
-def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', seed=None, **options):
+def grainMesh(func, r):
+    """The mesh (vertices (n, 3), triangles (m, 3)) result *r* was generated from, for a breakable clump."""
+    cached = getattr(r, '_mssMesh', None)
+    if cached is not None:
+        return cached
+    from ._sources import _Mesh, _source
+    g = r.grain
+    s = _source(g) if g is not None and not isinstance(g, np.ndarray) else None
+    if not isinstance(s, _Mesh):
+        raise ValueError('%s: breakable=True needs the grain as a mesh (a mesh file or (vertices, triangles)); '
+                         'this result was made from %s' % (func, 'voxels' if s is not None or g is not None
+                                                            else 'nothing it knows (read from a file?)'))
+    r._mssMesh = (s.vertices, s.triangles)
+    return r._mssMesh
+
+
+def grainsOf(func, r, plans, breakable):
+    """Each plan's grain in the world (:func:`_build`'s *grains*), or None when not *breakable*."""
+    if not flag(func, 'breakable', breakable):
+        return None
+    v, t = grainMesh(func, r)
+    return [(p.world(v), t) for p in plans]
+
+
+def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', seed=None, breakable=False,
+             **options):
     """Builds one YADE clump from a grain and appends it to O.bodies, as ``O.bodies.appendClumped`` does.
 
     :param source: mesh file, voxel file (.npy, .tif), 3-D numpy array, (vertices, triangles), or an
@@ -434,6 +473,8 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
     :param str mass: 'target': mass, centre and inertia of the target solid (exact for a mesh; voxel sums);
         'union': those of the union of the spheres (overlaps counted once)
     :param int seed: seed of ``orientation='random'``
+    :param bool breakable: the clump carries its grain's mesh, so that :func:`mssSplit` (and
+        :func:`MssBreakage`) can break it (a mesh source; at least two spheres)
     :return: (clumpId, [memberIds]); O.bodies is unchanged if anything fails
 
     The members are YADE's spheres, as after ``appendClumped``: mass rho V and inertia 2/5 m r^2 of their
@@ -444,9 +485,10 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
     exact properties back.
     """
     gen, body = split('mssClump', options, GENERATE_OPTIONS, bodyOptions(),
-                      extra=('source', 'center', 'orientation', 'scale', 'mass', 'seed'))
+                      extra=('source', 'center', 'orientation', 'scale', 'mass', 'seed', 'breakable'))
     utils, O, me = _yade()
     mass = _mass('mssClump', mass)
+    breakable = flag('mssClump', 'breakable', breakable)
     s = _scale('mssClump', scale)
     R = rotation(orientation, _seed('mssClump', seed))
     C = None if center is None else vector3('mssClump', 'center', center)
@@ -458,7 +500,8 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
         r = source
     else:
         r = generate(source, **gen)
-    return _build('mssClump', _plans('mssClump', r, mass, [(C, R, s)]), members, _offsetWarning)[0]
+    plans = _plans('mssClump', r, mass, [(C, R, s)])
+    return _build('mssClump', plans, members, _offsetWarning, grainsOf('mssClump', r, plans, breakable))[0]
 
 
 def _clumpIds(O):

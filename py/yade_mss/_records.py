@@ -12,12 +12,17 @@ members turn with the clump, so the record holds wherever the clump goes; and me
 yade-mss (member 0 wears the orientation V* of its load tensor's axes, set again at each restore), so a
 restore of an unchanged clump leaves its record as it was: nothing is written.
 
+A breakable clump (:func:`yade_mss.mssSplit`) carries its grain too, after the record: ``|g:`` and its mesh
+(vertices in the record's frame, float64, and triangles, int32: zlib, base64), so that O.save keeps what a
+split needs and a clump that goes takes its grain with it.
+
 Layout: float64, little endian, base64 after ``mss3:``: [3, n, volume, centroid (3), inertia (9), member 0's load
 tensor (9), ids (n), radii (n), positions (3n), masses for the sums (n)]. ``mss2:`` records (frame of member 0,
 rewritten at each restore) are not read.
 """
 
 import base64
+import zlib
 
 import numpy as np
 
@@ -77,24 +82,65 @@ class Record(object):
         self.m = a[k + 5 * n:k + 6 * n]
 
 
-def recordOf(body):
-    """The record a clump body carries: a :class:`Record`, None (none: a clump made otherwise), or False (not
-    readable: damaged)."""
+GRAIN = '|g:'
+
+
+def encodeGrain(vertices, triangles):
+    """The ``|g:`` part of a label: a mesh, *vertices* (n, 3) in the record's frame and *triangles* (m, 3)."""
+    v = np.ascontiguousarray(vertices, dtype='<f8').reshape(-1, 3)
+    t = np.ascontiguousarray(triangles, dtype='<i4').reshape(-1, 3)
+    head = np.array([len(v), len(t)], dtype='<i8').tobytes()
+    return GRAIN + base64.b64encode(zlib.compress(head + v.tobytes() + t.tobytes(), 1)).decode('ascii')
+
+
+def grainOf(text):
+    """The mesh a label carries after its record: (vertices (n, 3), triangles (m, 3)) in the record's frame,
+    None (none), or False (not readable)."""
+    k = text.find(GRAIN)
+    if k < 0:
+        return None
+    try:
+        raw = zlib.decompress(base64.b64decode(text[k + len(GRAIN):], validate=True))
+        nv, nt = (int(x) for x in np.frombuffer(raw[:16], dtype='<i8'))
+        if nv < 3 or nt < 4 or len(raw) != 16 + 24 * nv + 12 * nt:
+            return False
+        v = np.frombuffer(raw, dtype='<f8', count=3 * nv, offset=16).reshape(nv, 3)
+        t = np.frombuffer(raw, dtype='<i4', count=3 * nt, offset=16 + 24 * nv).reshape(nt, 3)
+    except (ValueError, TypeError, zlib.error):
+        return False
+    if not (np.all(np.isfinite(v)) and t.min() >= 0 and t.max() < nv):
+        return False
+    return v, t
+
+
+def labelOf(body):
     mat = body.material
-    text = mat.label if mat is not None else ''
+    return mat.label if mat is not None else ''
+
+
+def recordOf(body, text=None):
+    """The record a clump body carries (its label *text*, if already read): a :class:`Record`, None (none: a
+    clump made otherwise), or False (not readable: damaged)."""
+    text = labelOf(body) if text is None else text
     if text.startswith(OLDER):
         return False
     if not text.startswith(PREFIX):
         return None
+    k = text.find(GRAIN)
     try:
-        return Record(text)
+        return Record(text if k < 0 else text[:k])
     except ValueError:
         return False
 
 
-def attach(body, text, Material):
-    """Gives the clump body its record (*Material*: YADE's base material class)."""
-    body.material = Material(label=text, density=0)
+def attach(body, text, Material, grain=None):
+    """Gives the clump body its record (*Material*: YADE's base material class) and its grain (an
+    :func:`encodeGrain` text; None: the one it carries, if any)."""
+    if grain is None:
+        old = labelOf(body)
+        k = old.find(GRAIN) if old.startswith(PREFIX) else -1
+        grain = old[k:] if k >= 0 else ''
+    body.material = Material(label=text + grain, density=0)
 
 
 def drop(body):

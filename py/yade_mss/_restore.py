@@ -160,8 +160,8 @@ def _restore(func, O, me, ids, explicit, resolution, recs):
                            np.array([w[2].j for w in write]),
                            np.array([R[w[8], 1] if len(w[1]) > 1 else w[2].V.T for w in write]))
         from yade.wrapper import Material
-        for w, text in zip(write, texts):
-            attach(O.bodies[w[0]], text, Material)
+        for w, text in zip(write, texts):  # a clump whose members changed is no longer its grain
+            attach(O.bodies[w[0]], text, Material, '' if w[5] == 'union' else None)
     return done
 
 

@@ -6,8 +6,8 @@ import warnings
 
 import numpy as np
 
-from ._args import vector3
-from ._clumps import _Members, _basePlan, _scale, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
+from ._args import flag as _flag, vector3
+from ._clumps import grainMesh, _Members, _basePlan, _scale, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._results import MssResult
@@ -183,7 +183,7 @@ def _placeByBoundingBalls(rng, lo, hi, radii, periodic, tries=1000):
 
 
 def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=-1, psdSizes=None, psdCumm=None,
-                  distributeMass=False, mass='target', **options):
+                  distributeMass=False, mass='target', breakable=False, **options):
     """A random loose packing of clumps, each with its grain's exact mass properties (:func:`mssClump`).
 
     Without a size distribution, positions and orientations come from ``SpherePack.makeClumpCloud`` (same
@@ -203,16 +203,18 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
     :param psdCumm: its cumulative fractions (by number; by mass with distributeMass), one per size
     :param bool distributeMass: psdCumm are fractions of the mass, not of the number
     :param str mass: 'target' (each grain's exact mass properties) or 'union' (its spheres' union's)
+    :param bool breakable: each clump carries its grain's mesh, for :func:`mssSplit` (templates of meshes)
     :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
     :return: list of (clumpId, [memberIds])
     """
     func = 'mssClumpCloud'
     gen, body = split(func, options, GENERATE_OPTIONS, bodyOptions(),
                       extra=('templates', 'minCorner', 'maxCorner', 'num', 'periodic', 'seed', 'psdSizes', 'psdCumm',
-                             'distributeMass', 'mass'))
+                             'distributeMass', 'mass', 'breakable'))
     utils, O, me = _yade()
     from yade import pack
     mass = _mass(func, mass)
+    breakable = _flag(func, 'breakable', breakable)
     if isinstance(num, (bool, np.bool_)) or not isinstance(num, (int, np.integer)) or not (num >= 1 or num == -1):
         raise ValueError('%s: num must be an integer >= 1, or -1 (as many as fit), got %r' % (func, num))
     seed = _seed(func, seed)
@@ -240,7 +242,8 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
         if len(order) < num:
             warnings.warn('%s: placed %d of %d grains (the box is too full)' % (func, len(order), num))
         plans = [templates[which[i]].plan(c, randomRotation(rng), scales[i], mass) for c, i in zip(centres, order)]
-        return _build(func, plans, members, _offsetWarning)
+        return _build(func, plans, members, _offsetWarning, _grains(func, templates, [which[i] for i in order],
+                                                                    plans, breakable))
     sp = pack.SpherePack()
     sp.makeClumpCloud(me.Vector3(*lo), me.Vector3(*hi), [t.spherePack for t in templates],
                       periodic=bool(periodic), num=int(num), seed=-1 if seed is None else seed)
@@ -262,10 +265,18 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
             R, tr = _kabsch(t.spherePackCenters, np.array([groups[i][:, :3] for i in mine]))
             for i, p in zip(mine, t.plans(tr, R, mass)):
                 plans[i] = p
-    return _build(func, plans, members, _offsetWarning)
+    return _build(func, plans, members, _offsetWarning, _grains(func, templates, which, plans, breakable))
 
 
-def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target', **options):
+def _grains(func, templates, which, plans, breakable):
+    """Each plan's grain in the world when *breakable* (plan k from template which[k])."""
+    if not breakable:
+        return None
+    meshes = [grainMesh(func, t.result) for t in templates]
+    return [(p.world(meshes[w][0]), meshes[w][1]) for w, p in zip(which, plans)]
+
+
+def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target', breakable=False, **options):
     """Replaces free spheres of the scene by clumps, as ``O.bodies.replaceByClumps`` does, but with exact mass
     properties and without overlaps: with ``fit='inside'`` each clump's bounding ball is the sphere it replaces
     (YADE's own gives the clump the sphere's volume, so clumps stick out by the ratio of bounding to equivalent
@@ -277,12 +288,14 @@ def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target
         the clump has the sphere's volume)
     :param seed: random seed for which spheres and the orientations (uniform)
     :param str mass: 'target' (each grain's exact mass properties) or 'union' (its spheres' union's)
+    :param bool breakable: each clump carries its grain's mesh, for :func:`mssSplit` (templates of meshes)
     :param options: :func:`generate` keywords (for sources) and ``utils.sphere`` ones (material, color, ...)
     :return: list of (clumpId, [memberIds])
     """
     gen, body = split('mssReplaceByClumps', options, GENERATE_OPTIONS, bodyOptions(),
-                      extra=('templates', 'amounts', 'fit', 'seed', 'mass'))
+                      extra=('templates', 'amounts', 'fit', 'seed', 'mass', 'breakable'))
     mass = _mass('mssReplaceByClumps', mass)
+    breakable = _flag('mssReplaceByClumps', 'breakable', breakable)
     utils, O, me = _yade()
     from yade.wrapper import Sphere
     templates = _templates('mssReplaceByClumps', templates, gen)
@@ -306,8 +319,9 @@ def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target
             key = ('given',) if 'material' in body else (mat.id if mat.id >= 0 else id(mat),)
             if key not in makers:
                 makers[key] = _Members('mssReplaceByClumps', dict(body, material=mat))
-            out.append(_build('mssReplaceByClumps', [t.plan(c, randomRotation(rng), s, mass)], makers[key],
-                              _offsetWarning)[0])
+            plans = [t.plan(c, randomRotation(rng), s, mass)]
+            out.append(_build('mssReplaceByClumps', plans, makers[key], _offsetWarning,
+                              _grains('mssReplaceByClumps', [t], [0], plans, breakable))[0])
             O.bodies.erase(b.id)
         k += n
     return out

@@ -92,3 +92,32 @@ def ballSums(centers, radii, density):
 
 def relErr(a, b):
     return float(np.linalg.norm(np.asarray(a) - np.asarray(b)) / np.linalg.norm(np.asarray(b)))
+
+
+def halfSpaceMass(tri, point, normal):
+    """Volume, centroid and inertia tensor (unit density) of the part of a closed mesh (triangles (n, 3, 3)) on
+    the side of the plane its normal points to: each triangle clipped with numpy, the cut closed by a fan from
+    the plane's point. Written apart from the C++ split, so that the pieces are checked independently."""
+    n = np.asarray(normal, dtype=float) / np.linalg.norm(normal)
+    p0 = np.asarray(point, dtype=float)
+    kept, segs = [], []
+    for t in tri:
+        s = (t - p0).dot(n)
+        poly, entry, exit_ = [], None, None
+        for q in range(3):
+            a, b, sa, sb = t[q], t[(q + 1) % 3], s[q], s[(q + 1) % 3]
+            if sa >= 0:
+                poly.append(a)
+            if (sa >= 0) != (sb >= 0):
+                x = a + (b - a) * (sa / (sa - sb))
+                poly.append(x)
+                if sa >= 0:
+                    exit_ = x
+                else:
+                    entry = x
+        for q in range(1, len(poly) - 1):
+            kept.append((poly[0], poly[q], poly[q + 1]))
+        if entry is not None:
+            segs.append((entry, exit_))
+    kept += [(p0, e, x) for e, x in segs]
+    return meshMass(np.array(kept))

@@ -1,0 +1,469 @@
+"""Grains that break during a YADE simulation into MSS fragments (the MSS paper's summary: shapes generated at
+run time, particle fragmentation, a constraint plane for the fragmentation plane).
+
+:func:`mssSplit` replaces a breakable clump (``mssClump(..., breakable=True)``: it carries its grain's mesh) by
+one clump per piece of its grain on either side of a plane. Each piece is the grain cut and capped exactly
+(:func:`yade_mss._mss.splitMesh`); its spheres are generated on it under the protrusion bound and kept off the
+cut plane; its clump carries the piece's exact mass, centre and inertia. The pieces' mass properties sum to the
+parent's (the same mesh, cut), so giving each piece the parent's velocity field (v + w x r, and w) keeps mass,
+linear momentum and angular momentum about the common centre exactly.
+
+:func:`MssBreakage` is the engine that breaks grains by a criterion each period: by default the characteristic
+stress sigma = F / d^2 of the largest opposing pair of contact forces against a Weibull strength with a size
+effect (McDowell and Bolton 1998; McDowell and Amon 2000: survival exp(-(d/d0)^3 (sigma/sigma0)^m)).
+"""
+
+import json
+import math
+import warnings
+
+import numpy as np
+
+from . import _mss
+from ._args import integer, number, vector3
+from ._clumps import _Members, _Plan, _build, _offsetWarning, _yade, bodyOptions, matrix
+from ._generate import GENERATE_OPTIONS, generate
+from ._keywords import split as splitKeywords
+from ._records import grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
+
+LOG_TAG = 'mss.breakage'
+_SPLIT_OWN = ('clumpId', 'plane', 'nSpheres', 'minSize', 'resolution')
+_SPLIT_GENERATE = tuple(k for k in GENERATE_OPTIONS if k not in ('nSpheres', 'planes', 'resolution'))
+
+
+def _meshOf(d):
+    return (np.frombuffer(d['vertices'], dtype=float).reshape(-1, 3),
+            np.frombuffer(d['triangles'], dtype=np.int32).reshape(-1, 3))
+
+
+def _members(func, O, cid):
+    """(clump body, sorted member ids, member bodies, radii (n), positions (n, 3)) of clump *cid*."""
+    from yade.wrapper import Sphere
+    cid = integer(func, 'clumpId', cid, 0)
+    body = O.bodies[cid] if cid < len(O.bodies) else None
+    if body is None or not body.isClump:
+        raise ValueError('%s: body %d is not a clump' % (func, cid))
+    mids = sorted(body.shape.members)
+    bodies = [O.bodies[i] for i in mids]
+    for b in bodies:
+        if not isinstance(b.shape, Sphere):
+            raise ValueError('%s: member %d of clump %d is a %s, not a Sphere' % (func, b.id, cid,
+                                                                               type(b.shape).__name__))
+    radii = np.array([b.shape.radius for b in bodies])
+    x = np.array([[b.state.pos[0], b.state.pos[1], b.state.pos[2]] for b in bodies])
+    return body, mids, bodies, radii, x
+
+
+def grainInWorld(func, O, cid):
+    """The mesh of breakable clump *cid* where the clump is now: (vertices (n, 3), triangles (m, 3))."""
+    body, mids, bodies, radii, x = _members(func, O, cid)
+    text = labelOf(body)
+    rec = recordOf(body, text)
+    if rec is None:
+        raise ValueError('%s: clump %d was not made by yade-mss (it carries no grain): only clumps made with '
+                         'mssClump(..., breakable=True) or mssClumpCloud(..., breakable=True) can break' % (func, cid))
+    grain = grainOf(text) if rec else False
+    if grain is None:
+        raise ValueError('%s: clump %d carries no grain mesh: make it with breakable=True (from a mesh, two '
+                         'spheres or more)' % (func, cid))
+    if grain is False or rec is False:
+        raise RuntimeError('%s: the record of clump %d is not readable' % (func, cid))
+    o = bodies[1].state.ori
+    F = quaternionMatrices([(o[0], o[1], o[2], o[3])])[0]
+    if matchMembers(rec, mids, radii, x, F) != 'same':
+        raise RuntimeError('%s: the members of clump %d are not those it was made with (spheres added, released '
+                           'or moved): its grain no longer describes it' % (func, cid))
+    v, t = grain
+    return x[0] + v.dot(F.T), t
+
+
+def clearance(x, vertices, triangles):
+    """The distance from point *x* to a closed mesh's surface when *x* is inside (winding number 1/2 or more),
+    else 0: numpy, O(T)."""
+    a, b, c = (vertices[triangles[:, k]] - x for k in range(3))
+    la, lb, lc = (np.linalg.norm(p, axis=1) for p in (a, b, c))
+    det = np.einsum('ij,ij->i', a, np.cross(b, c))
+    den = la * lb * lc + np.einsum('ij,ij->i', a, b) * lc + np.einsum('ij,ij->i', b, c) * la \
+        + np.einsum('ij,ij->i', c, a) * lb
+    winding = 2.0 * np.arctan2(det, den).sum() / (4.0 * math.pi)  # Van Oosterom and Strackee 1983
+    if abs(winding) < 0.5:
+        return 0.0
+    return float(np.sqrt(_squaredDistances(np.zeros(3), a, b, c).min()))
+
+
+def _squaredDistances(p, a, b, c):
+    """Squared distances from p to triangles (a, b, c) (arrays (T, 3)): the closest point by its Voronoi
+    region (Ericson, Real-Time Collision Detection, 5.1.5), vectorised."""
+    ab, ac, ap = b - a, c - a, p - a
+    d1, d2 = np.einsum('ij,ij->i', ab, ap), np.einsum('ij,ij->i', ac, ap)
+    bp, cp = p - b, p - c
+    d3, d4 = np.einsum('ij,ij->i', ab, bp), np.einsum('ij,ij->i', ac, bp)
+    d5, d6 = np.einsum('ij,ij->i', ab, cp), np.einsum('ij,ij->i', ac, cp)
+    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
+    with np.errstate(divide='ignore', invalid='ignore'):
+        den = va + vb + vc
+        q = a + ab * (vb / den)[:, None] + ac * (vc / den)[:, None]  # inside the face
+        # Ericson's order of tests, reversed: the last that holds wins
+        tbc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
+        q = np.where(((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0))[:, None], b + (c - b) * tbc[:, None], q)
+        tac = d2 / (d2 - d6)
+        q = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[:, None], a + ac * tac[:, None], q)
+        q = np.where(((d6 >= 0) & (d5 <= d6))[:, None], c, q)
+        tab = d1 / (d1 - d3)
+        q = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[:, None], a + ab * tab[:, None], q)
+    q = np.where(((d3 >= 0) & (d4 <= d3))[:, None], b, q)
+    q = np.where(((d1 <= 0) & (d2 <= 0))[:, None], a, q)
+    return ((q - p) ** 2).sum(axis=1)
+
+
+def _plane(func, plane):
+    try:
+        point, normal = plane
+    except (TypeError, ValueError):
+        raise TypeError('%s: plane must be (point, normal), 3 numbers each, got %r' % (func, plane))
+    p, n = vector3(func, 'plane point', point), vector3(func, 'plane normal', normal)
+    if not np.linalg.norm(n) > 0:
+        raise ValueError('%s: the plane normal must be non-zero' % func)
+    return p, n / np.linalg.norm(n)
+
+
+def _counts(func, nSpheres, parentCount, volumes, parentVolume):
+    if nSpheres is None:  # by volume: the parent's spheres shared out; four reach any centre of mass
+        return [max(4, int(round(parentCount * v / parentVolume))) for v in volumes]
+    if callable(nSpheres):
+        return [integer(func, 'nSpheres(volume, size)', nSpheres(v, _size(v)), 1, 65535) for v in volumes]
+    n = integer(func, 'nSpheres', nSpheres, 1, 65535)
+    return [n] * len(volumes)
+
+
+def _size(volume):
+    """The diameter of the sphere of this volume: a grain's size here (sieves see about that)."""
+    return (6.0 * volume / math.pi) ** (1.0 / 3.0)
+
+
+def _neighbours(O, ids):
+    """The bodies in contact with any of *ids*, but not one of them."""
+    mine = set(ids)
+    others = set()
+    for i in ids:
+        for it in O.interactions.withBody(i):
+            j = it.id2 if it.id1 == i else it.id1
+            if j not in mine:
+                others.add(j)
+    return sorted(others)
+
+
+def _reachInto(O, others, c, r):
+    """How deep spheres (centres (n, 3), radii (n)) reach into bodies *others* (the deepest overlap over their
+    Sphere, Wall and Box shapes; others are not measured)."""
+    from yade.wrapper import Box, Sphere, Wall
+    deepest = 0.0
+    for j in others:
+        b = O.bodies[j]
+        if b is None:
+            continue
+        sh, p = b.shape, np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]])
+        if isinstance(sh, Sphere):
+            d = r + sh.radius - np.linalg.norm(c - p, axis=1)
+        elif isinstance(sh, Wall):
+            d = r - np.abs(c[:, sh.axis] - p[sh.axis])
+        elif isinstance(sh, Box):
+            e = np.array([sh.extents[0], sh.extents[1], sh.extents[2]])
+            q = np.abs((c - p).dot(matrix(b.state.ori)))  # in the box's frame; by symmetry its first octant
+            out = np.linalg.norm(np.maximum(q - e, 0), axis=1)
+            d = r - np.where(out > 0, out, -np.min(e - q, axis=1))
+        else:
+            continue
+        deepest = max(deepest, float(d.max()))
+    return deepest
+
+
+def _log(O, event):
+    """Appends *event* to the breakage log in O.tags (saved with the scene)."""
+    old = O.tags[LOG_TAG] if LOG_TAG in O.tags.keys() else ''
+    O.tags[LOG_TAG] = old + json.dumps(event, sort_keys=True) + '\n'
+
+
+def breakageLog():
+    """The splits of this scene so far (:func:`mssSplit`, :func:`MssBreakage`), oldest first: a dict each, with
+    iter, time, parent, parentVolume, pieces (clump ids), volumes, sizes (diameters of the spheres of their
+    volumes), spheres (counts), plane (point, normal), reachBefore/reachAfter (the deepest overlap of the
+    parent's and the pieces' spheres into their neighbours) and, from the engine, sigma and strength."""
+    utils, O, me = _yade()
+    text = O.tags[LOG_TAG] if LOG_TAG in O.tags.keys() else ''
+    return [json.loads(line) for line in text.splitlines() if line.strip()]
+
+
+def mssSplit(clumpId, plane, nSpheres=None, minSize=0.0, resolution=50, **options):
+    """Breaks a clump in two (or more) along a plane: the clump is replaced by one clump per piece of its grain
+    on either side. Each piece is the grain cut and capped exactly; its spheres are generated on it (under the
+    protrusion bound, off the cut plane); its clump has the piece's exact mass, centre and inertia and moves as
+    the parent's body did there (v + w x r, w), so that mass, linear momentum and angular momentum about the
+    common centre are kept exactly. The pieces can break again.
+
+    :param int clumpId: a clump made with ``breakable=True`` (:func:`mssClump`, :func:`mssClumpCloud`) or a piece
+    :param plane: (point, normal) in world coordinates; a plane that misses the grain is an error
+    :param nSpheres: spheres a piece: None (the parent's count shared by volume, at least 4), an int, or a
+        callable (volume, size) -> int. A clump's centre of mass lies in the span of its sphere centres (YADE
+        sums them), so with 2 or 3 spheres it may miss the piece's by a little (a warning gives the distance)
+    :param float minSize: a piece smaller than this (the diameter of the sphere of its volume) becomes a
+        single sphere at its centre of mass (reaching the piece's nearest surface point) and does not break
+        again
+    :param int resolution: generation grid of each piece, voxels along its shortest bounding-box edge
+    :param options: :func:`generate` keywords (method, rMin, supersample, ...) and ``utils.sphere`` ones for the
+        members (default: the parent's material and mask; colours random as for any clump)
+    :return: [(clumpId, [memberIds])], one per piece; O.bodies is unchanged if anything fails
+
+    Where a piece's spheres reach deeper into a neighbour than the parent's did, a warning says so (the log has
+    both depths: :func:`breakageLog`).
+    """
+    return _split('mssSplit', clumpId, plane, nSpheres, minSize, resolution, options, {})
+
+
+def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
+    gen, body = splitKeywords(func, options, _SPLIT_GENERATE, bodyOptions(),
+                              extra=_SPLIT_OWN)
+    utils, O, me = _yade()
+    point, normal = _plane(func, plane)
+    minSize = number(func, 'minSize', minSize, 0.0)
+    resolution = integer(func, 'resolution', resolution, 1)
+    V, T = grainInWorld(func, O, clumpId)
+    parent, mids, bodies, radii, x = _members(func, O, clumpId)
+    cut = _mss.splitMesh(V.ravel().tolist(), T.ravel().tolist(), list(point) + list(normal))
+    if not cut['above'] or not cut['below']:
+        raise ValueError('%s: the plane misses the grain of clump %d (all of it lies on one side)'
+                         % (func, parent.id))
+    sides = [(_meshOf(d), 1.0) for d in cut['above']] + [(_meshOf(d), -1.0) for d in cut['below']]
+    props = [_mss.massMesh(m[0].ravel().tolist(), m[1].ravel().tolist(), []) for m, _ in sides]
+    volumes = [p['volume'] for p in props]
+    counts = _counts(func, nSpheres, len(mids), volumes, sum(volumes))
+    plans, grains = [], []
+    for k, ((mesh, sign), pr) in enumerate(zip(sides, props)):
+        small = _size(pr['volume']) < minSize
+        n = 1 if small else counts[k]
+        try:
+            r = generate(mesh, nSpheres=n, resolution=resolution,
+                         planes=[(tuple(point), tuple(sign * normal))], **gen)
+        except (ValueError, RuntimeError) as e:
+            raise type(e)('%s: clump %d, piece %d (volume %g): %s' % (func, parent.id, k, pr['volume'], e))
+        centroid = np.array(pr['centroid'])
+        pc, pr_ = r.centers, r.radii
+        if n == 1:  # at the centre of mass, so that the clump's is exact, reaching the nearest surface point
+            room = clearance(centroid, *mesh)
+            if room > 0:
+                pc, pr_ = centroid[None, :], np.array([room])
+        plans.append(_Plan.of(pc, pr_, pr['volume'], centroid, np.reshape(pr['inertia'], (3, 3))))
+        grains.append(mesh if n > 1 else None)
+    st = parent.state
+    c = np.array([st.pos[0], st.pos[1], st.pos[2]])
+    v = np.array([st.vel[0], st.vel[1], st.vel[2]])
+    w = np.array([st.angVel[0], st.angVel[1], st.angVel[2]])
+    blocked = st.blockedDOFs
+    body.setdefault('material', bodies[0].mat)
+    body.setdefault('mask', bodies[0].mask)
+    near = _neighbours(O, mids)
+    reachBefore = _reachInto(O, near, x, radii)
+    made = _build(func, plans, _Members(func, body), _offsetWarning, grains)
+    V3 = me.Vector3
+    rho = O.bodies[made[0][1][0]].mat.density
+    for (cid, ids), p in zip(made, plans):
+        s = O.bodies[cid].state
+        s.vel = V3(*(v + np.cross(w, p.centroid - c)))
+        s.angVel = V3(*w)
+        s.angMom = V3(*(rho * p.inertia.dot(w)))
+        if blocked:
+            s.blockedDOFs = blocked
+    O.bodies.erase(parent.id, True)
+    reachAfter = max(_reachInto(O, near, p.centers, p.radii) for p in plans)
+    event = dict(iter=O.iter, time=O.time, parent=parent.id, parentVolume=float(sum(volumes)),
+                 pieces=[cid for cid, ids in made], volumes=volumes, sizes=[_size(vv) for vv in volumes],
+                 spheres=[len(ids) for cid, ids in made], plane=[list(point), list(normal)],
+                 reachBefore=reachBefore, reachAfter=reachAfter, **info)
+    _log(O, event)
+    scale = _size(sum(volumes))
+    if reachAfter > max(reachBefore, 0.0) + 1e-9 * scale:
+        warnings.warn('%s: the pieces of clump %d reach %.3g into a neighbour, the parent reached %.3g'
+                      % (func, parent.id, reachAfter, reachBefore), stacklevel=2)
+    return made
+
+
+# the engines' parameters that cannot go into their command (callables), by label: MssBreakage again after
+# loading a scene in a new process
+_callables = {}
+_unbreakable = set()  # (clump id, first member id) of clumps that carry no grain: not read again
+
+
+def MssBreakage(iterPeriod=100, sigma0=None, modulus=3.0, d0=None, seed=0, criterion=None, nSpheres=None,
+                minSize=0.0, resolution=50, label='mssBreakage', **options):
+    """An engine (a ``PyRunner``; add it to ``O.engines`` after the NewtonIntegrator) that breaks grains each
+    *iterPeriod* steps: every breakable clump (``breakable=True``) that fails the criterion is split
+    (:func:`mssSplit`) along its plane, and the split is logged (:func:`breakageLog`).
+
+    Built-in criterion (crushing of grains, McDowell and Bolton 1998): the characteristic stress
+    sigma = F / d^2, where F is the larger of the two forces of the most opposing pair of contact forces on the
+    grain (for each pair a, b: min(f_a . u, -f_b . u) along u = (f_a - f_b) / |f_a - f_b|) and d the diameter of
+    the sphere of the grain's volume; the grain breaks when sigma reaches its strength, drawn once per grain from
+    the Weibull distribution with a size effect, survival exp(-(d / d0)^3 (sigma / sigma0)^m) (McDowell and
+    Amon 2000): strength = sigma0 (d / d0)^(-3/m) (-ln U)^(1/m), U uniform from (*seed*, the clump's id, its
+    first member's id), so a scene saved and loaded draws the same. The plane goes through the centre of mass
+    and contains the loading direction u, turned about it at random (same seed).
+
+    :param int iterPeriod: steps between checks
+    :param float sigma0: the Weibull scale stress at size d0 (37% of grains of size d0 survive sigma0)
+    :param float modulus: the Weibull modulus m
+    :param float d0: the reference size (world units)
+    :param int seed: the strengths' and planes' seed
+    :param criterion: instead of the built-in one, a callable (clumpId, contacts) -> None (no break) or a
+        plane (point, normal); contacts: a list of (point, force on the grain), numpy arrays. Not saved with
+        the scene: after ``O.load`` in a new process, call MssBreakage again with the same label
+    :param nSpheres: spheres a piece, as in :func:`mssSplit`
+    :param float minSize: as in :func:`mssSplit`: smaller pieces are single spheres and never break
+    :param int resolution: as in :func:`mssSplit`
+    :param str label: the engine's label
+    :param options: :func:`mssSplit`'s generate and body keywords
+    :return: the engine (``yade.wrapper.PyRunner``)
+    """
+    func = 'MssBreakage'
+    splitKeywords(func, options, _SPLIT_GENERATE, bodyOptions(),
+                  extra=('iterPeriod', 'sigma0', 'modulus', 'd0', 'seed', 'criterion', 'nSpheres', 'minSize',
+                         'resolution', 'label'))
+    from yade.wrapper import PyRunner
+    iterPeriod = integer(func, 'iterPeriod', iterPeriod, 1)
+    if criterion is not None and not callable(criterion):
+        raise TypeError('%s: criterion must be a callable (clumpId, contacts) -> plane or None, got %r'
+                        % (func, criterion))
+    if criterion is None:
+        if sigma0 is None or d0 is None:
+            raise ValueError('%s: the built-in criterion needs sigma0 and d0 (or give a criterion)' % func)
+        sigma0 = number(func, 'sigma0', sigma0)
+        d0 = number(func, 'd0', d0)
+        modulus = number(func, 'modulus', modulus)
+        for name, val in (('sigma0', sigma0), ('d0', d0), ('modulus', modulus)):
+            if not val > 0:
+                raise ValueError('%s: %s must be > 0, got %r' % (func, name, val))
+    if not isinstance(label, str) or not label.isidentifier():
+        raise ValueError('%s: label must be a Python identifier, got %r' % (func, label))
+    if nSpheres is not None and not callable(nSpheres):
+        nSpheres = integer(func, 'nSpheres', nSpheres, 1, 65535)
+    minSize = number(func, 'minSize', minSize, 0.0)
+    resolution = integer(func, 'resolution', resolution, 1)
+    seed = integer(func, 'seed', seed, 0)
+    kept = {k: v for k, v in options.items() if k != 'material'}
+    try:
+        json.dumps(kept)
+    except TypeError:
+        raise TypeError('%s: the generate and body options must be numbers, strings or lists (they are saved '
+                        'with the engine)' % func)
+    _callables[label] = dict(criterion=criterion, nSpheres=nSpheres if callable(nSpheres) else None,
+                             material=options.get('material'))
+    cfg = dict(sigma0=sigma0, modulus=modulus, d0=d0, seed=seed, custom=criterion is not None,
+               nSpheres=None if callable(nSpheres) else nSpheres, minSize=minSize, resolution=resolution,
+               options=kept, callables=callable(nSpheres) or criterion is not None or 'material' in options)
+    command = 'import yade_mss._breakage as _mssb; _mssb.step(%r, %r)' % (label, json.dumps(cfg, sort_keys=True))
+    return PyRunner(command=command, iterPeriod=iterPeriod, label=label)
+
+
+def contactsByClump(O):
+    """The contact forces on each clump: {clump id: [(contact point, force on the clump)]}, numpy arrays.
+    Forces are YADE's normalForce + shearForce, which act on id2 (and the opposite on id1)."""
+    out = {}
+    bodies = O.bodies
+    for i in O.interactions:
+        if not i.isReal:
+            continue
+        ph = i.phys
+        try:
+            f = ph.normalForce + ph.shearForce
+        except AttributeError:
+            continue
+        point = i.geom.contactPoint
+        for j, sign in ((i.id1, -1.0), (i.id2, 1.0)):
+            b = bodies[j]
+            if b.isClumpMember:
+                out.setdefault(b.clumpId, []).append((np.array([point[0], point[1], point[2]]),
+                                                      sign * np.array([f[0], f[1], f[2]])))
+    return out
+
+
+def opposingPair(contacts):
+    """(F, u): the most opposing pair of contact forces on a grain (the larger of min(f_a . u, -f_b . u) over
+    pairs, u = (f_a - f_b) / |f_a - f_b|) and its direction; (0, None) without one."""
+    if len(contacts) < 2:
+        return 0.0, None
+    f = np.array([c[1] for c in contacts])
+    d = f[:, None, :] - f[None, :, :]
+    n = np.linalg.norm(d, axis=2)
+    n[n == 0] = np.inf
+    u = d / n[:, :, None]
+    a = np.einsum('ik,ijk->ij', f, u)   # f_a . u_ab
+    b = -np.einsum('jk,ijk->ij', f, u)  # -f_b . u_ab
+    m = np.minimum(a, b)
+    k = np.unravel_index(np.argmax(m), m.shape)
+    if not m[k] > 0:
+        return 0.0, None
+    return float(m[k]), u[k]
+
+
+def weibullStrength(sigma0, modulus, d0, d, u):
+    """The strength of a grain of size *d* for the uniform number *u* in (0, 1): sigma0 (d/d0)^(-3/m)
+    (-ln u)^(1/m), the inverse of survival exp(-(d/d0)^3 (sigma/sigma0)^m)."""
+    return sigma0 * (d / d0) ** (-3.0 / modulus) * (-math.log(u)) ** (1.0 / modulus)
+
+
+def _uniform(seed, cid, first):
+    return float(np.random.default_rng([seed, cid, first]).uniform(1e-300, 1.0))
+
+
+def step(label, cfgText):
+    """One check of engine *label* (its command calls this): the clumps that fail the criterion are split."""
+    cfg = json.loads(cfgText)
+    extra = _callables.get(label)
+    if extra is None:
+        if cfg['callables']:
+            raise RuntimeError('MssBreakage %s: its criterion, nSpheres rule or material are not saved with the '
+                               'scene: call MssBreakage(..., label=%r) again after loading' % (label, label))
+        extra = dict(criterion=None, nSpheres=None, material=None)
+    utils, O, me = _yade()
+    breaks = []
+    found = contactsByClump(O)
+    if extra['criterion'] is not None:  # every clump: a user's criterion may not need contacts
+        found = dict((b.id, found.get(b.id, [])) for b in O.bodies if b is not None and b.isClump)
+    for cid, contacts in sorted(found.items()):
+        body = O.bodies[cid]
+        first = min(body.shape.members)
+        if (cid, first) in _unbreakable:
+            continue
+        if extra['criterion'] is not None:
+            plane = extra['criterion'](cid, contacts)
+            if plane is not None:
+                breaks.append((cid, first, plane, {}))
+            continue
+        F, u = opposingPair(contacts)
+        if F <= 0:
+            continue
+        rho = O.bodies[first].mat.density
+        d = _size(body.state.mass / rho)
+        sigma = F / d ** 2
+        strength = weibullStrength(cfg['sigma0'], cfg['modulus'], cfg['d0'], d, _uniform(cfg['seed'], cid, first))
+        if sigma < strength:
+            continue
+        t = np.random.default_rng([cfg['seed'], cid, first, O.iter]).normal(size=3)
+        n = np.cross(u, t)
+        c = body.state.pos
+        breaks.append((cid, first, ((c[0], c[1], c[2]), n / np.linalg.norm(n)),
+                       dict(sigma=sigma, strength=strength, force=F, direction=[float(x) for x in u])))
+    options = dict(cfg['options'])
+    if extra['material'] is not None:
+        options['material'] = extra['material']
+    nSpheres = extra['nSpheres'] if extra['nSpheres'] is not None else cfg['nSpheres']
+    for cid, first, plane, info in breaks:
+        body = O.bodies[cid]
+        if grainOf(labelOf(body)) is None:  # read once: not a breakable clump
+            _unbreakable.add((cid, first))
+            continue
+        try:
+            _split('MssBreakage', cid, plane, nSpheres, cfg['minSize'], cfg['resolution'], options, info)
+        except ValueError as e:  # a plane that misses a thin grain: it stays whole this time
+            if 'misses the grain' not in str(e):
+                raise
+            warnings.warn('MssBreakage: clump %d not split: %s' % (cid, e))

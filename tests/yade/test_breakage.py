@@ -1,0 +1,278 @@
+"""Grains that break in a running YADE scene: mssSplit, MssBreakage, the breakage log.
+Run: yade -n -x tests/yade/test_breakage.py"""
+import math
+import os
+import sys
+import tempfile
+import unittest
+import warnings
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.environ.get('MSS_TEST_DATA', 'tests/data'), '..', 'yade'))
+from clumptools import ELL, FEMUR, halfSpaceMass, readStlTriangles, tensor, vec  # noqa: E402
+
+from yade import utils  # noqa: E402
+from yade.wrapper import *  # noqa: F401,F403,E402
+import yade.minieigenHP as me  # noqa: E402
+
+from yade_mss import MssBreakage, breakageLog, mssClump, mssSplit  # noqa: E402
+from yade_mss._breakage import opposingPair, weibullStrength, contactsByClump  # noqa: E402
+
+O = Omega()
+RHO = 2000.0
+
+
+def motion(cid):
+    """Mass, centre, linear momentum, and angular momentum about the world origin of clump cid (the spin's
+    angMom plus the orbital part)."""
+    s = O.bodies[cid].state
+    m, c, v = s.mass, vec(s.pos), vec(s.vel)
+    return m, c, m * v, vec(s.angMom) + m * np.cross(c, v)
+
+
+def totals(cids):
+    out = [motion(c) for c in cids]
+    M = sum(o[0] for o in out)
+    return M, sum(o[0] * o[1] for o in out) / M, sum(o[2] for o in out), sum(o[3] for o in out)
+
+
+def sideOf(cid, point, normal):
+    """+1 or -1: the side of the plane the clump's centre lies on."""
+    return 1.0 if (vec(O.bodies[cid].state.pos) - point).dot(normal) > 0 else -1.0
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        O.reset()
+        self.mat = O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5))
+
+    def femur(self, n=30, **kw):
+        cid, ids = mssClump(FEMUR, nSpheres=n, resolution=50, breakable=True, material=self.mat, **kw)
+        s = O.bodies[cid].state
+        w = np.array([0.3, -0.2, 0.5])
+        s.vel, s.angVel = me.Vector3(1, 2, 3), me.Vector3(*w)
+        s.angMom = me.Vector3(*tensor(s).dot(w))
+        return cid
+
+
+class Split(Base):
+    def test_mass_and_momenta_are_kept_exactly(self):
+        cid = self.femur()
+        before = totals([cid])
+        made = mssSplit(cid, (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0)))
+        self.assertGreaterEqual(len(made), 2)
+        after = totals([c for c, ids in made])
+        self.assertLess(abs(after[0] - before[0]), 1e-12 * before[0])  # mass
+        self.assertLess(np.linalg.norm(after[1] - before[1]), 1e-12 * np.linalg.norm(before[1]))  # centre
+        self.assertLess(np.linalg.norm(after[2] - before[2]), 1e-10 * np.linalg.norm(before[2]))  # P
+        self.assertLess(np.linalg.norm(after[3] - before[3]), 1e-10 * np.linalg.norm(before[3]))  # L
+        self.assertIsNone(O.bodies[cid])  # the parent is gone, and its members
+        self.assertEqual(sum(1 for b in O.bodies if b is not None and b.isClump), len(made))
+
+    def test_pieces_are_the_cut_grain_computed_independently(self):
+        cid = self.femur()
+        point, normal = vec(O.bodies[cid].state.pos) + np.array([5.0, 0, 0]), np.array([0.3, -0.2, 1.0])
+        made = mssSplit(cid, (point, normal))
+        tri = readStlTriangles(FEMUR)  # the clump was built where the file puts the grain
+        for sign in (1.0, -1.0):
+            V, c, I = halfSpaceMass(tri, point, sign * normal)
+            mine = [m for m, ids in made if sideOf(m, point, normal) == sign]
+            self.assertTrue(mine)
+            M, C, P, L = totals(mine)
+            J = sum(tensor(O.bodies[m].state) + O.bodies[m].state.mass * (
+                np.dot(d, d) * np.eye(3) - np.outer(d, d)) for m in mine
+                for d in [vec(O.bodies[m].state.pos) - C])
+            self.assertLess(abs(M - RHO * V), 1e-9 * RHO * V)
+            self.assertLess(np.linalg.norm(C - c), 1e-9 * V ** (1 / 3.0))
+            self.assertLess(np.abs(J - RHO * I).max(), 1e-8 * RHO * np.abs(I).max())
+
+    def test_no_piece_crosses_its_plane(self):
+        cid = self.femur()
+        point, normal = vec(O.bodies[cid].state.pos), np.array([1.0, 0.4, -0.1])
+        normal /= np.linalg.norm(normal)
+        made = mssSplit(cid, (point, normal))
+        for m, ids in made:
+            sign = sideOf(m, point, normal)
+            for i in ids:
+                b = O.bodies[i]
+                self.assertGreaterEqual(sign * (vec(b.state.pos) - point).dot(normal) - b.shape.radius, -1e-9)
+                # members are YADE's spheres, as after appendClumped
+                self.assertAlmostEqual(b.state.mass, RHO * 4 / 3.0 * math.pi * b.shape.radius ** 3, delta=1e-9 * b.state.mass)
+
+    def test_pieces_break_again_after_save_and_load(self):
+        cid = self.femur(n=40)
+        made = mssSplit(cid, (vec(O.bodies[cid].state.pos), (0, 0, 1)))
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'scene.yade.gz')
+            O.save(path)
+            O.reset()
+            O.load(path)
+        big = max(made, key=lambda m: O.bodies[m[0]].state.mass)[0]
+        before = totals([big])
+        again = mssSplit(big, (vec(O.bodies[big].state.pos), (1, 0, 0)))
+        self.assertGreaterEqual(len(again), 2)
+        after = totals([c for c, ids in again])
+        self.assertLess(abs(after[0] - before[0]), 1e-12 * before[0])
+        self.assertLess(np.linalg.norm(after[3] - before[3]), 1e-10 * np.linalg.norm(before[3]))
+        O.saveTmp('b')
+        O.loadTmp('b')
+        log = breakageLog()
+        self.assertEqual(len(log), 2)  # saved with the scene
+        self.assertEqual(log[1]['parent'], big)
+        self.assertEqual(sorted(log[1]['pieces']), sorted(c for c, ids in again))
+        self.assertAlmostEqual(sum(log[1]['volumes']), log[1]['parentVolume'], delta=1e-12 * log[1]['parentVolume'])
+
+    def test_plane_that_misses_is_an_error_and_changes_nothing(self):
+        cid = self.femur()
+        n = len(O.bodies)
+        label = O.bodies[cid].material.label
+        with self.assertRaisesRegex(ValueError, 'misses the grain'):
+            mssSplit(cid, (vec(O.bodies[cid].state.pos) + np.array([0, 0, 1e4]), (0, 0, 1)))
+        self.assertEqual(len(O.bodies), n)
+        self.assertEqual(O.bodies[cid].material.label, label)
+        self.assertEqual(breakageLog(), [])
+
+    def test_tiny_piece_becomes_one_sphere_at_its_centre_and_stops(self):
+        cid = self.femur()
+        s = O.bodies[cid].state
+        lo = min(b.state.pos[2] - b.shape.radius for b in O.bodies if b is not None and b.isClumpMember)
+        point = np.array([0, 0, lo + 12.0])  # a slice of the femur's lower end
+        before = totals([cid])
+        made = mssSplit(cid, (point, (0, 0, 1)), minSize=60.0)
+        small = [m for m, ids in made if len(ids) == 1]
+        self.assertTrue(small)
+        after = totals([c for c, ids in made])
+        self.assertLess(abs(after[0] - before[0]), 1e-12 * before[0])
+        self.assertLess(np.linalg.norm(after[3] - before[3]), 1e-10 * np.linalg.norm(before[3]))
+        with self.assertRaisesRegex(ValueError, 'carries no grain'):
+            mssSplit(small[0], (vec(O.bodies[small[0]].state.pos), (1, 0, 0)))
+        del s
+
+    def test_a_clump_made_by_yade_is_refused(self):
+        cid, ids = O.bodies.appendClumped([utils.sphere((0, 0, 0), 1.0, material=self.mat),
+                                           utils.sphere((1, 0, 0), 1.0, material=self.mat)])
+        with self.assertRaisesRegex(ValueError, 'not made by yade-mss'):
+            mssSplit(cid, ((0.5, 0, 0), (1, 0, 0)))
+        plain, pids = mssClump(ELL, nSpheres=10, material=self.mat)  # not breakable
+        with self.assertRaisesRegex(ValueError, 'breakable=True'):
+            mssSplit(plain, (vec(O.bodies[plain].state.pos), (1, 0, 0)))
+        with self.assertRaisesRegex(ValueError, 'not a clump'):
+            mssSplit(ids[0], ((0, 0, 0), (1, 0, 0)))
+
+    def test_changed_members_are_refused(self):
+        cid = self.femur()
+        mids = sorted(O.bodies[cid].shape.members)
+        O.bodies.releaseFromClump(mids[-1], cid)
+        with self.assertRaisesRegex(RuntimeError, 'not those it was made with'):
+            mssSplit(cid, (vec(O.bodies[cid].state.pos), (1, 0, 0)))
+
+    def test_arguments_are_checked(self):
+        cid = self.femur()
+        with self.assertRaisesRegex(ValueError, 'normal must be non-zero'):
+            mssSplit(cid, ((0, 0, 0), (0, 0, 0)))
+        with self.assertRaisesRegex(TypeError, 'plane must be'):
+            mssSplit(cid, (0, 0, 0))
+        with self.assertRaisesRegex(TypeError, "did you mean 'nSpheres'"):
+            mssSplit(cid, ((0, 0, 0), (1, 0, 0)), nSphere=3)
+        with self.assertRaisesRegex(ValueError, 'voxels'):
+            mssClump(np.ones((6, 6, 6), dtype=bool), nSpheres=4, breakable=True, material=self.mat)
+        with self.assertRaisesRegex(TypeError, 'breakable must be True or False'):
+            mssClump(ELL, nSpheres=4, breakable=1, material=self.mat)
+
+
+class Criterion(unittest.TestCase):
+    def test_opposing_pair(self):
+        f = [(np.zeros(3), np.array([0, 0, -5.0])), (np.zeros(3), np.array([0, 0, 3.0])),
+             (np.zeros(3), np.array([1.0, 0, 0]))]
+        F, u = opposingPair(f)
+        self.assertAlmostEqual(F, 3.0)
+        self.assertTrue(np.allclose(np.abs(u), [0, 0, 1]))
+        self.assertEqual(opposingPair(f[:1])[0], 0.0)
+        self.assertEqual(opposingPair([(np.zeros(3), np.array([0, 0, 1.0]))] * 2)[0], 0.0)  # same direction
+
+    def test_weibull_strength_inverts_survival(self):
+        for d, u in ((1.0, 0.3), (2.0, 0.9), (0.5, 0.01)):
+            s = weibullStrength(10.0, 3.0, 1.0, d, u)
+            self.assertAlmostEqual(math.exp(-(d / 1.0) ** 3 * (s / 10.0) ** 3), u, places=12)
+        self.assertLess(weibullStrength(10, 3, 1, 2.0, 0.5), weibullStrength(10, 3, 1, 1.0, 0.5))  # size effect
+
+
+class Engine(Base):
+    def scene(self):
+        """A breakable femur (in metres, SI units) resting on a floor under gravity."""
+        self.mat = O.materials.append(FrictMat(density=RHO, young=1e8, poisson=0.3, frictionAngle=0.5))
+        cid = self.femur(n=20, scale=1e-3)
+        s = O.bodies[cid].state
+        s.vel, s.angVel, s.angMom = me.Vector3(0, 0, 0), me.Vector3(0, 0, 0), me.Vector3(0, 0, 0)
+        members = [b for b in O.bodies if b is not None and b.isClumpMember]
+        lo = min(b.state.pos[2] - b.shape.radius for b in members)
+        hi = max(b.state.pos[2] + b.shape.radius for b in members)
+        floor = O.bodies.append(utils.wall(lo, axis=2, sense=0, material=self.mat))
+        return cid, floor, hi
+
+    def engines(self, *extra):
+        O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb(), Bo1_Box_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()],
+                                     [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                     NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.4)] + list(extra)
+        O.dt = 0.2 * utils.PWaveTimeStep()
+
+    def test_contact_forces_act_on_the_clump(self):
+        cid, floor, hi = self.scene()
+        self.engines()
+        O.run(900, True)
+        f = contactsByClump(O)[cid]
+        up = sum(c[1] for c in f)[2]
+        self.assertGreater(up, 0)  # the floor pushes the grain up
+
+    def test_built_in_criterion_breaks_the_pressed_grain(self):
+        cid, floor, hi = self.scene()
+        c = O.bodies[cid].state.pos
+        top = O.bodies.append(utils.box((c[0], c[1], hi + 0.02), (0.2, 0.2, 0.02), fixed=True, material=self.mat))
+        O.bodies[top].state.vel = me.Vector3(0, 0, -0.1)
+        self.engines(MssBreakage(iterPeriod=20, sigma0=1e5, d0=0.05, modulus=3.0, seed=7))
+        before = None
+        for k in range(400):
+            if not breakageLog():
+                before = totals([cid]) if O.bodies[cid] is not None else before
+            O.run(20, True)
+            if breakageLog():
+                break
+        log = breakageLog()
+        self.assertTrue(log, 'the grain never broke')
+        e = log[0]
+        self.assertEqual(e['parent'], cid)
+        self.assertGreaterEqual(e['sigma'], e['strength'])
+        self.assertGreater(e['force'], 0)
+        # the plane contains the loading direction (about z here)
+        self.assertLess(abs(np.dot(e['plane'][1], e['direction'])), 1e-9)
+        self.assertGreater(abs(e['direction'][2]), 0.9)
+        self.assertGreaterEqual(len(e['pieces']), 2)
+
+    def test_user_criterion_and_its_plane(self):
+        cid, floor, hi = self.scene()
+        calls = []
+
+        def criterion(c, contacts):
+            calls.append((c, len(contacts)))
+            b = O.bodies[c]
+            return (vec(b.state.pos), (1, 0, 0)) if O.iter >= 100 and c == cid else None
+        self.engines(MssBreakage(iterPeriod=10, criterion=criterion, nSpheres=6, label='userBreakage'))
+        O.run(200, True)
+        log = breakageLog()
+        self.assertEqual(len(log), 1)
+        self.assertEqual(log[0]['parent'], cid)
+        self.assertTrue(all(n == 6 for n in log[0]['spheres']))
+        self.assertTrue(calls)
+        with self.assertRaisesRegex(TypeError, 'criterion must be a callable'):
+            MssBreakage(criterion='x')
+        with self.assertRaisesRegex(ValueError, 'needs sigma0 and d0'):
+            MssBreakage()
+
+
+if __name__ == '__main__':
+    with warnings.catch_warnings():
+        warnings.simplefilter('ignore', UserWarning)  # offsets of few-sphere pieces, reported by design
+        result = unittest.main(exit=False, verbosity=2).result
+    sys.exit(0 if result.wasSuccessful() else 1)
