@@ -37,11 +37,11 @@ from ._assembly import mssAssembly  # noqa: E402
 from ._specimen import findContacts, regions, syntheticSpecimen, voronoiBall  # noqa: E402
 from ._spheropolygon import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
 from ._ochart import clumpOchart  # noqa: E402
-from ._breakage import MssBreakage, breakageLog, mssSplit  # noqa: E402
+from ._breakage import MssBreakage, breakageLog, breakagePotential, grainSizes, mssSplit, relativeBreakage  # noqa: E402
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
            'restoreClumpProperties', 'totalMass', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
            'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen', 'voronoiBall', 'findContacts',
            'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit',
-           'MssBreakage', 'breakageLog']
+           'MssBreakage', 'breakageLog', 'grainSizes', 'breakagePotential', 'relativeBreakage']

@@ -21,7 +21,7 @@ import numpy as np
 
 from . import _mss
 from ._args import integer, number, vector3
-from ._clumps import _Members, _Plan, _build, _offsetWarning, _yade, bodyOptions, matrix
+from ._clumps import _Members, _Plan, _build, _offsetWarning, _yade, bodyOptions, matrix, stateTensor
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split as splitKeywords
 from ._records import grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
@@ -142,40 +142,62 @@ def _size(volume):
 
 
 def _neighbours(O, ids):
-    """The bodies in contact with any of *ids*, but not one of them."""
+    """The bodies near any of *ids* (in contact, or whose bounds the collider found overlapping), not one of
+    them: [(body id, shift)], the shift putting the neighbour's image next to ours in a periodic cell."""
     mine = set(ids)
-    others = set()
+    out = {}
+    H = np.array([[O.cell.hSize[i, j] for j in range(3)] for i in range(3)]) if O.periodic else None
     for i in ids:
         for it in O.interactions.withBody(i):
-            j = it.id2 if it.id1 == i else it.id1
-            if j not in mine:
-                others.add(j)
-    return sorted(others)
+            j, sign = (it.id2, 1.0) if it.id1 == i else (it.id1, -1.0)
+            if j in mine:
+                continue
+            shift = np.zeros(3)
+            if H is not None:  # YADE shifts id2 by hSize . cellDist
+                shift = sign * H.dot([it.cellDist[0], it.cellDist[1], it.cellDist[2]])
+            out[(j, tuple(shift))] = shift
+    return [(j, sh) for (j, _), sh in sorted(out.items(), key=lambda kv: kv[0][0])]
 
 
-def _reachInto(O, others, c, r):
-    """How deep spheres (centres (n, 3), radii (n)) reach into bodies *others* (the deepest overlap over their
-    Sphere, Wall and Box shapes; others are not measured)."""
+def _gaps(O, near, c):
+    """For each point of *c* (n, 3), its distance to the nearest surface of the bodies *near*
+    (:func:`_neighbours`), negative inside one; Sphere, Wall and Box shapes (others: infinity)."""
     from yade.wrapper import Box, Sphere, Wall
-    deepest = 0.0
-    for j in others:
+    gap = np.full(len(c), np.inf)
+    for j, shift in near:
         b = O.bodies[j]
         if b is None:
             continue
-        sh, p = b.shape, np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]])
+        sh, p = b.shape, np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]]) + shift
         if isinstance(sh, Sphere):
-            d = r + sh.radius - np.linalg.norm(c - p, axis=1)
+            g = np.linalg.norm(c - p, axis=1) - sh.radius
         elif isinstance(sh, Wall):
-            d = r - np.abs(c[:, sh.axis] - p[sh.axis])
+            g = np.abs(c[:, sh.axis] - p[sh.axis])
         elif isinstance(sh, Box):
             e = np.array([sh.extents[0], sh.extents[1], sh.extents[2]])
             q = np.abs((c - p).dot(matrix(b.state.ori)))  # in the box's frame; by symmetry its first octant
             out = np.linalg.norm(np.maximum(q - e, 0), axis=1)
-            d = r - np.where(out > 0, out, -np.min(e - q, axis=1))
+            g = np.where(out > 0, out, -np.min(e - q, axis=1))
         else:
             continue
-        deepest = max(deepest, float(d.max()))
-    return deepest
+        gap = np.minimum(gap, g)
+    return gap
+
+
+def _reach(O, near, c, r):
+    """How deep spheres (centres (n, 3), radii (n)) reach into the bodies *near*: the deepest overlap, or 0."""
+    return float(max(0.0, np.max(r - _gaps(O, near, c)))) if len(r) else 0.0
+
+
+def _within(O, near, reach, c, r):
+    """The spheres (c, r) shrunk so that none reaches deeper than *reach* into a neighbour (the parent's
+    deepest: a piece must not push its neighbours harder than the grain did); a sphere that would keep less
+    than a quarter of its radius goes (the largest share stays, whatever it is)."""
+    allowed = np.minimum(r, _gaps(O, near, c) + reach)
+    keep = allowed >= 0.25 * r
+    if not keep.any():
+        keep[np.argmax(allowed / r)] = True
+    return c[keep], np.maximum(allowed[keep], 1e-3 * r[keep])
 
 
 def _log(O, event):
@@ -214,8 +236,9 @@ def mssSplit(clumpId, plane, nSpheres=None, minSize=0.0, resolution=50, **option
         members (default: the parent's material and mask; colours random as for any clump)
     :return: [(clumpId, [memberIds])], one per piece; O.bodies is unchanged if anything fails
 
-    Where a piece's spheres reach deeper into a neighbour than the parent's did, a warning says so (the log has
-    both depths: :func:`breakageLog`).
+    A piece's spheres reach no deeper into the neighbours (Sphere, Wall and Box bodies near the grain) than
+    the parent's did: those that would are shrunk (the log has both depths: :func:`breakageLog`), so a split
+    does not push neighbours harder than the grain did.
     """
     return _split('mssSplit', clumpId, plane, nSpheres, minSize, resolution, options, {})
 
@@ -237,6 +260,8 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     props = [_mss.massMesh(m[0].ravel().tolist(), m[1].ravel().tolist(), []) for m, _ in sides]
     volumes = [p['volume'] for p in props]
     counts = _counts(func, nSpheres, len(mids), volumes, sum(volumes))
+    near = _neighbours(O, mids)
+    reachBefore = _reach(O, near, x, radii)
     plans, grains = [], []
     for k, ((mesh, sign), pr) in enumerate(zip(sides, props)):
         small = _size(pr['volume']) < minSize
@@ -252,17 +277,19 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
             room = clearance(centroid, *mesh)
             if room > 0:
                 pc, pr_ = centroid[None, :], np.array([room])
+        pc, pr_ = _within(O, near, reachBefore, pc, pr_)
         plans.append(_Plan.of(pc, pr_, pr['volume'], centroid, np.reshape(pr['inertia'], (3, 3))))
         grains.append(mesh if n > 1 else None)
     st = parent.state
     c = np.array([st.pos[0], st.pos[1], st.pos[2]])
     v = np.array([st.vel[0], st.vel[1], st.vel[2]])
-    w = np.array([st.angVel[0], st.angVel[1], st.angVel[2]])
+    # the spin from the angular momentum YADE integrates (angVel lags it by half a step in its leapfrog): the
+    # pieces' spins then sum with their orbits to the parent's angular momentum exactly
+    L = np.array([st.angMom[0], st.angMom[1], st.angMom[2]])
+    w = np.linalg.solve(stateTensor(st), L) if np.any(L) else np.array([st.angVel[0], st.angVel[1], st.angVel[2]])
     blocked = st.blockedDOFs
     body.setdefault('material', bodies[0].mat)
     body.setdefault('mask', bodies[0].mask)
-    near = _neighbours(O, mids)
-    reachBefore = _reachInto(O, near, x, radii)
     made = _build(func, plans, _Members(func, body), _offsetWarning, grains)
     V3 = me.Vector3
     rho = O.bodies[made[0][1][0]].mat.density
@@ -274,7 +301,13 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
         if blocked:
             s.blockedDOFs = blocked
     O.bodies.erase(parent.id, True)
-    reachAfter = max(_reachInto(O, near, p.centers, p.radii) for p in plans)
+    # bodies erased and appended in one step left YADE 2023.02a's periodic insertion sort (insertionSortPeri)
+    # in an endless loop at the next step; a full sort once (doSort resets itself) starts it afresh
+    from yade.wrapper import InsertionSortCollider
+    for e in O.engines:
+        if isinstance(e, InsertionSortCollider):
+            e.doSort = True
+    reachAfter = max(_reach(O, near, p.centers, p.radii) for p in plans)
     event = dict(iter=O.iter, time=O.time, parent=parent.id, parentVolume=float(sum(volumes)),
                  pieces=[cid for cid, ids in made], volumes=volumes, sizes=[_size(vv) for vv in volumes],
                  spheres=[len(ids) for cid, ids in made], plane=[list(point), list(normal)],
@@ -467,3 +500,37 @@ def step(label, cfgText):
             if 'misses the grain' not in str(e):
                 raise
             warnings.warn('MssBreakage: clump %d not split: %s' % (cid, e))
+
+
+def grainSizes(clumpIds=None):
+    """(sizes, masses) of the scene's clumps (default: all): the diameter of the sphere of each clump's volume
+    (mass over its members' density) and its mass, numpy arrays. For grading curves (:func:`relativeBreakage`)."""
+    utils, O, me = _yade()
+    if clumpIds is None:
+        clumpIds = [b.id for b in O.bodies if b is not None and b.isClump]
+    masses, sizes = [], []
+    for c in clumpIds:
+        b = O.bodies[c]
+        rho = O.bodies[min(b.shape.members)].mat.density
+        masses.append(b.state.mass)
+        sizes.append(_size(b.state.mass / rho))
+    return np.array(sizes), np.array(masses)
+
+
+def breakagePotential(sizes, masses, cutoff):
+    """Hardin's (1985) breakage potential of a grading: the area between its curve (mass fraction finer against
+    log10 size) and the vertical line at *cutoff* (Hardin: 0.074 mm, the silt limit), over sizes above it; for
+    grains of sizes d_i and masses m_i, sum (m_i / M) max(0, log10(d_i / cutoff))."""
+    sizes, masses = np.asarray(sizes, dtype=float), np.asarray(masses, dtype=float)
+    if not (cutoff > 0 and sizes.size and np.all(sizes > 0) and masses.sum() > 0):
+        raise ValueError('breakagePotential: sizes and masses of at least one grain, and a cutoff > 0')
+    return float((masses * np.maximum(0.0, np.log10(sizes / cutoff))).sum() / masses.sum())
+
+
+def relativeBreakage(before, after, cutoff):
+    """Hardin's relative breakage B_r = B_t / B_p: the total breakage (the potential lost, the area between the
+    gradings before and after) over the potential before. *before*, *after*: (sizes, masses)."""
+    bp = breakagePotential(before[0], before[1], cutoff)
+    if not bp > 0:
+        raise ValueError('relativeBreakage: no grain above the cutoff before: no breakage potential')
+    return (bp - breakagePotential(after[0], after[1], cutoff)) / bp

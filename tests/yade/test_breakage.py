@@ -167,6 +167,34 @@ class Split(Base):
         with self.assertRaisesRegex(RuntimeError, 'not those it was made with'):
             mssSplit(cid, (vec(O.bodies[cid].state.pos), (1, 0, 0)))
 
+    def test_periodic_insertion_sort_after_a_split(self):
+        """YADE's periodic collider looped forever after bodies were erased and appended in one step (a
+        packing whose cell had shrunk)."""
+        import time
+        from yade_mss import mssClumpCloud, mssTemplate
+        O.periodic = True
+        L = 0.021
+        O.cell.hSize = me.Matrix3(L, 0, 0, 0, L, 0, 0, 0, L)
+        t = mssTemplate(ELL, nSpheres=8, resolution=30)
+        made = mssClumpCloud(t, (0, 0, 0), (L, L, L), num=60, periodic=True, seed=2, psdSizes=[1.6e-3, 3.2e-3],
+                             psdCumm=[0, 1], breakable=True, material=self.mat)
+        O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator(damping=0.4)]
+        O.dt = 0.5 * utils.PWaveTimeStep()
+        O.cell.velGrad = me.Matrix3(-20, 0, 0, 0, -20, 0, 0, 0, -20)
+        O.run(int(0.4 / 20 / O.dt), True)  # the cell shrinks by about a third
+        O.cell.velGrad = me.Matrix3.Zero
+        cid = made[10][0]
+        mssSplit(cid, (vec(O.bodies[cid].state.pos), (0, 0, 1)))
+        O.run(10)
+        t0 = time.time()
+        while O.running and time.time() - t0 < 30:
+            time.sleep(0.05)
+        stuck = O.running
+        O.pause()
+        self.assertFalse(stuck, 'the scene did not step after the split')
+
     def test_arguments_are_checked(self):
         cid = self.femur()
         with self.assertRaisesRegex(ValueError, 'normal must be non-zero'):
