@@ -38,6 +38,8 @@ O.engines = [
     # strength at 10 mm: 5 MPa, Weibull modulus 3; fragments below 4 mm stay whole (single spheres)
     MssBreakage(iterPeriod=20, sigma0=5e6, d0=0.01, modulus=3.0, seed=3, minSize=4e-3, resolution=40),
     PyRunner(command='compare()', iterPeriod=20),
+    # fragments have smaller spheres and lighter clumps: the stable time step falls as the grain breaks
+    PyRunner(command='O.dt = 0.3 * utils.PWaveTimeStep()', iterPeriod=20),
 ]
 O.dt = 0.3 * utils.PWaveTimeStep()
 

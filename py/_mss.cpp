@@ -434,8 +434,11 @@ py::dict meshInfo(const py::object& vertices, const py::object& triangles) {
     return d;
 }
 
-py::dict generateMesh(const py::object& vertices, const py::object& triangles, const py::dict& opts) {
-    const mss::Settings st = settings(opts, mss::command::Generate);
+/// @p contacts: points of the surface to reach, each 6 numbers (point, normal into the grain).
+py::dict generateMesh(const py::object& vertices, const py::object& triangles, const py::dict& opts,
+                      const py::object& contacts) {
+    mss::Settings st = settings(opts, mss::command::Generate);
+    for (const mss::Plane& p : planes(contacts)) st.generate.contacts.push_back({p.point, p.normal});
     return result(mss::generate(mesh(vertices, triangles), st.resolution, st.generate, st.supersample));
 }
 
@@ -801,7 +804,9 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("fileFormats", fileFormats, "The format table: a dict per row.");
     py::def("parseOption", parseOption, (py::arg("name"), py::arg("command"), py::arg("text")),
             "An option's value from its text, as the command line parses it.");
-    py::def("generateMesh", generateMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("options")));
+    py::def(
+        "generateMesh", generateMesh,
+        (py::arg("vertices"), py::arg("triangles"), py::arg("options"), py::arg("contacts") = py::list()));
     py::def("generateVoxels", generateVoxels,
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options"),
              py::arg("contacts") = py::list(), py::arg("neighbours") = py::object()));

@@ -13,6 +13,7 @@ stress sigma = F / d^2 of the largest opposing pair of contact forces against a 
 effect (McDowell and Bolton 1998; McDowell and Amon 2000: survival exp(-(d/d0)^3 (sigma/sigma0)^m)).
 """
 
+import inspect
 import json
 import math
 import warnings
@@ -22,12 +23,13 @@ import numpy as np
 from . import _mss
 from ._args import integer, number, vector3
 from ._clumps import _Members, _Plan, _build, _offsetWarning, _yade, bodyOptions, matrix, stateTensor
-from ._generate import GENERATE_OPTIONS, generate
+from ._generate import GENERATE_OPTIONS, _generate, generate
 from ._keywords import split as splitKeywords
 from ._records import grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
 
 LOG_TAG = 'mss.breakage'
 _SPLIT_OWN = ('clumpId', 'plane', 'nSpheres', 'minSize', 'resolution')
+_GENERATE_DEFAULTS = dict((k, p.default) for k, p in inspect.signature(generate).parameters.items() if k != 'source')
 _SPLIT_GENERATE = tuple(k for k in GENERATE_OPTIONS if k not in ('nSpheres', 'planes', 'resolution'))
 
 
@@ -159,6 +161,25 @@ def _neighbours(O, ids):
     return [(j, sh) for (j, _), sh in sorted(out.items(), key=lambda kv: kv[0][0])]
 
 
+def _contactPoints(O, ids):
+    """Where the bodies *ids* touch others: [(point, normal into them)], from the real interactions' ScGeom.
+    A piece's spheres are made to reach those of its side, so that a split keeps the grain's contacts."""
+    mine = set(ids)
+    out = []
+    for i in ids:
+        for it in O.interactions.withBody(i):
+            if not it.isReal:
+                continue
+            j = it.id2 if it.id1 == i else it.id1
+            g = it.geom
+            if j in mine or not hasattr(g, 'normal'):
+                continue
+            n = np.array([g.normal[0], g.normal[1], g.normal[2]])  # from id1 towards id2
+            p = g.contactPoint
+            out.append((np.array([p[0], p[1], p[2]]), -n if it.id1 == i else n))
+    return out
+
+
 def _gaps(O, near, c):
     """For each point of *c* (n, 3), its distance to the nearest surface of the bodies *near*
     (:func:`_neighbours`), negative inside one; Sphere, Wall and Box shapes (others: infinity)."""
@@ -184,16 +205,19 @@ def _gaps(O, near, c):
     return gap
 
 
-def _reach(O, near, c, r):
-    """How deep spheres (centres (n, 3), radii (n)) reach into the bodies *near*: the deepest overlap, or 0."""
-    return float(max(0.0, np.max(r - _gaps(O, near, c)))) if len(r) else 0.0
+def _depths(O, near, c, r):
+    """How deep spheres (centres (n, 3), radii (n)) reach into each body of *near*: an array, 0 where they
+    do not touch it."""
+    return np.array([max(0.0, float(np.max(r - _gaps(O, [nb], c)))) if len(r) else 0.0 for nb in near])
 
 
-def _within(O, near, reach, c, r):
-    """The spheres (c, r) shrunk so that none reaches deeper than *reach* into a neighbour (the parent's
-    deepest: a piece must not push its neighbours harder than the grain did); a sphere that would keep less
-    than a quarter of its radius goes (the largest share stays, whatever it is)."""
-    allowed = np.minimum(r, _gaps(O, near, c) + reach)
+def _within(O, near, depth, c, r):
+    """The spheres (c, r) shrunk so that none reaches deeper into a neighbour than the parent did (*depth*, per
+    neighbour; 0: not touching it): a piece must not push its neighbours harder than the grain did. A sphere
+    that would keep less than a quarter of its radius goes (the largest share stays, whatever it is)."""
+    allowed = r.copy()
+    for nb, d in zip(near, depth):
+        allowed = np.minimum(allowed, _gaps(O, [nb], c) + d)
     keep = allowed >= 0.25 * r
     if not keep.any():
         keep[np.argmax(allowed / r)] = True
@@ -236,8 +260,8 @@ def mssSplit(clumpId, plane, nSpheres=None, minSize=0.0, resolution=50, **option
         members (default: the parent's material and mask; colours random as for any clump)
     :return: [(clumpId, [memberIds])], one per piece; O.bodies is unchanged if anything fails
 
-    A piece's spheres reach no deeper into the neighbours (Sphere, Wall and Box bodies near the grain) than
-    the parent's did: those that would are shrunk (the log has both depths: :func:`breakageLog`), so a split
+    A piece's spheres reach no deeper into each neighbour (Sphere, Wall and Box bodies near the grain) than
+    the parent's did, and touch none it did not touch: those that would are shrunk (the log has both depths: :func:`breakageLog`), so a split
     does not push neighbours harder than the grain did.
     """
     return _split('mssSplit', clumpId, plane, nSpheres, minSize, resolution, options, {})
@@ -261,14 +285,18 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     volumes = [p['volume'] for p in props]
     counts = _counts(func, nSpheres, len(mids), volumes, sum(volumes))
     near = _neighbours(O, mids)
-    reachBefore = _reach(O, near, x, radii)
+    depthBefore = _depths(O, near, x, radii)
+    reachBefore = float(depthBefore.max()) if len(near) else 0.0
+    touching = _contactPoints(O, mids)
     plans, grains = [], []
     for k, ((mesh, sign), pr) in enumerate(zip(sides, props)):
         small = _size(pr['volume']) < minSize
         n = 1 if small else counts[k]
+        given = dict(_GENERATE_DEFAULTS, **gen)
+        given.update(nSpheres=n, resolution=resolution, planes=[(tuple(point), tuple(sign * normal))])
+        mine = [list(q) + list(m) for q, m in touching if sign * (q - point).dot(normal) > 0]
         try:
-            r = generate(mesh, nSpheres=n, resolution=resolution,
-                         planes=[(tuple(point), tuple(sign * normal))], **gen)
+            r = _generate(mesh, given, contactPoints=mine if given['contacts'] else [])
         except (ValueError, RuntimeError) as e:
             raise type(e)('%s: clump %d, piece %d (volume %g): %s' % (func, parent.id, k, pr['volume'], e))
         centroid = np.array(pr['centroid'])
@@ -277,7 +305,9 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
             room = clearance(centroid, *mesh)
             if room > 0:
                 pc, pr_ = centroid[None, :], np.array([room])
-        pc, pr_ = _within(O, near, reachBefore, pc, pr_)
+        # off the cut plane, whatever reached a contact point: pieces must not overlap each other
+        pr_ = np.minimum(pr_, np.maximum(sign * (pc - point).dot(normal), 0.0))
+        pc, pr_ = _within(O, near, depthBefore, pc, pr_)
         plans.append(_Plan.of(pc, pr_, pr['volume'], centroid, np.reshape(pr['inertia'], (3, 3))))
         grains.append(mesh if n > 1 else None)
     st = parent.state
@@ -307,7 +337,7 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     for e in O.engines:
         if isinstance(e, InsertionSortCollider):
             e.doSort = True
-    reachAfter = max(_reach(O, near, p.centers, p.radii) for p in plans)
+    reachAfter = max(float(_depths(O, near, p.centers, p.radii).max()) if len(near) else 0.0 for p in plans)
     event = dict(iter=O.iter, time=O.time, parent=parent.id, parentVolume=float(sum(volumes)),
                  pieces=[cid for cid, ids in made], volumes=volumes, sizes=[_size(vv) for vv in volumes],
                  spheres=[len(ids) for cid, ids in made], plane=[list(point), list(normal)],
@@ -334,7 +364,7 @@ def MssBreakage(iterPeriod=100, sigma0=None, modulus=3.0, d0=None, seed=0, crite
 
     Built-in criterion (crushing of grains, McDowell and Bolton 1998): the characteristic stress
     sigma = F / d^2, where F is the larger of the two forces of the most opposing pair of contact forces on the
-    grain (for each pair a, b: min(f_a . u, -f_b . u) along u = (f_a - f_b) / |f_a - f_b|) and d the diameter of
+    grain (for each pair a, b: min(f_a . u, -f_b . u) along u = (f_a - f_b) / norm(f_a - f_b)) and d the diameter of
     the sphere of the grain's volume; the grain breaks when sigma reaches its strength, drawn once per grain from
     the Weibull distribution with a size effect, survival exp(-(d / d0)^3 (sigma / sigma0)^m) (McDowell and
     Amon 2000): strength = sigma0 (d / d0)^(-3/m) (-ln U)^(1/m), U uniform from (*seed*, the clump's id, its
@@ -420,7 +450,7 @@ def contactsByClump(O):
 
 def opposingPair(contacts):
     """(F, u): the most opposing pair of contact forces on a grain (the larger of min(f_a . u, -f_b . u) over
-    pairs, u = (f_a - f_b) / |f_a - f_b|) and its direction; (0, None) without one."""
+    pairs, u = (f_a - f_b) / norm(f_a - f_b)) and its direction; (0, None) without one."""
     if len(contacts) < 2:
         return 0.0, None
     f = np.array([c[1] for c in contacts])

@@ -34,9 +34,9 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=N
 
 def _generate(source, given, contactPoints=None, neighbours=None):
     """:func:`generate` with its keywords in *given* (None: not given); *contactPoints*: the points to reach
-    (6 numbers each, :func:`yade_mss._specimen.contactPoints`) and *neighbours* (a boolean array on the
-    source's grid: the other grains), found here for a labelled volume's grain when None and contacts are
-    kept."""
+    (6 numbers each: point, normal into the grain; :func:`yade_mss._specimen.contactPoints`, or a fragment's
+    contacts in a scene) and *neighbours* (a boolean array on the source's grid: the other grains), found here
+    for a labelled volume's grain when None and contacts are kept."""
     opts = _options.collect('generate', 'generate', given)
     label, origin, resolution = given.get('label'), given.get('origin'), given.get('resolution')
     s = _source(source, opts.get('voxelSize'), opts.get('origin'), opts.get('label'))
@@ -45,7 +45,7 @@ def _generate(source, given, contactPoints=None, neighbours=None):
             raise ValueError('generate: %s: label applies to labelled voxel volumes; this is a mesh' % s.name)
         if origin is not None:
             raise ValueError('generate: %s: origin applies to voxel volumes; this is a mesh' % s.name)
-        d = _mss.generateMesh(*s.args(), opts)
+        d = _mss.generateMesh(*s.args(), opts, contactPoints or [])
         target = MassProperties._fromDict(_mss.massMesh(*s.args(), opts.get('planes', [])))
     else:
         if resolution is not None:

@@ -24,7 +24,8 @@ MassProperties combined(const std::vector<TriangleMesh>& a, const std::vector<Tr
     out.centroid /= out.volume;
     for (const auto& p : all) {
         const Vec3 r = p.centroid - out.centroid;
-        out.inertia += p.inertia + p.volume * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
+        out.inertia +=
+            p.inertia + p.volume * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
     }
     return out;
 }

@@ -1,6 +1,7 @@
 // A closed mesh cut by a plane into its pieces (fragmentation: the MSS paper's summary, constraint planes for
 // the fragmentation plane). The cut is clipMeshByPlanes' (Sutherland-Hodgman per triangle, a signed fan over
-// the cut segments), done on an indexed mesh so that the pieces on each side can be told apart and split again.
+// the cut segments), done on an indexed mesh so that the pieces on each side can be told apart and split
+// again.
 #include "mss/planes.hpp"
 
 #include <algorithm>
@@ -53,7 +54,8 @@ struct UnionFind {
     std::vector<int> parent;
     explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
     int find(int a) {
-        while (parent[std::size_t(a)] != a) a = parent[std::size_t(a)] = parent[std::size_t(parent[std::size_t(a)])];
+        while (parent[std::size_t(a)] != a)
+            a = parent[std::size_t(a)] = parent[std::size_t(parent[std::size_t(a)])];
         return a;
     }
     void join(int a, int b) { parent[std::size_t(find(a))] = find(b); }
@@ -71,7 +73,8 @@ struct Side {
 double volume6(const TriangleMesh& m) {
     double v = 0.0;
     for (const auto& t : m.triangles)
-        v += m.vertices[std::size_t(t[0])].dot(m.vertices[std::size_t(t[1])].cross(m.vertices[std::size_t(t[2])]));
+        v += m.vertices[std::size_t(t[0])].dot(
+            m.vertices[std::size_t(t[1])].cross(m.vertices[std::size_t(t[2])]));
     return v;
 }
 
@@ -167,7 +170,8 @@ MeshSplit splitMeshByPlane(const TriangleMesh& input, const Plane& plane) {
             }
             if (n > 1 && poly[0] == poly[std::size_t(n - 1)]) --n;
             if (n < 3) {
-                if (entry >= 0 && exit >= 0 && entry != exit && n == 2) sides[side].cuts.emplace_back(entry, exit);
+                if (entry >= 0 && exit >= 0 && entry != exit && n == 2)
+                    sides[side].cuts.emplace_back(entry, exit);
                 continue;
             }
             for (int q = 1; q + 1 < n; ++q)
