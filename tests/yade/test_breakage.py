@@ -226,6 +226,22 @@ class Criterion(unittest.TestCase):
         self.assertLess(weibullStrength(10, 3, 1, 2.0, 0.5), weibullStrength(10, 3, 1, 1.0, 0.5))  # size effect
 
 
+class Grading(unittest.TestCase):
+    def test_hardin_breakage_potential_and_relative_breakage(self):
+        from yade_mss import breakagePotential, relativeBreakage
+        # a grain of 10 (log10 10/1 = 1 above the cutoff 1) and one at the cutoff, equal masses: 0.5
+        self.assertAlmostEqual(breakagePotential([10.0, 1.0], [1.0, 1.0], 1.0), 0.5)
+        self.assertAlmostEqual(breakagePotential([0.5], [1.0], 1.0), 0.0)  # below the cutoff: no potential
+        before = (np.array([10.0]), np.array([2.0]))
+        after = (np.array([10.0 ** 0.5] * 2), np.array([1.0, 1.0]))  # each half of log size left
+        self.assertAlmostEqual(relativeBreakage(before, after, 1.0), 0.5)
+        self.assertAlmostEqual(relativeBreakage(before, before, 1.0), 0.0)
+        with self.assertRaisesRegex(ValueError, 'no breakage potential'):
+            relativeBreakage((np.array([0.5]), np.array([1.0])), before, 1.0)
+        with self.assertRaisesRegex(ValueError, 'cutoff > 0'):
+            breakagePotential([1.0], [1.0], 0.0)
+
+
 class Engine(Base):
     def scene(self):
         """A breakable femur (in metres, SI units) resting on a floor under gravity."""
