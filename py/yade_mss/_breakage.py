@@ -353,7 +353,6 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
 # the engines' parameters that cannot go into their command (callables), by label: MssBreakage again after
 # loading a scene in a new process
 _callables = {}
-_unbreakable = set()  # (clump id, first member id) of clumps that carry no grain: not read again
 
 
 def MssBreakage(iterPeriod=100, sigma0=None, modulus=3.0, d0=None, seed=0, criterion=None, nSpheres=None,
@@ -494,8 +493,6 @@ def step(label, cfgText):
     for cid, contacts in sorted(found.items()):
         body = O.bodies[cid]
         first = min(body.shape.members)
-        if (cid, first) in _unbreakable:
-            continue
         if extra['criterion'] is not None:
             plane = extra['criterion'](cid, contacts)
             if plane is not None:
@@ -520,9 +517,9 @@ def step(label, cfgText):
         options['material'] = extra['material']
     nSpheres = extra['nSpheres'] if extra['nSpheres'] is not None else cfg['nSpheres']
     for cid, first, plane, info in breaks:
-        body = O.bodies[cid]
-        if grainOf(labelOf(body)) is None:  # read once: not a breakable clump
-            _unbreakable.add((cid, first))
+        # read only for the clumps that fail (no cache: ids come back after O.reset or erase); a clump without
+        # a grain (a single-sphere fragment, a clump of YADE's) stays whole
+        if grainOf(labelOf(O.bodies[cid])) is None:
             continue
         try:
             _split('MssBreakage', cid, plane, nSpheres, cfg['minSize'], cfg['resolution'], options, info)
