@@ -144,21 +144,36 @@ def _size(volume):
 
 
 def _neighbours(O, ids):
-    """The bodies near any of *ids* (in contact, or whose bounds the collider found overlapping), not one of
-    them: [(body id, shift)], the shift putting the neighbour's image next to ours in a periodic cell."""
+    """The bodies within reach of the bodies *ids* (a clump's members), not one of them: [(body id, shift)],
+    the shift putting the neighbour's image next to ours in a periodic cell. Found by distance, not by
+    interactions: a piece's spheres may lie where the parent's did not, and pieces made earlier in the same
+    step have no interactions yet. Walls always count (they are unbounded)."""
+    from yade.wrapper import Box, Sphere, Wall
     mine = set(ids)
-    out = {}
+    x = np.array([[O.bodies[i].state.pos[a] for a in range(3)] for i in ids])
+    rad = np.array([O.bodies[i].shape.radius for i in ids])
+    c = x.mean(axis=0)
+    reach = float(np.max(np.linalg.norm(x - c, axis=1) + rad))
     H = np.array([[O.cell.hSize[i, j] for j in range(3)] for i in range(3)]) if O.periodic else None
-    for i in ids:
-        for it in O.interactions.withBody(i):
-            j, sign = (it.id2, 1.0) if it.id1 == i else (it.id1, -1.0)
-            if j in mine:
-                continue
-            shift = np.zeros(3)
-            if H is not None:  # YADE shifts id2 by hSize . cellDist
-                shift = sign * H.dot([it.cellDist[0], it.cellDist[1], it.cellDist[2]])
-            out[(j, tuple(shift))] = shift
-    return [(j, sh) for (j, _), sh in sorted(out.items(), key=lambda kv: kv[0][0])]
+    out = []
+    for b in O.bodies:
+        if b is None or b.id in mine or b.isClump:
+            continue
+        sh = b.shape
+        if isinstance(sh, Wall):
+            out.append((b.id, np.zeros(3)))
+            continue
+        if isinstance(sh, Sphere):
+            size = sh.radius
+        elif isinstance(sh, Box):
+            size = float(np.linalg.norm([sh.extents[0], sh.extents[1], sh.extents[2]]))
+        else:
+            continue
+        d = np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]]) - c
+        shift = -H.dot(np.round(np.linalg.solve(H, d))) if H is not None else np.zeros(3)
+        if np.linalg.norm(d + shift) < 1.5 * reach + size:
+            out.append((b.id, shift))
+    return out
 
 
 def _contactPoints(O, ids):
@@ -531,7 +546,10 @@ def step(label, cfgText):
 
 def grainSizes(clumpIds=None):
     """(sizes, masses) of the scene's clumps (default: all): the diameter of the sphere of each clump's volume
-    (mass over its members' density) and its mass, numpy arrays. For grading curves (:func:`relativeBreakage`)."""
+    (mass over its members' density) and its mass, numpy arrays. For grading curves (:func:`relativeBreakage`).
+
+    :param clumpIds: the clumps to measure (default None: every clump of the scene)
+    """
     utils, O, me = _yade()
     if clumpIds is None:
         clumpIds = [b.id for b in O.bodies if b is not None and b.isClump]
@@ -547,7 +565,12 @@ def grainSizes(clumpIds=None):
 def breakagePotential(sizes, masses, cutoff):
     """Hardin's (1985) breakage potential of a grading: the area between its curve (mass fraction finer against
     log10 size) and the vertical line at *cutoff* (Hardin: 0.074 mm, the silt limit), over sizes above it; for
-    grains of sizes d_i and masses m_i, sum (m_i / M) max(0, log10(d_i / cutoff))."""
+    grains of sizes d_i and masses m_i, sum (m_i / M) max(0, log10(d_i / cutoff)).
+
+    :param sizes: the grains' sizes (any one length unit, the cutoff's)
+    :param masses: their masses
+    :param float cutoff: the size below which grains count as broken as far as they can be
+    """
     sizes, masses = np.asarray(sizes, dtype=float), np.asarray(masses, dtype=float)
     if not (cutoff > 0 and sizes.size and np.all(sizes > 0) and masses.sum() > 0):
         raise ValueError('breakagePotential: sizes and masses of at least one grain, and a cutoff > 0')
@@ -556,7 +579,12 @@ def breakagePotential(sizes, masses, cutoff):
 
 def relativeBreakage(before, after, cutoff):
     """Hardin's relative breakage B_r = B_t / B_p: the total breakage (the potential lost, the area between the
-    gradings before and after) over the potential before. *before*, *after*: (sizes, masses)."""
+    gradings before and after) over the potential before.
+
+    :param before: (sizes, masses) of the grading before, as :func:`grainSizes` gives
+    :param after: (sizes, masses) after
+    :param float cutoff: as in :func:`breakagePotential`
+    """
     bp = breakagePotential(before[0], before[1], cutoff)
     if not bp > 0:
         raise ValueError('relativeBreakage: no grain above the cutoff before: no breakage potential')
