@@ -573,6 +573,10 @@ py::dict splitMesh(const py::object& vertices, const py::object& triangles, cons
     return d;
 }
 
+double insideClearance(const py::object& vertices, const py::object& triangles, const py::object& point) {
+    return mss::insideClearance(mesh(vertices, triangles), vec3(point, "insideClearance: point"));
+}
+
 void writeMesh(const py::object& vertices, const py::object& triangles, const std::string& path) {
     mss::writeMesh(mesh(vertices, triangles), path);
 }
@@ -822,6 +826,8 @@ BOOST_PYTHON_MODULE(_mss) {
             "The boundary of the spheres' union as a closed mesh (mss surface).");
     py::def("splitMesh", splitMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("plane")),
             "The pieces of a closed mesh on either side of a plane, each closed: {above, below}.");
+    py::def("insideClearance", insideClearance, (py::arg("vertices"), py::arg("triangles"), py::arg("point")),
+            "Distance from a point inside a closed mesh to its surface; 0 outside.");
     py::def("writeMesh", writeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("path")),
             "Writes a mesh by extension (.stl, .obj, .ply), atomically.");
     py::def("sphereUnionVolume", sphereUnionVolume, (py::arg("centers"), py::arg("radii")),

@@ -38,6 +38,11 @@ void validateMesh(const TriangleMesh& mesh, const std::string& where);
 /// Topology, volume and bounding box. O(T log T).
 MeshInfo analyzeMesh(const TriangleMesh& mesh);
 
+/// The distance from @p p to the surface of a closed mesh when @p p lies inside it (generalised winding
+/// number of magnitude >= 1/2), else 0: the room a sphere centred there has. O(T log T) for the mesh's
+/// distance hierarchy, then O(log T). @throws std::invalid_argument on a bad mesh or a non-finite point.
+double insideClearance(const TriangleMesh& mesh, const Vec3& p);
+
 /// The mesh with each hole (loop of boundary edges) closed by a fan of triangles around the loop's centroid,
 /// oriented like the rest. Simple, not pretty: for volumes and tests, not for display.
 TriangleMesh capHoles(const TriangleMesh& mesh);

@@ -79,45 +79,6 @@ def grainInWorld(func, O, cid):
     return x[0] + v.dot(F.T), t
 
 
-def clearance(x, vertices, triangles):
-    """The distance from point *x* to a closed mesh's surface when *x* is inside (winding number 1/2 or more),
-    else 0: numpy, O(T)."""
-    a, b, c = (vertices[triangles[:, k]] - x for k in range(3))
-    la, lb, lc = (np.linalg.norm(p, axis=1) for p in (a, b, c))
-    det = np.einsum('ij,ij->i', a, np.cross(b, c))
-    den = la * lb * lc + np.einsum('ij,ij->i', a, b) * lc + np.einsum('ij,ij->i', b, c) * la \
-        + np.einsum('ij,ij->i', c, a) * lb
-    winding = 2.0 * np.arctan2(det, den).sum() / (4.0 * math.pi)  # Van Oosterom and Strackee 1983
-    if abs(winding) < 0.5:
-        return 0.0
-    return float(np.sqrt(_squaredDistances(np.zeros(3), a, b, c).min()))
-
-
-def _squaredDistances(p, a, b, c):
-    """Squared distances from p to triangles (a, b, c) (arrays (T, 3)): the closest point by its Voronoi
-    region (Ericson, Real-Time Collision Detection, 5.1.5), vectorised."""
-    ab, ac, ap = b - a, c - a, p - a
-    d1, d2 = np.einsum('ij,ij->i', ab, ap), np.einsum('ij,ij->i', ac, ap)
-    bp, cp = p - b, p - c
-    d3, d4 = np.einsum('ij,ij->i', ab, bp), np.einsum('ij,ij->i', ac, bp)
-    d5, d6 = np.einsum('ij,ij->i', ab, cp), np.einsum('ij,ij->i', ac, cp)
-    va, vb, vc = d3 * d6 - d5 * d4, d5 * d2 - d1 * d6, d1 * d4 - d3 * d2
-    with np.errstate(divide='ignore', invalid='ignore'):
-        den = va + vb + vc
-        q = a + ab * (vb / den)[:, None] + ac * (vc / den)[:, None]  # inside the face
-        # Ericson's order of tests, reversed: the last that holds wins
-        tbc = (d4 - d3) / ((d4 - d3) + (d5 - d6))
-        q = np.where(((va <= 0) & (d4 - d3 >= 0) & (d5 - d6 >= 0))[:, None], b + (c - b) * tbc[:, None], q)
-        tac = d2 / (d2 - d6)
-        q = np.where(((vb <= 0) & (d2 >= 0) & (d6 <= 0))[:, None], a + ac * tac[:, None], q)
-        q = np.where(((d6 >= 0) & (d5 <= d6))[:, None], c, q)
-        tab = d1 / (d1 - d3)
-        q = np.where(((vc <= 0) & (d1 >= 0) & (d3 <= 0))[:, None], a + ab * tab[:, None], q)
-    q = np.where(((d3 >= 0) & (d4 <= d3))[:, None], b, q)
-    q = np.where(((d1 <= 0) & (d2 <= 0))[:, None], a, q)
-    return ((q - p) ** 2).sum(axis=1)
-
-
 def _plane(func, plane):
     try:
         point, normal = plane
@@ -317,7 +278,7 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
         centroid = np.array(pr['centroid'])
         pc, pr_ = r.centers, r.radii
         if n == 1:  # at the centre of mass, so that the clump's is exact, reaching the nearest surface point
-            room = clearance(centroid, *mesh)
+            room = _mss.insideClearance(mesh[0].ravel().tolist(), mesh[1].ravel().tolist(), list(centroid))
             if room > 0:
                 pc, pr_ = centroid[None, :], np.array([room])
         # off the cut plane, whatever reached a contact point: pieces must not overlap each other

@@ -158,3 +158,11 @@ TEST(SplitMesh, BadPlaneIsRefusedByName) {
         EXPECT_NE(std::string(e.what()).find("splitMeshByPlane"), std::string::npos);
     }
 }
+
+TEST(InsideClearance, CubeCentreAndOutside) {
+    const TriangleMesh cube = readMesh(kData + "/cube.stl"); // [-0.5, 0.5]^3
+    EXPECT_NEAR(insideClearance(cube, Vec3(0, 0, 0)), 0.5, 1e-12);
+    EXPECT_NEAR(insideClearance(cube, Vec3(0.3, 0.1, -0.2)), 0.2, 1e-12);
+    EXPECT_EQ(insideClearance(cube, Vec3(0.7, 0, 0)), 0.0);
+    EXPECT_THROW(insideClearance(cube, Vec3(std::nan(""), 0, 0)), std::invalid_argument);
+}

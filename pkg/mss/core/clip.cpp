@@ -82,6 +82,13 @@ TriangleMesh clipMeshByPlanes(const TriangleMesh& mesh, const std::vector<Plane>
     return out;
 }
 
+double insideClearance(const TriangleMesh& mesh, const Vec3& p) {
+    validateMesh(mesh, "insideClearance");
+    if (!p.allFinite()) throw std::invalid_argument("insideClearance: the point must be finite");
+    const MeshQuery query(mesh);
+    return query.inside(p) ? query.distance(p) : 0.0;
+}
+
 VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& planes) {
     for (const Plane& p : planes) validatePlane(p, "cutVoxelsByPlanes");
     VoxelGrid out = volume;
