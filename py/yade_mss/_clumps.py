@@ -444,16 +444,22 @@ def grainMesh(func, r):
         raise ValueError('%s: breakable=True needs the grain as a mesh (a mesh file or (vertices, triangles)); '
                          'this result was made from %s' % (func, 'voxels' if s is not None or g is not None
                                                             else 'nothing it knows (read from a file?)'))
+    if len(r.radii) < 2:  # a lone member's record frame is its own orientation, which restores rewrite
+        raise ValueError('%s: breakable=True needs two spheres or more, this result has %d' % (func, len(r.radii)))
     r._mssMesh = (s.vertices, s.triangles)
     return r._mssMesh
 
 
-def grainsOf(func, r, plans, breakable):
-    """Each plan's grain in the world (:func:`_build`'s *grains*), or None when not *breakable*."""
+def grainsOf(func, results, plans, breakable):
+    """Each plan's grain in the world (:func:`_build`'s *grains*; plan k made from result results[k]), or None
+    when not *breakable*."""
     if not flag(func, 'breakable', breakable):
         return None
-    v, t = grainMesh(func, r)
-    return [(p.world(v), t) for p in plans]
+    meshes = {}
+    for r in results:
+        if id(r) not in meshes:
+            meshes[id(r)] = grainMesh(func, r)
+    return [(p.world(meshes[id(r)][0]), meshes[id(r)][1]) for r, p in zip(results, plans)]
 
 
 def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', seed=None, breakable=False,
@@ -501,7 +507,7 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
     else:
         r = generate(source, **gen)
     plans = _plans('mssClump', r, mass, [(C, R, s)])
-    return _build('mssClump', plans, members, _offsetWarning, grainsOf('mssClump', r, plans, breakable))[0]
+    return _build('mssClump', plans, members, _offsetWarning, grainsOf('mssClump', [r], plans, breakable))[0]
 
 
 def _clumpIds(O):

@@ -7,7 +7,7 @@ import warnings
 import numpy as np
 
 from ._args import flag as _flag, vector3
-from ._clumps import grainMesh, _Members, _basePlan, _scale, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
+from ._clumps import grainsOf, _Members, _basePlan, _scale, _build, _mass, _offsetWarning, _plans, _seed, _yade, bodyOptions, randomRotation
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._results import MssResult
@@ -270,10 +270,7 @@ def mssClumpCloud(templates, minCorner, maxCorner, num=-1, periodic=False, seed=
 
 def _grains(func, templates, which, plans, breakable):
     """Each plan's grain in the world when *breakable* (plan k from template which[k])."""
-    if not breakable:
-        return None
-    meshes = [grainMesh(func, t.result) for t in templates]
-    return [(p.world(meshes[w][0]), meshes[w][1]) for w, p in zip(which, plans)]
+    return grainsOf(func, [templates[w].result for w in which], plans, breakable)
 
 
 def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target', breakable=False, **options):

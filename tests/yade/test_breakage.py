@@ -87,6 +87,20 @@ class Split(Base):
             self.assertLess(np.linalg.norm(C - c), 1e-9 * V ** (1 / 3.0))
             self.assertLess(np.abs(J - RHO * I).max(), 1e-8 * RHO * np.abs(I).max())
 
+    def test_cloud_clumps_carry_their_grain_where_they_were_placed(self):
+        """makeClumpCloud's placements (turned and moved): the pieces' common centre is the clump's, so the
+        grain was stored where the clump is."""
+        from yade_mss import mssClumpCloud, mssTemplate
+        t = mssTemplate(ELL, nSpheres=8, resolution=30, scale=0.01)
+        made = mssClumpCloud(t, (0, 0, 0), (0.2, 0.2, 0.2), num=5, seed=3, breakable=True, material=self.mat)
+        self.assertEqual(len(made), 5)
+        for cid, ids in made:
+            before = totals([cid])
+            pieces = mssSplit(cid, (vec(O.bodies[cid].state.pos), (0.2, 1.0, -0.3)))
+            after = totals([c for c, m in pieces])
+            self.assertLess(abs(after[0] - before[0]), 1e-12 * before[0])
+            self.assertLess(np.linalg.norm(after[1] - before[1]), 1e-9 * 0.04)
+
     def test_no_piece_crosses_its_plane(self):
         cid = self.femur()
         point, normal = vec(O.bodies[cid].state.pos), np.array([1.0, 0.4, -0.1])
@@ -135,7 +149,6 @@ class Split(Base):
 
     def test_tiny_piece_becomes_one_sphere_at_its_centre_and_stops(self):
         cid = self.femur()
-        s = O.bodies[cid].state
         lo = min(b.state.pos[2] - b.shape.radius for b in O.bodies if b is not None and b.isClumpMember)
         point = np.array([0, 0, lo + 12.0])  # a slice of the femur's lower end
         before = totals([cid])
@@ -147,7 +160,6 @@ class Split(Base):
         self.assertLess(np.linalg.norm(after[3] - before[3]), 1e-10 * np.linalg.norm(before[3]))
         with self.assertRaisesRegex(ValueError, 'carries no grain'):
             mssSplit(small[0], (vec(O.bodies[small[0]].state.pos), (1, 0, 0)))
-        del s
 
     def test_a_clump_made_by_yade_is_refused(self):
         cid, ids = O.bodies.appendClumped([utils.sphere((0, 0, 0), 1.0, material=self.mat),
@@ -165,6 +177,13 @@ class Split(Base):
         mids = sorted(O.bodies[cid].shape.members)
         O.bodies.releaseFromClump(mids[-1], cid)
         with self.assertRaisesRegex(RuntimeError, 'not those it was made with'):
+            mssSplit(cid, (vec(O.bodies[cid].state.pos), (1, 0, 0)))
+        # restored as the union of what is left, the clump is no longer its grain: the mesh goes with the record
+        from yade_mss import restoreClumpProperties
+        with warnings.catch_warnings():
+            warnings.simplefilter('ignore')
+            restoreClumpProperties([cid])
+        with self.assertRaisesRegex(ValueError, 'carries no grain'):
             mssSplit(cid, (vec(O.bodies[cid].state.pos), (1, 0, 0)))
 
     def test_periodic_insertion_sort_after_a_split(self):
@@ -205,6 +224,8 @@ class Split(Base):
             mssSplit(cid, ((0, 0, 0), (1, 0, 0)), nSphere=3)
         with self.assertRaisesRegex(ValueError, 'voxels'):
             mssClump(np.ones((6, 6, 6), dtype=bool), nSpheres=4, breakable=True, material=self.mat)
+        with self.assertRaisesRegex(ValueError, 'two spheres or more'):
+            mssClump(ELL, nSpheres=1, breakable=True, material=self.mat)
         with self.assertRaisesRegex(TypeError, 'breakable must be True or False'):
             mssClump(ELL, nSpheres=4, breakable=1, material=self.mat)
 
