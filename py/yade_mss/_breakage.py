@@ -187,14 +187,15 @@ def _depths(O, near, c, r):
     return np.array([max(0.0, float(np.max(r - _gaps(O, [nb], c)))) if len(r) else 0.0 for nb in near])
 
 
-def _within(O, near, depth, c, r):
+def _within(O, near, depth, c, r, least=0.0):
     """The spheres (c, r) shrunk so that none reaches deeper into a neighbour than the parent did (*depth*, per
     neighbour; 0: not touching it): a piece must not push its neighbours harder than the grain did. A sphere
-    that would keep less than a quarter of its radius goes (the largest share stays, whatever it is)."""
+    that would keep less than a quarter of its radius, or end below *least* (the rMin asked for: the smallest
+    sphere sets the time step and the softest contact), goes (the largest share stays, whatever it is)."""
     allowed = r.copy()
     for nb, d in zip(near, depth):
         allowed = np.minimum(allowed, _gaps(O, [nb], c) + d)
-    keep = allowed >= 0.25 * r
+    keep = (allowed >= 0.25 * r) & (allowed >= least)
     if not keep.any():
         keep[np.argmax(allowed / r)] = True
     return c[keep], np.maximum(allowed[keep], 1e-3 * r[keep])
@@ -237,8 +238,9 @@ def mssSplit(clumpId, plane, nSpheres=None, minSize=0.0, resolution=50, **option
     :return: [(clumpId, [memberIds])], one per piece; O.bodies is unchanged if anything fails
 
     A piece's spheres reach no deeper into each neighbour (Sphere, Wall and Box bodies near the grain) than
-    the parent's did, and touch none it did not touch: those that would are shrunk (the log has both depths: :func:`breakageLog`), so a split
-    does not push neighbours harder than the grain did.
+    the parent's did, and touch none it did not touch: those that would are shrunk (the log has both depths:
+    :func:`breakageLog`), so a split does not push neighbours harder than the grain did. A sphere shrunk below
+    ``rMin`` (when given) or a quarter of its radius is dropped instead: the smallest sphere sets the time step.
     """
     return _split('mssSplit', clumpId, plane, nSpheres, minSize, resolution, options, {})
 
@@ -283,7 +285,7 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
                 pc, pr_ = centroid[None, :], np.array([room])
         # off the cut plane, whatever reached a contact point: pieces must not overlap each other
         pr_ = np.minimum(pr_, np.maximum(sign * (pc - point).dot(normal), 0.0))
-        pc, pr_ = _within(O, near, depthBefore, pc, pr_)
+        pc, pr_ = _within(O, near, depthBefore, pc, pr_, (given['rMin'] or 0.0) if n > 1 else 0.0)
         plans.append(_Plan.of(pc, pr_, pr['volume'], centroid, np.reshape(pr['inertia'], (3, 3))))
         grains.append(mesh if n > 1 else None)
     st = parent.state

@@ -42,6 +42,8 @@ void expectClosedOnSide(const std::vector<TriangleMesh>& pieces, const Plane& p,
     for (const TriangleMesh& m : pieces) {
         const MeshInfo info = analyzeMesh(m);
         EXPECT_EQ(info.boundaryEdges, 0u);
+        EXPECT_EQ(info.nonManifoldEdges, 0u);
+        EXPECT_EQ(info.degenerateTriangles, 0u);
         EXPECT_EQ(info.inconsistentEdges, 0u);
         EXPECT_GT(info.signedVolume, 0.0); // the input's orientation
         for (const Vec3& v : m.vertices) EXPECT_GE(sign * planeDistance(p, v), -1e-12 * size);
@@ -136,6 +138,23 @@ TEST(SplitMesh, FemurPiecesSumToTheGrainAndSplitAgain) {
     ASSERT_GE(again.below.size(), 1u);
     expectClosedOnSide(again.above, q, 1, size);
     expectSameMass(combined(again.above, again.below), pm, 1e-12);
+}
+
+TEST(SplitMesh, VertexOnThePlaneUpToRoundingGivesClosedPieces) {
+    // the vertex (1/16, 1/4, -11/16) lies 3.5e-18 above the plane, not on it, in floating point: once a
+    // sliver of zero area at it and edges used four times
+    const TriangleMesh oct = readMesh(kData + "/octahedron.stl");
+    const MassProperties whole = meshMassProperties(oct);
+    for (const Vec3& n : {Vec3(1.0, 0.3, 0.2), Vec3(-1.0, -0.3, -0.2)}) {
+        const Plane p{Vec3::Zero(), n};
+        ASSERT_LT(std::abs(planeDistance(p, Vec3(0.0625, 0.25, -0.6875))), 1e-15);
+        const MeshSplit s = splitMeshByPlane(oct, p);
+        ASSERT_EQ(s.above.size(), 1u);
+        ASSERT_EQ(s.below.size(), 1u);
+        expectClosedOnSide(s.above, p, 1, 2.0);
+        expectClosedOnSide(s.below, p, -1, 2.0);
+        expectSameMass(combined(s.above, s.below), whole, 1e-12);
+    }
 }
 
 TEST(SplitMesh, PlaneOnAFaceOrMissingLeavesOnePiece) {

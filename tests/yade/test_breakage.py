@@ -214,6 +214,23 @@ class Split(Base):
         O.pause()
         self.assertFalse(stuck, 'the scene did not step after the split')
 
+    def test_spheres_shrunk_for_a_neighbour_respect_rmin(self):
+        """_within: a sphere that would reach deeper into a neighbour than the parent did is shrunk; one shrunk
+        below rMin (or a quarter of its radius) is dropped, since the smallest sphere sets the time step."""
+        from yade_mss._breakage import _within
+        nb = O.bodies.append(utils.sphere((0, 0, 0), 1.0, material=self.mat))
+        c = np.array([[2.6, 0, 0], [0, 2.9, 0], [0, 0, 5.0]])  # gaps to the neighbour 1.6, 1.9, 4.0
+        r = np.array([2.0, 2.0, 2.0])
+        near = [(nb, np.zeros(3))]
+        kc, kr = _within(O, near, np.array([0.0]), c, r)  # the parent did not touch it
+        self.assertEqual(len(kr), 3)
+        np.testing.assert_allclose(kr, [1.6, 1.9, 2.0], rtol=1e-12)
+        kc, kr = _within(O, near, np.array([0.0]), c, r, least=1.7)
+        np.testing.assert_allclose(kc, c[1:], rtol=1e-12)
+        np.testing.assert_allclose(kr, [1.9, 2.0], rtol=1e-12)
+        kc, kr = _within(O, near, np.array([0.0]), c[:2], r[:2], least=5.0)  # none left: the largest share
+        np.testing.assert_allclose(kr, [1.9], rtol=1e-12)
+
     def test_arguments_are_checked(self):
         cid = self.femur()
         with self.assertRaisesRegex(ValueError, 'normal must be non-zero'):

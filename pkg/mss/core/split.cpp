@@ -137,7 +137,14 @@ MeshSplit splitMeshByPlane(const TriangleMesh& input, const Plane& plane) {
     const TriangleMesh mesh = welded(input);
     std::vector<Vec3> points = mesh.vertices;
     std::vector<double> s(points.size());
-    for (std::size_t v = 0; v < points.size(); ++v) s[v] = planeDistance(plane, points[v]);
+    double extent = 0.0;
+    for (std::size_t v = 0; v < points.size(); ++v)
+        s[v] = planeDistance(plane, points[v]), extent = std::max(extent, std::abs(s[v]));
+    // a vertex on the plane up to rounding is on it: otherwise the edges from it to the other side get cut
+    // points at its own coordinates, and the pieces slivers of zero area and edges used four times (the
+    // octahedron's vertex (1/16, 1/4, -11/16) and the plane x + 0.3 y + 0.2 z = 0: distance 3.5e-18)
+    for (double& d : s)
+        if (std::abs(d) <= 1e-12 * extent) d = 0.0;
     auto above = [&](int v) { return s[std::size_t(v)] >= 0.0; };
     // a cut point per edge, from its endpoints in a fixed order: one vertex for both triangles and sides
     std::unordered_map<std::uint64_t, int> cutOf;
@@ -161,7 +168,8 @@ MeshSplit splitMeshByPlane(const TriangleMesh& input, const Plane& plane) {
             int n = 0, entry = -1, exit = -1;
             for (int q = 0; q < 3; ++q) {
                 const int a = t[std::size_t(q)], b = t[std::size_t((q + 1) % 3)];
-                if (keep(a)) poly[std::size_t(n++)] = a;
+                // a vertex on the plane is both the cut point of the edge before it and a kept vertex: once
+                if (keep(a) && (n == 0 || poly[std::size_t(n - 1)] != a)) poly[std::size_t(n++)] = a;
                 if (keep(a) != keep(b)) {
                     const int x = cut(a, b);
                     if (n == 0 || poly[std::size_t(n - 1)] != x) poly[std::size_t(n++)] = x;
