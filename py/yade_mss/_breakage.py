@@ -240,7 +240,8 @@ def mssSplit(clumpId, plane, nSpheres=None, minSize=0.0, resolution=50, **option
     A piece's spheres reach no deeper into each neighbour (Sphere, Wall and Box bodies near the grain) than
     the parent's did, and touch none it did not touch: those that would are shrunk (the log has both depths:
     :func:`breakageLog`), so a split does not push neighbours harder than the grain did. A sphere shrunk below
-    ``rMin`` (when given) or a quarter of its radius is dropped instead: the smallest sphere sets the time step.
+    ``rMin`` or ``rMinVoxels`` (when given) or a quarter of its radius is dropped instead: the smallest sphere
+    sets the time step.
     """
     return _split('mssSplit', clumpId, plane, nSpheres, minSize, resolution, options, {})
 
@@ -285,7 +286,9 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
                 pc, pr_ = centroid[None, :], np.array([room])
         # off the cut plane, whatever reached a contact point: pieces must not overlap each other
         pr_ = np.minimum(pr_, np.maximum(sign * (pc - point).dot(normal), 0.0))
-        pc, pr_ = _within(O, near, depthBefore, pc, pr_, (given['rMin'] or 0.0) if n > 1 else 0.0)
+        # the generation's own bound: rMin, or rMinVoxels on the piece's grid (the larger)
+        least = max(given['rMin'] or 0.0, (given['rMinVoxels'] or 0.0) * r.grid['voxelSize']) if n > 1 else 0.0
+        pc, pr_ = _within(O, near, depthBefore, pc, pr_, least)
         plans.append(_Plan.of(pc, pr_, pr['volume'], centroid, np.reshape(pr['inertia'], (3, 3))))
         grains.append(mesh if n > 1 else None)
     st = parent.state

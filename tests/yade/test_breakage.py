@@ -231,6 +231,22 @@ class Split(Base):
         kc, kr = _within(O, near, np.array([0.0]), c[:2], r[:2], least=5.0)  # none left: the largest share
         np.testing.assert_allclose(kr, [1.9], rtol=1e-12)
 
+    def test_pieces_next_to_a_neighbour_keep_rmin_and_the_parents_depth(self):
+        cid = self.femur()
+        members = [O.bodies[i] for i in O.bodies[cid].shape.members]
+        big = max(members, key=lambda b: b.shape.radius)
+        c, r = vec(big.state.pos), big.shape.radius
+        out = (c - vec(O.bodies[cid].state.pos)) / np.linalg.norm(c - vec(O.bodies[cid].state.pos))
+        O.bodies.append(utils.sphere(tuple(c + out * 1.99 * r), r, material=self.mat))  # 1% of r deep
+        rMin = 0.5 * float(np.median([b.shape.radius for b in members]))
+        made = mssSplit(cid, (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0)), rMin=rMin)
+        for m, ids in made:
+            if len(ids) > 1:
+                self.assertGreaterEqual(min(O.bodies[i].shape.radius for i in ids), rMin * (1 - 1e-12))
+        e = breakageLog()[-1]
+        self.assertGreater(e['reachBefore'], 0.005 * r)
+        self.assertLessEqual(e['reachAfter'], e['reachBefore'] * (1 + 1e-9))
+
     def test_arguments_are_checked(self):
         cid = self.femur()
         with self.assertRaisesRegex(ValueError, 'normal must be non-zero'):
