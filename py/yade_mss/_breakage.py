@@ -269,27 +269,14 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     touching = _contactPoints(O, mids)
     plans, grains = [], []
     for k, ((mesh, sign), pr) in enumerate(zip(sides, props)):
-        small = _size(pr['volume']) < minSize
-        n = 1 if small else counts[k]
-        given = dict(_GENERATE_DEFAULTS, **gen)
-        given.update(nSpheres=n, resolution=resolution, planes=[(tuple(point), tuple(sign * normal))])
+        n = 1 if _size(pr['volume']) < minSize else counts[k]
         mine = [list(q) + list(m) for q, m in touching if sign * (q - point).dot(normal) > 0]
-        try:
-            r = _generate(mesh, given, contactPoints=mine if given['contacts'] else [])
-        except (ValueError, RuntimeError) as e:
-            raise type(e)('%s: clump %d, piece %d (volume %g): %s' % (func, parent.id, k, pr['volume'], e))
-        centroid = np.array(pr['centroid'])
-        pc, pr_ = r.centers, r.radii
-        if n == 1:  # at the centre of mass, so that the clump's is exact, reaching the nearest surface point
-            room = _mss.insideClearance(mesh[0].ravel().tolist(), mesh[1].ravel().tolist(), list(centroid))
-            if room > 0:
-                pc, pr_ = centroid[None, :], np.array([room])
+        where = '%s: clump %d, piece %d (volume %g)' % (func, parent.id, k, pr['volume'])
+        pc, pr_, n, least = _pieceSpheres(where, mesh, pr, n, gen, resolution, (point, sign * normal), mine)
         # off the cut plane, whatever reached a contact point: pieces must not overlap each other
         pr_ = np.minimum(pr_, np.maximum(sign * (pc - point).dot(normal), 0.0))
-        # the generation's own bound: rMin, or rMinVoxels on the piece's grid (the larger)
-        least = max(given['rMin'] or 0.0, (given['rMinVoxels'] or 0.0) * r.grid['voxelSize']) if n > 1 else 0.0
         pc, pr_ = _within(O, near, depthBefore, pc, pr_, least)
-        plans.append(_Plan.of(pc, pr_, pr['volume'], centroid, np.reshape(pr['inertia'], (3, 3))))
+        plans.append(_Plan.of(pc, pr_, pr['volume'], np.array(pr['centroid']), np.reshape(pr['inertia'], (3, 3))))
         grains.append(mesh if n > 1 else None)
     st = parent.state
     c = np.array([st.pos[0], st.pos[1], st.pos[2]])
@@ -329,6 +316,33 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
         warnings.warn('%s: the pieces of clump %d reach %.3g into a neighbour, the parent reached %.3g'
                       % (func, parent.id, reachAfter, reachBefore), stacklevel=2)
     return made
+
+
+def _pieceSpheres(where, mesh, props, n, gen, resolution, plane, contacts):
+    """The spheres of one piece (*mesh*, its mass properties *props*), *n* of them, and the radius below which
+    a neighbour may not shrink them: (centres, radii, n, least). One sphere sits at the centre of mass, so
+    that the clump's is exact, reaching the nearest surface point; so does a piece too thin for the rMin
+    asked for (no sphere of that size fits), which then breaks no more, as one below minSize."""
+    centroid = np.array(props['centroid'])
+    if n == 1:
+        room = _mss.insideClearance(mesh[0].ravel().tolist(), mesh[1].ravel().tolist(), list(centroid))
+        if room > 0:
+            return centroid[None, :], np.array([room]), 1, 0.0
+    given = dict(_GENERATE_DEFAULTS, **gen)
+    given.update(nSpheres=n, resolution=resolution, planes=[(tuple(plane[0]), tuple(plane[1]))])
+    if n == 1:  # the centre of mass is outside (a bent piece): the largest sphere, whatever rMin
+        given.update(rMin=None, rMinVoxels=None)
+    try:
+        r = _generate(mesh, given, contactPoints=contacts if given['contacts'] else [])
+    except ValueError as e:
+        if n > 1 and 'largest inscribed radius' in str(e):
+            return _pieceSpheres(where, mesh, props, 1, gen, resolution, plane, contacts)
+        raise ValueError('%s: %s' % (where, e))
+    except RuntimeError as e:
+        raise RuntimeError('%s: %s' % (where, e))
+    # the generation's own bound: rMin, or rMinVoxels on the piece's grid (the larger)
+    least = max(given['rMin'] or 0.0, (given['rMinVoxels'] or 0.0) * r.grid['voxelSize']) if n > 1 else 0.0
+    return r.centers, r.radii, n, least
 
 
 # the engines' parameters that cannot go into their command (callables), by label: MssBreakage again after

@@ -161,6 +161,23 @@ class Split(Base):
         with self.assertRaisesRegex(ValueError, 'carries no grain'):
             mssSplit(small[0], (vec(O.bodies[small[0]].state.pos), (1, 0, 0)))
 
+    def test_piece_too_thin_for_rmin_becomes_one_sphere(self):
+        """The ellipsoid's tip cut 0.4 thick: no sphere of rMin 0.5 fits in it (generation refuses), so it is
+        one sphere at its centre of mass, as below minSize; the rest keeps its spheres of at least rMin."""
+        cid, ids = mssClump(ELL, nSpheres=12, resolution=40, breakable=True, material=self.mat, center=(0, 0, 0))
+        before = totals([cid])
+        made = mssSplit(cid, ((1.6, 0, 0), (1, 0, 0)), rMin=0.5, resolution=40)
+        self.assertEqual(sorted(len(m) for c, m in made)[0], 1)
+        tip, (member,) = next((c, m) for c, m in made if len(m) == 1)
+        rest = next(m for c, m in made if len(m) > 1)
+        self.assertGreater(O.bodies[tip].state.pos[0], 1.6)
+        self.assertLess(np.linalg.norm(vec(O.bodies[member].state.pos) - vec(O.bodies[tip].state.pos)), 1e-12)
+        self.assertGreaterEqual(min(O.bodies[i].shape.radius for i in rest), 0.5 * (1 - 1e-12))
+        after = totals([c for c, m in made])
+        self.assertLess(abs(after[0] - before[0]), 1e-12 * before[0])
+        with self.assertRaisesRegex(ValueError, 'carries no grain'):
+            mssSplit(tip, (vec(O.bodies[tip].state.pos), (0, 1, 0)))
+
     def test_a_clump_made_by_yade_is_refused(self):
         cid, ids = O.bodies.appendClumped([utils.sphere((0, 0, 0), 1.0, material=self.mat),
                                            utils.sphere((1, 0, 0), 1.0, material=self.mat)])
