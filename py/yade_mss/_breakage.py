@@ -333,7 +333,8 @@ def _pieceSpheres(where, mesh, props, n, gen, resolution, plane, contacts):
     if n == 1:  # the centre of mass is outside (a bent piece): the largest sphere, whatever rMin
         given.update(rMin=None, rMinVoxels=None)
     try:
-        r = _generate(mesh, given, contactPoints=contacts if given['contacts'] else [])
+        # the piece lies on its side of the plane: its own mass properties are the target's
+        r = _generate(mesh, given, contactPoints=contacts if given['contacts'] else [], target=props)
     except ValueError as e:
         if n > 1 and 'largest inscribed radius' in str(e):
             return _pieceSpheres(where, mesh, props, 1, gen, resolution, plane, contacts)

@@ -32,11 +32,12 @@ def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=N
     return _generate(source, given)
 
 
-def _generate(source, given, contactPoints=None, neighbours=None):
+def _generate(source, given, contactPoints=None, neighbours=None, target=None):
     """:func:`generate` with its keywords in *given* (None: not given); *contactPoints*: the points to reach
     (6 numbers each: point, normal into the grain; :func:`yade_mss._specimen.contactPoints`, or a fragment's
     contacts in a scene) and *neighbours* (a boolean array on the source's grid: the other grains), found here
-    for a labelled volume's grain when None and contacts are kept."""
+    for a labelled volume's grain when None and contacts are kept; *target*: the source's mass properties where
+    the caller has them (a dict as _mss.massMesh gives), not computed again."""
     opts = _options.collect('generate', 'generate', given)
     label, origin, resolution = given.get('label'), given.get('origin'), given.get('resolution')
     s = _source(source, opts.get('voxelSize'), opts.get('origin'), opts.get('label'))
@@ -46,7 +47,7 @@ def _generate(source, given, contactPoints=None, neighbours=None):
         if origin is not None:
             raise ValueError('generate: %s: origin applies to voxel volumes; this is a mesh' % s.name)
         d = _mss.generateMesh(*s.args(), opts, contactPoints or [])
-        target = MassProperties._fromDict(_mss.massMesh(*s.args(), opts.get('planes', [])))
+        target = MassProperties._fromDict(target or _mss.massMesh(*s.args(), opts.get('planes', [])))
     else:
         if resolution is not None:
             raise ValueError('generate: resolution applies to meshes; voxels are used at their own resolution')

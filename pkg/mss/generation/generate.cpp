@@ -387,20 +387,23 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& given, Metr
         const CachedBound cached(bound, boundAtLeast(meshAbove, H, opt.planes), S.spec);
         boundVox = BoundVox(cached, [cached](const Vec3& v, double r) { return cached.clamp(v, r); });
     }
-    // Both starts with planes and on tiny grains (under 5000 solid voxels), where one start is also the
-    // noisier (a CT grain of 2122 voxels, 12 spheres: D 0.114 warm, 0.120 cold) and three runs cost
-    // milliseconds. Under the default bound of one voxel on larger grains the two differ by 0-3% (femur 70:
-    // 28816 / 29740 mismatched voxels warm / cold, cube 30 128710 / 127368, ellipsoid 10 equal): one run from
-    // nothing under the bound, a third of the time. (A limit of 30000 voxels halved the throughput of
-    // bench/batch_scale.py, grains of 3900-8700 voxels: 21.6 grains/s against 41.0, with the same worst D on
-    // the specimen of test_batch.)
+    // Both starts on tiny grains (under 5000 solid voxels), where one start is also the noisier (a CT grain
+    // of 2122 voxels, 12 spheres: D 0.114 warm, 0.120 cold) and three runs cost milliseconds. Under the
+    // default bound of one voxel on larger grains the two differ by 0-3% (femur 70: 28816 / 29740 mismatched
+    // voxels warm / cold, cube 30 128710 / 127368, ellipsoid 10 equal): one run from nothing under the bound,
+    // a third of the time. (A limit of 30000 voxels halved the throughput of bench/batch_scale.py, grains of
+    // 3900-8700 voxels: 21.6 grains/s against 41.0, with the same worst D on the specimen of test_batch.)
     constexpr std::size_t kSmallGrain = 5000; // solid voxels
     // Clipping (and any bound under a voxel) on larger grains: the warm start alone. Clipped at resolution
     // 103, its mismatch on the generation grid was the lower of the two on 8 of 10 grains and at most 1.0%
     // above the cold start's on the others (cube 30 0.3%, octahedron 40 1.0%; torus 40: 7% below), and it
     // saves about a third of the time (femur 70, torus 40).
+    // Constraint planes on larger grains (fragments: mssSplit's pieces) as clipping: the warm start alone.
+    // Pieces at resolution 40 (ellipsoid, femur, octahedron, cube, torus, bunny, each cut by 3 random planes
+    // through the centroid): 0.61-0.81x the time of both starts, D at most 1.0% higher on average (6, 10
+    // and 20 spheres: 1.0 / 0.5 / 0.1%; worst piece 5.8%); the cold start alone was 1.8% higher at 10.
     const bool small = countSolid(S) < kSmallGrain;
-    const Starts starts = !opt.planes.empty() || small ? Starts::Both : (H < h ? Starts::Warm : Starts::Cold);
+    const Starts starts = small ? Starts::Both : (H < h || !opt.planes.empty() ? Starts::Warm : Starts::Cold);
     const std::vector<Ball> balls = chooseBalls(S, E, opt, boundVox, starts, m);
     Result r;
     r.grid = S.spec;
