@@ -7,9 +7,8 @@ import warnings
 import numpy as np
 
 from . import _mss, _options
-from ._args import integer, number
 from ._results import MassProperties, MssResult, readSpheres
-from ._sources import _Mesh, _flat, _plane, _source
+from ._sources import _Mesh, _flat, _source
 
 
 @_options.documented('generate')
