@@ -42,6 +42,7 @@ struct GenerateOptions {
     double deltaMin = 1.0;   ///< minimal distance between sphere centres, voxels (paper section 3.4, δmin)
     Method method = Method::Optimized;
     bool keepSymmetry = true; ///< optimized: detect mirror planes of the voxelised grain and keep them
+    bool polish = false; ///< optimized: the joint polish of all centres and radii as the last stage
     int threads = 0;          ///< OpenMP threads; 0 = the default. The result does not depend on it.
     /// No sphere protrudes from the solid (paper section 3.5, exactly): a mesh's spheres get radii at most
     /// the exact distance from their centre to the surface, a sphere whose centre is outside is not placed; a

@@ -13,7 +13,7 @@ from ._sources import _Mesh, _flat, _source
 
 @_options.documented('generate')
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=None, voxelSize=None,
-             resolution=None, method='optimized', supersample=1, keepSymmetry=True, maxIterations=100, deltaMin=1.0,
+             resolution=None, method='optimized', supersample=1, keepSymmetry=True, polish=False, maxIterations=100, deltaMin=1.0,
              threads=0, origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=(),
              maxProtrusion=None, contacts=True, neighbourProtrusion=1.0):
     """Generates the sphere set of a grain (MSS paper, sections 2-3). The options are the option table's

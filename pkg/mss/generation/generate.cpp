@@ -187,6 +187,7 @@ engine::Request request(const GenerateOptions& o) {
     r.deltaMin = o.deltaMin;
     r.keepSymmetry = o.keepSymmetry;
     r.planes = o.planes;
+    r.polish = o.polish;
     return r;
 }
 

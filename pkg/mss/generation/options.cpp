@@ -119,6 +119,10 @@ const std::vector<OptionSpec> kTable = {
      "paper method: least distance between sphere centres (section 3.4)", kGen},
     {"keepSymmetry", "--no-symmetry", true, T::Flag, "true", 0, 0, false, false, "", "", "",
      "detect the grain's mirror planes and keep them (optimized method)", kGen},
+    {"polish", "--polish", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "move all centres and radii together as a last stage, by the gradient of a smoothed mismatch, and "
+     "refine again (optimized method): a lower D at a fixed count, for 2-5 times the time",
+     kGen},
     {"contacts", "--no-contacts", true, T::Flag, "true", 0, 0, false, false, "", "", "",
      "a labelled volume: keep the grain's contacts with its neighbours (each one's spheres reach a point of "
      "the faces they share, so that grains touching in the scan touch in the assembly)",
@@ -505,6 +509,8 @@ void apply(Settings& st, const std::string& name, const OptionValue& v) {
         g.deltaMin = asNumber(v);
     else if (name == "keepSymmetry")
         g.keepSymmetry = std::get<bool>(v);
+    else if (name == "polish")
+        g.polish = std::get<bool>(v);
     else if (name == "threads")
         g.threads = asInt(v);
     else if (name == "clip")

@@ -18,20 +18,6 @@ bool overlaps(const Symmetry& sym, const Orbit& a, const Orbit& b) {
     return false;
 }
 
-/// E at a point, trilinear between voxel centres.
-double trilinear(const ScalarGrid& E, const Vec3& p) {
-    const auto& d = E.spec.dims;
-    const int i = std::clamp(floorInt(p.x()), 0, d[0] - 2), j = std::clamp(floorInt(p.y()), 0, d[1] - 2),
-              k = std::clamp(floorInt(p.z()), 0, d[2] - 2);
-    const double fx = p.x() - i, fy = p.y() - j, fz = p.z() - k;
-    double v = 0.0;
-    for (int c = 0; c < 8; ++c) {
-        const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
-        v += (di ? fx : 1 - fx) * (dj ? fy : 1 - fy) * (dk ? fz : 1 - fz) * E(i + di, j + dj, k + dk);
-    }
-    return v;
-}
-
 /// A trial position of an orbit, and the move (axis 0-2 centre, 3 radius; sign) that leads there.
 struct Move {
     Orbit o;
@@ -132,6 +118,19 @@ void tune(const Selection& s, Orbit& o, long long& best, bool fine, bool quarter
 }
 
 } // namespace
+
+double trilinear(const ScalarGrid& E, const Vec3& p) {
+    const auto& d = E.spec.dims;
+    const int i = std::clamp(floorInt(p.x()), 0, d[0] - 2), j = std::clamp(floorInt(p.y()), 0, d[1] - 2),
+              k = std::clamp(floorInt(p.z()), 0, d[2] - 2);
+    const double fx = p.x() - i, fy = p.y() - j, fz = p.z() - k;
+    double v = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
+        v += (di ? fx : 1 - fx) * (dj ? fy : 1 - fy) * (dk ? fz : 1 - fz) * E(i + di, j + dj, k + dk);
+    }
+    return v;
+}
 
 void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps, bool coarseFirst) {
     std::vector<Orbit>& chosen = s.chosen;

@@ -7,6 +7,9 @@
 
 namespace mss::engine {
 
+/// @p E at the point @p p (voxel coordinates), trilinear between voxel centres.
+double trilinear(const ScalarGrid& E, const Vec3& p);
+
 /// Moves each chosen orbit's centre and radius while that lowers the mismatch (coordinate descent on the
 /// exact voxel objective, eq. 2, steps of 1/2 and 1/4 voxel; moves: a centre coordinate, the radius, a centre
 /// coordinate with the radius following E (a slide along the surface), and under a constraint a centre

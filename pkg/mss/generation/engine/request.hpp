@@ -17,6 +17,7 @@ struct Request {
     int maxIterations = 100; ///< iterations (paper) or rounds of refinement (optimized)
     double deltaMin = 1.0;   ///< paper: least distance between centres, voxels (section 3.4)
     bool keepSymmetry = true;
+    bool polish = false;       ///< the joint polish (polish.hpp) as the optimised method's last stage
     std::vector<Plane> planes; ///< planes no sphere crosses
 };
 
