@@ -39,6 +39,22 @@ std::vector<Image> imagesOf(const Symmetry& sym, const std::vector<Orbit>& orbit
 /// sigmoid(4) = 0.982.
 constexpr double kBand = 4.0;
 
+/// sigmoid(z) for |z| < kBand from a table (1/256 apart, linear between): the passes' exponentials were a
+/// sixth of a polish.
+float sigmoid(float z) {
+    constexpr int kPerUnit = 256, kN = 2 * int(kBand) * kPerUnit + 1;
+    static const std::array<float, kN + 1> table = [] {
+        std::array<float, kN + 1> t{};
+        for (int i = 0; i <= kN; ++i)
+            t[std::size_t(i)] = float(1.0 / (1.0 + std::exp(-(double(i) / kPerUnit - kBand))));
+        return t;
+    }();
+    const float x = std::clamp((z + float(kBand)) * kPerUnit, 0.0f, float(kN - 1));
+    const int i = int(x);
+    const float f = x - float(i);
+    return table[std::size_t(i)] + f * (table[std::size_t(i) + 1] - table[std::size_t(i)]);
+}
+
 /// The smoothed union on the voxels near the balls: per voxel the product of (1 - u_i) over the balls whose
 /// band holds it, and the count of balls it lies deep inside (then U = 1 and no gradient flows there).
 class SmoothUnion {
@@ -96,7 +112,7 @@ public:
                              if (z >= float(kBand))
                                  sat_[p] = 1;
                              else if (z > -float(kBand))
-                                 q_[p] *= 1.0f / (1.0f + std::exp(z));
+                                 q_[p] *= sigmoid(-z); // 1 - u
                          }
                      });
         }
@@ -118,7 +134,7 @@ public:
                         const double dx = i - b.c.x(), dist = std::sqrt(dx * dx + yz);
                         const double z = (b.r - dist) / tau;
                         if (z >= kBand || z <= -kBand) continue;
-                        const double w = double(w_[p] * q_[p] / (1.0f + std::exp(-float(z)))) / tau / f_;
+                        const double w = double(w_[p] * q_[p] * sigmoid(float(z))) / tau / f_;
                         g[3] += w;
                         if (dist > 1e-12) {
                             // d |p - c| / d c = -(p - c) / |p - c|, and z falls with it
