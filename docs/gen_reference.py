@@ -132,6 +132,39 @@ def yadeClumps():
                   'YADE API floor, us', 'load', 'commit'], body)
 
 
+def polish():
+    """The joint polish (--polish): D's change per grain and mode (mean over the counts), then over all."""
+    rows = readRows('polish.csv')
+    if not rows:
+        return 'No rows yet: run ``PYTHONPATH=build/py /usr/bin/python3 bench/polish.py``.\n'
+    last = latest(rows, lambda r: (r['grain'], r['spheres'], r['mode']))
+    modes = ('bounded', 'unbounded', 'clipped')
+    grains = list(dict.fromkeys(r['grain'] for r in last.values()))
+
+    def cell(rs):
+        if not rs:
+            return ''
+        change = sum(float(r['change']) for r in rs) / len(rs)
+        ratio = sorted(float(r['seconds_polish']) / float(r['seconds']) for r in rs)[len(rs) // 2]
+        return '%+.1f%%, %.1fx' % (100 * change, ratio)
+
+    body = [[esc(g)] + [cell([r for r in last.values() if r['grain'] == g and r['mode'] == m]) for m in modes]
+            for g in grains]
+    body.append(['all'] + [cell([r for r in last.values() if r['mode'] == m]) for m in modes])
+    won = []
+    for m in modes:
+        w = [float(r['change']) for r in last.values() if r['mode'] == m and float(r['change']) < 0]
+        worse = sum(float(r['change']) > 0 for r in last.values() if r['mode'] == m)
+        won.append('%d won (mean %+.1f%%), %d worse' % (len(w), 100 * sum(w) / max(1, len(w)), worse))
+    body.append(['where it changed the set'] + won)
+    counts = sorted({int(r['spheres']) for r in last.values()})
+    commits = sorted({r['commit'] for r in last.values()})
+    return (table(['grain', 'bounded', 'unbounded', 'clipped'], body) +
+            '\nEach cell: the mean change of D over %s spheres, then the median time of a polished generation against '
+            'a plain one. Rows of commit %s (bench/results/polish.csv).\n' % (' / '.join(map(str, counts)),
+                                                                           ', '.join(commits)))
+
+
 def markdownTable(header, rows):
     return '\n'.join(['| ' + ' | '.join(header) + ' |', '|' + '---|' * len(header)] +
                      ['| ' + ' | '.join(r) + ' |' for r in rows])
@@ -199,6 +232,7 @@ def main(outdir):
     write(os.path.join(outdir, 'fidelity.rst'), fidelity())
     write(os.path.join(outdir, 'speed.rst'), speed())
     write(os.path.join(outdir, 'yade_clumps.rst'), yadeClumps())
+    write(os.path.join(outdir, 'polish.rst'), polish())
 
 
 if __name__ == '__main__':
