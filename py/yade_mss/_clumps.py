@@ -36,7 +36,7 @@ from ._args import INT64_MAX, flag, integer, number, vector3
 from ._generate import GENERATE_OPTIONS, generate
 from ._keywords import split
 from ._loads import memberLoads
-from ._records import attach, encodeGrain, encodeMany
+from ._records import attach, encodeGrain, encodeParts, recordParts
 from ._results import MssResult
 
 _colours = random.Random()  # utils.randomColor's uniform colours, without reseeding the user's `random`
@@ -221,7 +221,8 @@ class _Plan(object):
     """One clump at unit density: its members (centres, radii), the wanted volume, centre of mass and tensor,
     and the loads that make YADE's sums give them (:func:`yade_mss._loads.memberLoads`: masses *m*, member 0's
     tensor, eigenvalues *j* with eigenvectors *V*)."""
-    __slots__ = ('centers', 'radii', 'volume', 'centroid', 'inertia', 'moments', 'm', 'j', 'V', 'offset', 'frame')
+    __slots__ = ('centers', 'radii', 'volume', 'centroid', 'inertia', 'moments', 'm', 'j', 'V', 'offset', 'frame',
+                 'base', 'parts')
 
     @staticmethod
     def of(centers, radii, volume, centroid, inertia):
@@ -233,7 +234,8 @@ class _Plan(object):
         p.volume, p.centroid, p.offset = float(volume), L.centroid, L.offset
         p.moments = np.linalg.eigvalsh(p.inertia)
         p.m, p.j, p.V = L.m, L.j, L.V
-        p.frame = None
+        p.frame = p.base = None
+        p.parts = {}
         return p
 
     def world(self, points):
@@ -242,6 +244,16 @@ class _Plan(object):
             return np.asarray(points, dtype=float)
         c0, s, R, C = self.frame
         return C + s * (np.asarray(points, dtype=float) - c0).dot(R.T)
+
+    def partsKey(self):
+        """Where this plan's record parts (:func:`yade_mss._records.recordParts`) are kept: (the plan it was placed
+        from, key), or None. Placements with the same turn and scale share them; the frame is the identity for two
+        members or more (member 1 wears YADE's), member 0's own axes for one."""
+        base = getattr(self, 'base', None)
+        if base is None or getattr(base, 'parts', None) is None or len(self.radii) < 2:
+            return None
+        c0, s, R, C = self.frame
+        return base, (float(s), np.asarray(R, dtype=float).tobytes())
 
     def placed(self, c0, s, R, C):
         """This plan moved so that its point *c0* goes to *C*, turned by *R* and scaled by *s* about it: the
@@ -255,6 +267,7 @@ class _Plan(object):
         q.moments = s ** 5 * self.moments
         q.m, q.j, q.V, q.offset = s ** 3 * self.m, s ** 5 * self.j, R.dot(self.V), s * self.offset
         q.frame = (c0, s, R, C)
+        q.base = self
         return q
 
     def placedMany(self, c0, s, R, C):
@@ -271,6 +284,7 @@ class _Plan(object):
             q.moments, q.m, q.j, q.V, q.offset = s ** 5 * self.moments, s ** 3 * self.m, s ** 5 * self.j, V[k], \
                 s * self.offset
             q.frame = (c0, s, R[k], C[k])
+            q.base = self
             out.append(q)
         return out
 
@@ -378,11 +392,7 @@ def _build(func, plans, members, warn=None, grains=None):
             if p.offset > 0 and warn is not None:
                 warn(func, p.offset)
         # member 0 wears V* (above), the others YADE's identity orientation
-        texts = encodeMany([ids for cid, ids in made], [p.centers for p in plans], [p.radii for p in plans],
-                           np.array([p.volume for p in plans]), np.array([p.centroid for p in plans]),
-                           np.array([p.inertia for p in plans]), [p.m for p in plans], np.array([p.V for p in plans]),
-                           np.array([p.j for p in plans]),
-                           np.array([np.eye(3) if len(p.radii) > 1 else p.V.T for p in plans]))
+        texts = encodeParts([ids for cid, ids in made], _recordParts(plans))
         from yade.wrapper import Material
         for k, ((cid, ids), text) in enumerate(zip(made, texts)):
             g = grains[k] if grains is not None else None
@@ -394,6 +404,32 @@ def _build(func, plans, members, warn=None, grains=None):
             O.bodies.erase(cid, True)
         raise
     return made
+
+
+_PARTS_KEPT = 16  # placements remembered per plan: a cloud's random turns never repeat
+
+
+def _recordParts(plans):
+    """Each plan's :func:`yade_mss._records.recordParts`, computed together for those not placed alike before (the
+    numpy work of a record was an eighth of an mssClump)."""
+    parts, todo = [None] * len(plans), []
+    for k, p in enumerate(plans):
+        key = p.partsKey()
+        parts[k] = key[0].parts.get(key[1]) if key is not None else None
+        if parts[k] is None:
+            todo.append(k)
+    if todo:
+        sub = [plans[k] for k in todo]
+        made = recordParts([p.centers for p in sub], [p.radii for p in sub], np.array([p.volume for p in sub]),
+                           np.array([p.centroid for p in sub]), np.array([p.inertia for p in sub]), [p.m for p in sub],
+                           np.array([p.V for p in sub]), np.array([p.j for p in sub]),
+                           np.array([np.eye(3) if len(p.radii) > 1 else p.V.T for p in sub]))
+        for k, part in zip(todo, made):
+            parts[k] = part
+            key = plans[k].partsKey()
+            if key is not None and len(key[0].parts) < _PARTS_KEPT:
+                key[0].parts[key[1]] = part
+    return parts
 
 
 def buildClump(centers, radii, volume, centroid, unitInertia, body, warn=None, func='mssClump'):

@@ -41,11 +41,13 @@ def quaternionMatrices(q):
                      2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], axis=1).reshape(-1, 3, 3)
 
 
-def encodeMany(ids, x, radii, volume, C, I, m, V, j, F):
-    """Records of k clumps just given their loads: lists of per-clump arrays *ids*, *x* (n, 3), *radii*, *m*;
-    stacked *volume* (k), *C* (k, 3), *I*, *V* (k, 3, 3), *j* (k, 3), at unit density, and the frames *F*
-    (k, 3, 3): member 1's rotation matrix (one member: member 0's, V^T). :return: list of k strings"""
-    k = len(ids)
+def recordParts(x, radii, volume, C, I, m, V, j, F):
+    """What the records of k clumps hold besides the member ids, as bytes before and after them: lists of per-clump
+    arrays *x* (n, 3), *radii*, *m*; stacked *volume* (k), *C* (k, 3), *I*, *V* (k, 3, 3), *j* (k, 3), at unit
+    density, and the frames *F* (k, 3, 3): member 1's rotation matrix (one member: member 0's, V^T). All of it is
+    relative to member 0 and the frame, so clumps placed alike (the same turn and scale) share it.
+    :return: list of k (head, tail) byte strings"""
+    k = len(x)
     x0 = np.array([xi[0] for xi in x]).reshape(k, 3)
     Ft = np.transpose(F, (0, 2, 1))  # stacked matmul: einsum's overhead was most of a single clump's cost
     crel = (Ft @ (C - x0)[:, :, None])[:, :, 0]
@@ -55,10 +57,22 @@ def encodeMany(ids, x, radii, volume, C, I, m, V, j, F):
     out = []
     for i in range(k):
         rel = (x[i] - x0[i]).dot(F[i])
-        a = np.concatenate([[3.0, len(ids[i]), volume[i]], crel[i], Irel[i].ravel(), Jrel[i].ravel(),
-                            np.asarray(ids[i], dtype=float), radii[i], rel.ravel(), m[i]])
-        out.append(PREFIX + base64.b64encode(a.astype('<f8').tobytes()).decode('ascii'))
+        head = np.concatenate([[3.0, len(radii[i]), volume[i]], crel[i], Irel[i].ravel(), Jrel[i].ravel()])
+        tail = np.concatenate([radii[i], rel.ravel(), m[i]])
+        out.append((head.astype('<f8').tobytes(), tail.astype('<f8').tobytes()))
     return out
+
+
+def encodeParts(ids, parts):
+    """Records from their member *ids* (a list per clump) and :func:`recordParts`. :return: list of strings"""
+    return [PREFIX + base64.b64encode(head + np.asarray(i, dtype='<f8').tobytes() + tail).decode('ascii')
+            for i, (head, tail) in zip(ids, parts)]
+
+
+def encodeMany(ids, x, radii, volume, C, I, m, V, j, F):
+    """Records of k clumps just given their loads: member *ids* (a list per clump), the rest as
+    :func:`recordParts` takes it. :return: list of k strings"""
+    return encodeParts(ids, recordParts(x, radii, volume, C, I, m, V, j, F))
 
 
 class Record(object):

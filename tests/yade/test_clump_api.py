@@ -177,6 +177,39 @@ class SideBySide(Base):
             self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
             self.assertExact(cid, M, C, I)
 
+    def test_clumps_placed_alike_share_record_parts_and_restore_exactly(self):
+        # a record's parts besides the member ids are kept per turn and scale of a placement: clumps placed alike
+        # (a cache hit), turned (a miss) or scaled must each carry a record of their own members, as encodeMany
+        # writes it from scratch (to rounding: the kept parts were computed at another place), and each restore
+        # its own exact properties
+        from yade_mss import _records
+        from yade_mss._clumps import _basePlan
+        r = femur20()
+        M, C, I = exactFemur()
+        a = np.array([1.0, 2.0, 3.0]) / math.sqrt(14.0)
+        K = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+        R = np.eye(3) + math.sin(0.7) * K + (1 - math.cos(0.7)) * K.dot(K)
+        placed = [((0, 0, 0), None, 1.0), ((300, 0, 0), None, 1.0), ((0, 300, 0), R, 1.0), ((0, 0, 300), R, 1.0),
+                  ((300, 300, 0), None, 0.5), ((300, 0, 300), None, 0.5)]
+        made = [mssClump(r, center=c, orientation=o, scale=s, material=self.mat) for c, o, s in placed]
+        base, c0 = _basePlan(r, 'target')
+        for (cid, ids), (c, o, s) in zip(made, placed):
+            q = base.placed(c0, s, np.eye(3) if o is None else R, np.array(c, dtype=float))
+            want = _records.Record(_records.encodeMany(
+                [ids], [q.centers], [q.radii], np.array([q.volume]), np.array([q.centroid]), np.array([q.inertia]),
+                [q.m], np.array([q.V]), np.array([q.j]), np.array([np.eye(3)]))[0])
+            got = _records.Record(O.bodies[cid].material.label)
+            self.assertEqual(list(got.ids), list(ids))
+            for f in ('volume', 'centroid', 'inertia', 'J', 'radii', 'rel', 'm'):
+                g, w = np.asarray(getattr(got, f), dtype=float), np.asarray(getattr(want, f), dtype=float)
+                self.assertLessEqual(np.abs(g - w).max(), 1e-12 * max(1.0, np.abs(w).max()), f)
+            self.assertLess(np.abs(np.array([vec(O.bodies[i].state.pos) for i in ids]) - q.centers).max(), 1e-9)
+        O.bodies.updateClumpProperties(discretization=0)
+        self.assertEqual(sorted(restoreClumpProperties()), sorted((cid, 'grain') for cid, ids in made))
+        for (cid, ids), (c, o, s) in zip(made, placed):
+            Rk = np.eye(3) if o is None else R
+            self.assertExact(cid, s ** 3 * M, np.array(c, dtype=float), s ** 5 * Rk.dot(I).dot(Rk.T))
+
     def test_density_change_then_update_and_restore(self):
         (cid, ids), (pc, pids) = self.pair()
         M, C, I = exactFemur()
