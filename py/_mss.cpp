@@ -11,6 +11,7 @@
 #include <omp.h>
 #endif
 
+#include <cstdint>
 #include <cstring>
 #include <new>
 #include <stdexcept>
@@ -21,8 +22,51 @@ namespace py = boost::python;
 
 namespace {
 
+/// A contiguous buffer of numbers (a numpy array, bytes of doubles): its values as doubles, or false where
+/// @p o is none (a list: read element by element). Converting a mesh's 40k numbers one Python object at a time
+/// took 4-5 ms, several times per split of a grain.
+bool fromBuffer(const py::object& o, std::vector<double>& out) {
+    if (!PyObject_CheckBuffer(o.ptr()) || PyBytes_Check(o.ptr()) || PyByteArray_Check(o.ptr())) return false;
+    Py_buffer b;
+    if (PyObject_GetBuffer(o.ptr(), &b, PyBUF_C_CONTIGUOUS | PyBUF_FORMAT) != 0) {
+        PyErr_Clear();
+        return false;
+    }
+    struct Release {
+        Py_buffer* b;
+        ~Release() { PyBuffer_Release(b); }
+    } release{&b};
+    std::string f = b.format ? b.format : "B";
+    if (!f.empty() && (f[0] == '<' || f[0] == '=' || f[0] == '@')) f = f.substr(1); // native order here
+    const std::size_t n = b.itemsize > 0 ? std::size_t(b.len / b.itemsize) : 0;
+    out.resize(n);
+    const char* p = static_cast<const char*>(b.buf);
+    auto copy = [&](auto type) {
+        using T = decltype(type);
+        if (b.itemsize != Py_ssize_t(sizeof(T))) return false;
+        for (std::size_t i = 0; i < n; ++i) {
+            T v;
+            std::memcpy(&v, p + i * sizeof(T), sizeof(T));
+            out[i] = static_cast<double>(v);
+        }
+        return true;
+    };
+    const bool done = f == "d" ? copy(double())
+                      : f == "f" ? copy(float())
+                      : f == "i" ? copy(std::int32_t())
+                      : (f == "l" || f == "q") ? copy(std::int64_t())
+                                               : false;
+    if (!done) out.clear(); // another type (bool, unsigned, big endian, ...): element by element, as before
+    return done;
+}
+
 std::vector<double> doubles(const py::object& o, const char* what) {
     std::vector<double> out;
+    if (fromBuffer(o, out)) return out;
+    if (PyObject_CheckBuffer(o.ptr()) && PyObject_HasAttrString(o.ptr(), "tolist")) {
+        const py::object l = o.attr("tolist")(); // an array of another layout or type: its numbers as Python's
+        if (PyList_Check(l.ptr())) return doubles(l, what);
+    }
     const long n = py::len(o);
     out.reserve(static_cast<std::size_t>(n));
     for (long i = 0; i < n; ++i) {
@@ -434,12 +478,31 @@ py::dict meshInfo(const py::object& vertices, const py::object& triangles) {
     return d;
 }
 
+/// Other Python threads run while the core works on values already converted (it touches no Python object):
+/// the pieces of a split are generated side by side. An exception leaves the scope with the lock taken again.
+class WithoutGil {
+public:
+    WithoutGil() : state_(PyEval_SaveThread()) {}
+    ~WithoutGil() { PyEval_RestoreThread(state_); }
+    WithoutGil(const WithoutGil&) = delete;
+    WithoutGil& operator=(const WithoutGil&) = delete;
+
+private:
+    PyThreadState* state_;
+};
+
 /// @p contacts: points of the surface to reach, each 6 numbers (point, normal into the grain).
 py::dict generateMesh(const py::object& vertices, const py::object& triangles, const py::dict& opts,
                       const py::object& contacts) {
     mss::Settings st = settings(opts, mss::command::Generate);
     for (const mss::Plane& p : planes(contacts)) st.generate.contacts.push_back({p.point, p.normal});
-    return result(mss::generate(mesh(vertices, triangles), st.resolution, st.generate, st.supersample));
+    const mss::TriangleMesh m = mesh(vertices, triangles);
+    mss::Result r;
+    {
+        WithoutGil unlocked;
+        r = mss::generate(m, st.resolution, st.generate, st.supersample);
+    }
+    return result(r);
 }
 
 /// @p contacts: the points to reach, each 6 numbers (point, normal into the grain), as findContacts gives;
@@ -450,7 +513,13 @@ py::dict generateVoxels(const py::object& data, const py::object& shape, double 
     mss::GenerateOptions g = settings(opts, mss::command::Generate).generate;
     for (const mss::Plane& p : planes(contacts)) g.contacts.push_back({p.point, p.normal});
     if (!neighbours.is_none()) g.neighbours = voxels(neighbours, shape, voxelSize, origin);
-    return result(mss::generate(voxels(data, shape, voxelSize, origin), g));
+    const mss::VoxelGrid v = voxels(data, shape, voxelSize, origin);
+    mss::Result r;
+    {
+        WithoutGil unlocked;
+        r = mss::generate(v, g);
+    }
+    return result(r);
 }
 
 /// Every contact of a labelled volume of @p shape, read in slabs of @p layers along x: @p read(x0, x1) gives

@@ -13,9 +13,11 @@ stress sigma = F / d^2 of the largest opposing pair of contact forces against a 
 effect (McDowell and Bolton 1998; McDowell and Amon 2000: survival exp(-(d/d0)^3 (sigma/sigma0)^m)).
 """
 
+import concurrent.futures
 import inspect
 import json
 import math
+import os
 import warnings
 
 import numpy as np
@@ -26,6 +28,7 @@ from ._clumps import _Members, _Plan, _build, _offsetWarning, _yade, bodyOptions
 from ._generate import GENERATE_OPTIONS, _generate, generate
 from ._keywords import split as splitKeywords
 from ._records import grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
+from ._sources import _flat
 
 LOG_TAG = 'mss.breakage'
 _SPLIT_OWN = ('clumpId', 'plane', 'nSpheres', 'minSize', 'resolution')
@@ -255,24 +258,26 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     resolution = integer(func, 'resolution', resolution, 1)
     V, T = grainInWorld(func, O, clumpId)
     parent, mids, bodies, radii, x = _members(func, O, clumpId)
-    cut = _mss.splitMesh(V.ravel().tolist(), T.ravel().tolist(), list(point) + list(normal))
+    cut = _mss.splitMesh(_flat(V), _flat(T, np.int64), list(point) + list(normal))
     if not cut['above'] or not cut['below']:
         raise ValueError('%s: the plane misses the grain of clump %d (all of it lies on one side)'
                          % (func, parent.id))
     sides = [(_meshOf(d), 1.0) for d in cut['above']] + [(_meshOf(d), -1.0) for d in cut['below']]
-    props = [_mss.massMesh(m[0].ravel().tolist(), m[1].ravel().tolist(), []) for m, _ in sides]
+    props = [_mss.massMesh(_flat(m[0]), _flat(m[1], np.int64), []) for m, _ in sides]
     volumes = [p['volume'] for p in props]
     counts = _counts(func, nSpheres, len(mids), volumes, sum(volumes))
     near = _neighbours(O, mids)
     depthBefore = _depths(O, near, x, radii)
     reachBefore = float(depthBefore.max()) if len(near) else 0.0
     touching = _contactPoints(O, mids)
-    plans, grains = [], []
+    jobs = []
     for k, ((mesh, sign), pr) in enumerate(zip(sides, props)):
         n = 1 if _size(pr['volume']) < minSize else counts[k]
         mine = [list(q) + list(m) for q, m in touching if sign * (q - point).dot(normal) > 0]
         where = '%s: clump %d, piece %d (volume %g)' % (func, parent.id, k, pr['volume'])
-        pc, pr_, n, least = _pieceSpheres(where, mesh, pr, n, gen, resolution, (point, sign * normal), mine)
+        jobs.append((where, mesh, pr, n, gen, resolution, (point, sign * normal), mine))
+    plans, grains = [], []
+    for ((mesh, sign), pr), (pc, pr_, n, least) in zip(zip(sides, props), _piecesSpheres(jobs, gen.get('threads'))):
         # off the cut plane, whatever reached a contact point: pieces must not overlap each other
         pr_ = np.minimum(pr_, np.maximum(sign * (pc - point).dot(normal), 0.0))
         pc, pr_ = _within(O, near, depthBefore, pc, pr_, least)
@@ -318,6 +323,28 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     return made
 
 
+def _piecesSpheres(jobs, threads):
+    """:func:`_pieceSpheres` of every piece (its arguments in *jobs*), side by side on the free cores: a piece's
+    grid is small, so its generation runs on one thread (OmpScope::forGrid), and the binding lets the others
+    run meanwhile. *threads* = 1 (the generation's option) generates them one after another; the spheres are
+    the same either way."""
+    global _pool
+    if len(jobs) < 2 or threads == 1 or (os.cpu_count() or 1) < 2:
+        return [_pieceSpheres(*j) for j in jobs]
+    if _pool is None:  # kept: starting a thread waits for the interpreter's lock, up to its switch interval
+        _pool = concurrent.futures.ThreadPoolExecutor(max_workers=(os.cpu_count() or 2) - 1,
+                                                      thread_name_prefix='mssSplit')
+    rest = [_pool.submit(_pieceSpheres, *j) for j in jobs[1:]]
+    try:
+        first = _pieceSpheres(*jobs[0])  # this thread works too
+    finally:  # nothing of this split still runs when it returns or raises
+        concurrent.futures.wait(rest)
+    return [first] + [f.result() for f in rest]
+
+
+_pool = None
+
+
 def _pieceSpheres(where, mesh, props, n, gen, resolution, plane, contacts):
     """The spheres of one piece (*mesh*, its mass properties *props*), *n* of them, and the radius below which
     a neighbour may not shrink them: (centres, radii, n, least). One sphere sits at the centre of mass, so
@@ -325,7 +352,7 @@ def _pieceSpheres(where, mesh, props, n, gen, resolution, plane, contacts):
     asked for (no sphere of that size fits), which then breaks no more, as one below minSize."""
     centroid = np.array(props['centroid'])
     if n == 1:
-        room = _mss.insideClearance(mesh[0].ravel().tolist(), mesh[1].ravel().tolist(), list(centroid))
+        room = _mss.insideClearance(_flat(mesh[0]), _flat(mesh[1], np.int64), list(centroid))
         if room > 0:
             return centroid[None, :], np.array([room]), 1, 0.0
     given = dict(_GENERATE_DEFAULTS, **gen)

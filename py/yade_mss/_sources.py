@@ -13,8 +13,10 @@ from ._results import MassProperties
 _MESH_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'mesh')
 
 
-def _flat(a):
-    return np.ascontiguousarray(a, dtype=float).ravel().tolist()
+def _flat(a, dtype=float):
+    """A flat contiguous array of *a* for the binding, which reads its buffer at once (a list is read one
+    element at a time)."""
+    return np.ascontiguousarray(a, dtype=dtype).ravel()
 
 
 class _Mesh(object):
@@ -28,7 +30,7 @@ class _Mesh(object):
         self.name = name
 
     def args(self):
-        return _flat(self.vertices), self.triangles.ravel().tolist()
+        return _flat(self.vertices), _flat(self.triangles, np.int64)
 
 
 def _labelList(labels):

@@ -33,6 +33,27 @@ class Generate(unittest.TestCase):
         np.testing.assert_array_equal(a.centers, b.centers)
         np.testing.assert_array_equal(a.radii, b.radii)
 
+    def test_binding_reads_number_buffers_as_it_reads_lists(self):
+        # the binding copies a contiguous buffer of float64, float32, int32 or int64 at once; other layouts and
+        # types (strided, big endian, bool) are read element by element: every one gives what the list gives
+        from yade_mss import _mss
+        v, t = _mss.readMesh(FEMUR)
+        V, T = np.array(v), np.array(t, dtype=np.int64)
+        want = _mss.massMesh(list(v), list(t), [])
+        for vv, tt in ((V, T), (V, T.astype(np.int32)), (V.astype('>f8'), T.astype('>i8')),
+                       (np.repeat(V, 2)[::2], np.repeat(T, 2)[::2]), (V.reshape(-1, 3), T.reshape(-1, 3))):
+            got = _mss.massMesh(vv, tt, [])
+            self.assertEqual(got['volume'], want['volume'])
+            self.assertEqual(list(got['inertia']), list(want['inertia']))
+        f32 = _mss.massMesh(V.astype(np.float32), T, [])  # float32 values widened exactly
+        self.assertEqual(f32['volume'], _mss.massMesh(V.astype(np.float32).astype(float), T, [])['volume'])
+        with self.assertRaisesRegex(ValueError, 'indices must be integers'):
+            _mss.massMesh(V, T + 0.5, [])
+        with self.assertRaisesRegex(ValueError, 'triples'):
+            _mss.massMesh(V[:-1], T, [])
+        with self.assertRaisesRegex(ValueError, 'not a number'):
+            _mss.massMesh(np.array(['a'] * 9), T[:3], [])
+
     def test_voxel_array_keeps_world_positions(self):
         # a ball of radius 8 voxels centred at voxel (20, 18, 16), voxel size 0.5, origin (1, 2, 3)
         i, j, k = np.mgrid[0:40, 0:36, 0:32]

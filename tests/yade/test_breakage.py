@@ -147,6 +147,33 @@ class Split(Base):
         self.assertEqual(O.bodies[cid].material.label, label)
         self.assertEqual(breakageLog(), [])
 
+    def test_pieces_generated_side_by_side_are_those_made_one_after_another(self):
+        # the pieces are generated on threads of their own (the binding lets go of the interpreter's lock);
+        # threads=1 makes them one after another: the spheres must not depend on it, nor on which came first
+        plane = lambda cid: (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0))  # noqa: E731
+        got = []
+        for kw in ({}, {'threads': 1}, {}):
+            O.reset()
+            self.mat = O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5))
+            cid = self.femur()
+            made = mssSplit(cid, plane(cid), **kw)
+            got.append([sorted((tuple(vec(O.bodies[i].state.pos)), O.bodies[i].shape.radius) for i in ids)
+                        for c, ids in made])
+        self.assertGreaterEqual(len(got[0]), 2)
+        self.assertEqual(got[0], got[1])
+        self.assertEqual(got[0], got[2])
+
+    def test_pieces_that_fail_side_by_side_change_nothing(self):
+        # every piece's generation refuses a memory limit of a millionth of a byte, the first in this thread and
+        # the others on the pool's: the error names the piece, and the scene, the grain and the log are untouched
+        cid = self.femur()
+        n, label = len(O.bodies), O.bodies[cid].material.label
+        with self.assertRaisesRegex(ValueError, r'clump %d, piece 0 .*over the limit' % cid):
+            mssSplit(cid, (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0)), memoryLimit=1e-6)
+        self.assertEqual(len(O.bodies), n)
+        self.assertEqual(O.bodies[cid].material.label, label)
+        self.assertEqual(breakageLog(), [])
+
     def test_tiny_piece_becomes_one_sphere_at_its_centre_and_stops(self):
         cid = self.femur()
         lo = min(b.state.pos[2] - b.shape.radius for b in O.bodies if b is not None and b.isClumpMember)
