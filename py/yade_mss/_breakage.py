@@ -27,7 +27,7 @@ from ._args import integer, number, vector3
 from ._clumps import _Members, _Plan, _build, _offsetWarning, _yade, bodyOptions, matrix, stateTensor
 from ._generate import GENERATE_OPTIONS, _generate, generate
 from ._keywords import split as splitKeywords
-from ._records import grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
+from ._records import encodeGrain, grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
 from ._sources import _flat
 
 LOG_TAG = 'mss.breakage'
@@ -270,19 +270,21 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     depthBefore = _depths(O, near, x, radii)
     reachBefore = float(depthBefore.max()) if len(near) else 0.0
     touching = _contactPoints(O, mids)
-    jobs = []
-    for k, ((mesh, sign), pr) in enumerate(zip(sides, props)):
+    def piece(k):
+        (mesh, sign), pr = sides[k], props[k]
         n = 1 if _size(pr['volume']) < minSize else counts[k]
         mine = [list(q) + list(m) for q, m in touching if sign * (q - point).dot(normal) > 0]
         where = '%s: clump %d, piece %d (volume %g)' % (func, parent.id, k, pr['volume'])
-        jobs.append((where, mesh, pr, n, gen, resolution, (point, sign * normal), mine))
-    plans, grains = [], []
-    for ((mesh, sign), pr), (pc, pr_, n, least) in zip(zip(sides, props), _piecesSpheres(jobs, gen.get('threads'))):
+        pc, pr_, n, least = _pieceSpheres(where, mesh, pr, n, gen, resolution, (point, sign * normal), mine)
         # off the cut plane, whatever reached a contact point: pieces must not overlap each other
         pr_ = np.minimum(pr_, np.maximum(sign * (pc - point).dot(normal), 0.0))
         pc, pr_ = _within(O, near, depthBefore, pc, pr_, least)
-        plans.append(_Plan.of(pc, pr_, pr['volume'], np.array(pr['centroid']), np.reshape(pr['inertia'], (3, 3))))
-        grains.append(mesh if n > 1 else None)
+        # the grain as its record holds it (in member 0's frame), encoded here: zlib lets the others run
+        grain = encodeGrain(mesh[0] - pc[0], mesh[1]) if n > 1 and len(pc) > 1 else None
+        return _Plan.of(pc, pr_, pr['volume'], np.array(pr['centroid']), np.reshape(pr['inertia'], (3, 3))), grain
+
+    done = _sideBySide([lambda k=k: piece(k) for k in range(len(sides))], gen.get('threads'))
+    plans, grains = [p for p, g in done], [g for p, g in done]
     st = parent.state
     c = np.array([st.pos[0], st.pos[1], st.pos[2]])
     v = np.array([st.vel[0], st.vel[1], st.vel[2]])
@@ -323,20 +325,20 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
     return made
 
 
-def _piecesSpheres(jobs, threads):
-    """:func:`_pieceSpheres` of every piece (its arguments in *jobs*), side by side on the free cores: a piece's
-    grid is small, so its generation runs on one thread (OmpScope::forGrid), and the binding lets the others
-    run meanwhile. *threads* = 1 (the generation's option) generates them one after another; the spheres are
-    the same either way."""
+def _sideBySide(calls, threads):
+    """The results of *calls* (the pieces of a split), run side by side on the cores: a piece's grid is small, so
+    its generation runs on one thread (OmpScope::forGrid), and the binding (and zlib) let the others run
+    meanwhile. *threads* = 1 (the generation's option) runs them one after another; the spheres are the same
+    either way."""
     global _pool
-    if len(jobs) < 2 or threads == 1 or (os.cpu_count() or 1) < 2:
-        return [_pieceSpheres(*j) for j in jobs]
+    if len(calls) < 2 or threads == 1 or (os.cpu_count() or 1) < 2:
+        return [c() for c in calls]
     if _pool is None:  # kept: starting a thread waits for the interpreter's lock, up to its switch interval
         _pool = concurrent.futures.ThreadPoolExecutor(max_workers=(os.cpu_count() or 2) - 1,
                                                       thread_name_prefix='mssSplit')
-    rest = [_pool.submit(_pieceSpheres, *j) for j in jobs[1:]]
+    rest = [_pool.submit(c) for c in calls[1:]]
     try:
-        first = _pieceSpheres(*jobs[0])  # this thread works too
+        first = calls[0]()  # this thread works too
     finally:  # nothing of this split still runs when it returns or raises
         concurrent.futures.wait(rest)
     return [first] + [f.result() for f in rest]

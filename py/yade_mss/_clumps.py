@@ -375,7 +375,8 @@ def _checkMany(func, cids, states, M, C, moments):
 def _build(func, plans, members, warn=None, grains=None):
     """Appends one clump per plan, members made by *members* (:class:`_Members`); nothing is left in O.bodies
     if anything fails. *grains*: per plan, the grain's mesh (world vertices (n, 3), triangles) for a clump that
-    can break (:func:`yade_mss.mssSplit`), or None. :return: [(clumpId, [memberIds])]"""
+    can break (:func:`yade_mss.mssSplit`) or that mesh already encoded in the record's frame
+    (:func:`yade_mss._records.encodeGrain`), or None. :return: [(clumpId, [memberIds])]"""
     utils, O, me = _yade()
     made = []
     try:
@@ -396,9 +397,10 @@ def _build(func, plans, members, warn=None, grains=None):
         from yade.wrapper import Material
         for k, ((cid, ids), text) in enumerate(zip(made, texts)):
             g = grains[k] if grains is not None else None
-            # in the record's frame: member 0's position, member 1's orientation (the identity: YADE's)
-            attach(O.bodies[cid], text, Material,
-                   encodeGrain(g[0] - plans[k].centers[0], g[1]) if g is not None and len(ids) > 1 else '')
+            # in the record's frame: member 0's position, member 1's orientation (the identity: YADE's); a text
+            # is a grain encoded so already
+            attach(O.bodies[cid], text, Material, '' if g is None or len(ids) < 2 else g if isinstance(g, str)
+                   else encodeGrain(g[0] - plans[k].centers[0], g[1]))
     except Exception:
         for cid, ids in made:
             O.bodies.erase(cid, True)
