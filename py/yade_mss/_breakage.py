@@ -118,25 +118,38 @@ def _neighbours(O, ids):
     rad = np.array([O.bodies[i].shape.radius for i in ids])
     c = x.mean(axis=0)
     reach = float(np.max(np.linalg.norm(x - c, axis=1) + rad))
-    H = np.array([[O.cell.hSize[i, j] for j in range(3)] for i in range(3)]) if O.periodic else None
-    out = []
+    walls, found, pos, size = [], [], [], []
+    # one pass of the fewest calls into YADE per body (each is a Boost call, ~0.3 us), the geometry after it
+    # in numpy: 5200 bodies took 23 ms with numpy per body
     for b in O.bodies:
-        if b is None or b.id in mine or b.isClump:
+        if b is None or b.isClump:
             continue
         sh = b.shape
-        if isinstance(sh, Wall):
-            out.append((b.id, np.zeros(3)))
-            continue
         if isinstance(sh, Sphere):
-            size = sh.radius
+            s = sh.radius
+        elif isinstance(sh, Wall):
+            walls.append(b.id)
+            continue
         elif isinstance(sh, Box):
-            size = float(np.linalg.norm([sh.extents[0], sh.extents[1], sh.extents[2]]))
+            e = sh.extents
+            s = math.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
         else:
             continue
-        d = np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]]) - c
-        shift = -H.dot(np.round(np.linalg.solve(H, d))) if H is not None else np.zeros(3)
-        if np.linalg.norm(d + shift) < 1.5 * reach + size:
-            out.append((b.id, shift))
+        p = b.state.pos
+        found.append(b.id)
+        pos.append((p[0], p[1], p[2]))
+        size.append(s)
+    out = [(i, np.zeros(3)) for i in walls if i not in mine]
+    if not found:
+        return out
+    d = np.array(pos) - c
+    if O.periodic:  # the nearest image
+        H = np.array([[O.cell.hSize[i, j] for j in range(3)] for i in range(3)])
+        shift = -np.round(np.linalg.solve(H, d.T)).T.dot(H.T)
+    else:
+        shift = np.zeros_like(d)
+    close = np.linalg.norm(d + shift, axis=1) < 1.5 * reach + np.array(size)
+    out += [(found[k], shift[k]) for k in np.flatnonzero(close) if found[k] not in mine]
     return out
 
 

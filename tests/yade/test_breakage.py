@@ -258,6 +258,44 @@ class Split(Base):
         O.pause()
         self.assertFalse(stuck, 'the scene did not step after the split')
 
+    def test_neighbours_found_at_once_match_a_body_by_body_search(self):
+        # the neighbours of a clump are found in one pass over the bodies, the geometry in numpy: against a
+        # search body by body (numpy per body, as it was first written) in a sheared periodic cell with a clump
+        # near its corner, loose spheres, a box and a wall
+        from yade_mss._breakage import _neighbours
+        O.periodic = True
+        O.cell.hSize = me.Matrix3(300, 40, 0, 0, 280, 30, 0, 0, 320)
+        cid = self.femur()
+        mids = sorted(O.bodies[cid].shape.members)
+        rng = np.random.default_rng(5)
+        for p in rng.uniform(-100, 400, size=(300, 3)):
+            O.bodies.append(utils.sphere(tuple(p), float(rng.uniform(2, 20)), material=self.mat))
+        O.bodies.append(utils.box((150, 200, -80), (30, 10, 5), material=self.mat))
+        O.bodies.append(utils.wall(-50, axis=2, material=self.mat))
+        H = np.array([[O.cell.hSize[i, j] for j in range(3)] for i in range(3)])
+        x = np.array([vec(O.bodies[i].state.pos) for i in mids])
+        rad = np.array([O.bodies[i].shape.radius for i in mids])
+        c = x.mean(axis=0)
+        reach = float(np.max(np.linalg.norm(x - c, axis=1) + rad))
+        want = {}
+        for b in O.bodies:
+            if b is None or b.id in mids or b.isClump:
+                continue
+            if isinstance(b.shape, Wall):
+                want[b.id] = np.zeros(3)
+                continue
+            size = b.shape.radius if isinstance(b.shape, Sphere) else np.linalg.norm(vec(b.shape.extents))
+            d = vec(b.state.pos) - c
+            shift = -H.dot(np.round(np.linalg.solve(H, d)))
+            if np.linalg.norm(d + shift) < 1.5 * reach + size:
+                want[b.id] = shift
+        got = dict(_neighbours(O, mids))
+        self.assertGreater(len(want), 10)
+        self.assertTrue(any(np.any(v != 0) for v in want.values()))  # images across the cell among them
+        self.assertEqual(sorted(got), sorted(want))
+        for i in want:
+            self.assertLess(np.abs(got[i] - want[i]).max(), 1e-9)
+
     def test_spheres_shrunk_for_a_neighbour_respect_rmin(self):
         """_within: a sphere that would reach deeper into a neighbour than the parent did is shrunk; one shrunk
         below rMin (or a quarter of its radius) is dropped, since the smallest sphere sets the time step."""
