@@ -466,8 +466,10 @@ def MssBreakage(iterPeriod=100, sigma0=None, modulus=3.0, d0=None, seed=0, crite
 def contactsByClump(O):
     """The contact forces on each clump: {clump id: [(contact point, force on the clump)]}, numpy arrays.
     Forces are YADE's normalForce + shearForce, which act on id2 (and the opposite on id1)."""
-    out = {}
+    rows = {}
     bodies = O.bodies
+    # the fewest calls into YADE per contact, numbers gathered as floats and made arrays once per clump (numpy per
+    # contact was most of a check: 13 us a contact)
     for i in O.interactions:
         if not i.isReal:
             continue
@@ -476,12 +478,17 @@ def contactsByClump(O):
             f = ph.normalForce + ph.shearForce
         except AttributeError:
             continue
-        point = i.geom.contactPoint
+        p = i.geom.contactPoint
+        row = (p[0], p[1], p[2], f[0], f[1], f[2])
         for j, sign in ((i.id1, -1.0), (i.id2, 1.0)):
             b = bodies[j]
             if b.isClumpMember:
-                out.setdefault(b.clumpId, []).append((np.array([point[0], point[1], point[2]]),
-                                                      sign * np.array([f[0], f[1], f[2]])))
+                rows.setdefault(b.clumpId, []).append((sign, row))
+    out = {}
+    for cid, rs in rows.items():
+        a = np.array([r for s, r in rs])
+        a[:, 3:] *= np.array([s for s, r in rs])[:, None]
+        out[cid] = [(a[k, :3], a[k, 3:]) for k in range(len(a))]
     return out
 
 
