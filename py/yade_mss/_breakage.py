@@ -346,10 +346,12 @@ def _sideBySide(calls, threads):
     global _pool
     if len(calls) < 2 or threads == 1 or (os.cpu_count() or 1) < 2:
         return [c() for c in calls]
-    if _pool is None:  # kept: starting a thread waits for the interpreter's lock, up to its switch interval
-        _pool = concurrent.futures.ThreadPoolExecutor(max_workers=(os.cpu_count() or 2) - 1,
-                                                      thread_name_prefix='mssSplit')
-    rest = [_pool.submit(c) for c in calls[1:]]
+    # kept: starting a thread waits for the interpreter's lock, up to its switch interval; a forked process has
+    # none of its parent's threads, so it starts its own
+    if _pool is None or _pool[0] != os.getpid():
+        _pool = (os.getpid(), concurrent.futures.ThreadPoolExecutor(max_workers=(os.cpu_count() or 2) - 1,
+                                                                    thread_name_prefix='mssSplit'))
+    rest = [_pool[1].submit(c) for c in calls[1:]]
     try:
         first = calls[0]()  # this thread works too
     finally:  # nothing of this split still runs when it returns or raises
@@ -357,7 +359,7 @@ def _sideBySide(calls, threads):
     return [first] + [f.result() for f in rest]
 
 
-_pool = None
+_pool = None  # (the process it was started in, the pool)
 
 
 def _pieceSpheres(where, mesh, props, n, gen, resolution, plane, contacts):
