@@ -79,7 +79,7 @@ void run(const uint8_t* data, size_t size) {
 }
 #elif defined(MSS_FUZZ_GENERATE)
 // bytes: nx, ny, nz (3..14), sphere budget, flags (paper, clip, symmetry, a plane through the centre whose
-// normal the high bits pick), then the voxels' bits
+// normal the next bits pick, the joint polish), then the voxels' bits
 void run(const uint8_t* data, size_t size) {
     if (size < 5) return;
     mss::GridSpec g;
@@ -96,6 +96,7 @@ void run(const uint8_t* data, size_t size) {
     o.clip = (data[4] & 2) != 0;
     o.keepSymmetry = (data[4] & 4) != 0;
     o.maxIterations = 5;
+    o.polish = (data[4] & 128) != 0;
     if (data[4] & 8) {
         mss::Plane p;
         p.point = g.toWorld(0.5 * mss::Vec3(g.dims[0] - 1, g.dims[1] - 1, g.dims[2] - 1));
