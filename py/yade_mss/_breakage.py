@@ -250,7 +250,8 @@ def mssSplit(clumpId, plane, nSpheres=None, minSize=0.0, resolution=50, **option
         again
     :param int resolution: generation grid of each piece, voxels along its shortest bounding-box edge
     :param options: :func:`generate` keywords (method, rMin, supersample, ...) and ``utils.sphere`` ones for the
-        members (default: the parent's material and mask; colours random as for any clump)
+        members (default: the parent's material and mask; colours random as for any clump). The pieces are
+        generated side by side, one per core; ``threads=1`` generates them one after another (the same spheres)
     :return: [(clumpId, [memberIds])], one per piece; O.bodies is unchanged if anything fails
 
     A piece's spheres reach no deeper into each neighbour (Sphere, Wall and Box bodies near the grain) than
