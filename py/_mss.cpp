@@ -22,9 +22,9 @@ namespace py = boost::python;
 
 namespace {
 
-/// A contiguous buffer of numbers (a numpy array, bytes of doubles): its values as doubles, or false where
-/// @p o is none (a list: read element by element). Converting a mesh's 40k numbers one Python object at a time
-/// took 4-5 ms, several times per split of a grain.
+/// The values of @p o as doubles when it is a C-contiguous buffer of native float64, float32, int32 or int64
+/// (a numpy array); false otherwise (a list, bytes, another layout or type), and @p out is left empty.
+/// Converting a mesh's 40k numbers one Python object at a time took 4-5 ms, several times per split.
 bool fromBuffer(const py::object& o, std::vector<double>& out) {
     if (!PyObject_CheckBuffer(o.ptr()) || PyBytes_Check(o.ptr()) || PyByteArray_Check(o.ptr())) return false;
     Py_buffer b;
@@ -51,9 +51,9 @@ bool fromBuffer(const py::object& o, std::vector<double>& out) {
         }
         return true;
     };
-    const bool done = f == "d" ? copy(double())
-                      : f == "f" ? copy(float())
-                      : f == "i" ? copy(std::int32_t())
+    const bool done = f == "d"                 ? copy(double())
+                      : f == "f"               ? copy(float())
+                      : f == "i"               ? copy(std::int32_t())
                       : (f == "l" || f == "q") ? copy(std::int64_t())
                                                : false;
     if (!done) out.clear(); // another type (bool, unsigned, big endian, ...): element by element, as before
@@ -64,7 +64,8 @@ std::vector<double> doubles(const py::object& o, const char* what) {
     std::vector<double> out;
     if (fromBuffer(o, out)) return out;
     if (PyObject_CheckBuffer(o.ptr()) && PyObject_HasAttrString(o.ptr(), "tolist")) {
-        const py::object l = o.attr("tolist")(); // an array of another layout or type: its numbers as Python's
+        const py::object l =
+            o.attr("tolist")(); // an array of another layout or type: its numbers as Python's
         if (PyList_Check(l.ptr())) return doubles(l, what);
     }
     const long n = py::len(o);

@@ -224,6 +224,11 @@ class _Plan(object):
     __slots__ = ('centers', 'radii', 'volume', 'centroid', 'inertia', 'moments', 'm', 'j', 'V', 'offset', 'frame',
                  'base', 'parts')
 
+    def __init__(self):
+        # frame: (c0, s, R, C) of a placement; base: the plan it was placed from; parts: the record parts a base
+        # plan keeps per placement (a placed plan keeps none)
+        self.frame = self.base = self.parts = None
+
     @staticmethod
     def of(centers, radii, volume, centroid, inertia):
         p = _Plan()
@@ -234,7 +239,6 @@ class _Plan(object):
         p.volume, p.centroid, p.offset = float(volume), L.centroid, L.offset
         p.moments = np.linalg.eigvalsh(p.inertia)
         p.m, p.j, p.V = L.m, L.j, L.V
-        p.frame = p.base = None
         p.parts = {}
         return p
 
@@ -249,11 +253,10 @@ class _Plan(object):
         """Where this plan's record parts (:func:`yade_mss._records.recordParts`) are kept: (the plan it was placed
         from, key), or None. Placements with the same turn and scale share them; the frame is the identity for two
         members or more (member 1 wears YADE's), member 0's own axes for one."""
-        base = getattr(self, 'base', None)
-        if base is None or getattr(base, 'parts', None) is None or len(self.radii) < 2:
+        if self.base is None or self.base.parts is None or len(self.radii) < 2:
             return None
         c0, s, R, C = self.frame
-        return base, (float(s), np.asarray(R, dtype=float).tobytes())
+        return self.base, (float(s), np.asarray(R, dtype=float).tobytes())
 
     def placed(self, c0, s, R, C):
         """This plan moved so that its point *c0* goes to *C*, turned by *R* and scaled by *s* about it: the

@@ -34,8 +34,8 @@ class Generate(unittest.TestCase):
         np.testing.assert_array_equal(a.radii, b.radii)
 
     def test_binding_reads_number_buffers_as_it_reads_lists(self):
-        # the binding copies a contiguous buffer of float64, float32, int32 or int64 at once; other layouts and
-        # types (strided, big endian, bool) are read element by element: every one gives what the list gives
+        # the binding copies a contiguous buffer of float64, float32, int32 or int64 at once; other layouts
+        # (strided, big endian) go through tolist(): every one gives what the list gives
         from yade_mss import _mss
         v, t = _mss.readMesh(FEMUR)
         V, T = np.array(v), np.array(t, dtype=np.int64)

@@ -150,13 +150,16 @@ class Split(Base):
     def test_pieces_generated_side_by_side_are_those_made_one_after_another(self):
         # the pieces are generated on threads of their own (the binding lets go of the interpreter's lock);
         # threads=1 makes them one after another: the spheres must not depend on it, nor on which came first
+        from yade_mss import _breakage
         plane = lambda cid: (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0))  # noqa: E731
         got = []
         for kw in ({}, {'threads': 1}, {}):
             O.reset()
             self.mat = O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5))
             cid = self.femur()
+            _breakage._pool = None
             made = mssSplit(cid, plane(cid), **kw)
+            self.assertEqual(_breakage._pool is None, kw == {'threads': 1})  # the pool only side by side
             got.append([sorted((tuple(vec(O.bodies[i].state.pos)), O.bodies[i].shape.radius) for i in ids)
                         for c, ids in made])
         self.assertGreaterEqual(len(got[0]), 2)
@@ -164,12 +167,31 @@ class Split(Base):
         self.assertEqual(got[0], got[2])
 
     def test_pieces_that_fail_side_by_side_change_nothing(self):
-        # every piece's generation refuses a memory limit of a millionth of a byte, the first in this thread and
+        # every piece's generation refuses a memory limit of a millionth of a GiB, the first in this thread and
         # the others on the pool's: the error names the piece, and the scene, the grain and the log are untouched
         cid = self.femur()
         n, label = len(O.bodies), O.bodies[cid].material.label
         with self.assertRaisesRegex(ValueError, r'clump %d, piece 0 .*over the limit' % cid):
             mssSplit(cid, (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0)), memoryLimit=1e-6)
+        self.assertEqual(len(O.bodies), n)
+        self.assertEqual(O.bodies[cid].material.label, label)
+        self.assertEqual(breakageLog(), [])
+
+    def test_a_piece_that_fails_on_the_pool_changes_nothing(self):
+        # a memory limit between the two pieces' grids: piece 0 (this thread) is generated, piece 1 (on the pool)
+        # is refused; the error is piece 1's and the scene, the grain and the log are untouched
+        import re
+        cid = self.femur()
+        point = vec(O.bodies[cid].state.pos)
+        need = []
+        for normal in ((0.3, -0.2, 1.0), (-0.3, 0.2, -1.0)):  # each side as piece 0 in turn: its grid's need
+            with self.assertRaises(ValueError) as e:
+                mssSplit(cid, (point, normal), memoryLimit=1e-6, threads=1)
+            need.append(float(re.search(r'would need ([0-9.e+-]+) GiB', str(e.exception)).group(1)))
+        normal = (0.3, -0.2, 1.0) if need[0] < need[1] else (-0.3, 0.2, -1.0)
+        n, label = len(O.bodies), O.bodies[cid].material.label
+        with self.assertRaisesRegex(ValueError, r'clump %d, piece 1 .*over the limit' % cid):
+            mssSplit(cid, (point, normal), memoryLimit=math.sqrt(need[0] * need[1]))  # GiB
         self.assertEqual(len(O.bodies), n)
         self.assertEqual(O.bodies[cid].material.label, label)
         self.assertEqual(breakageLog(), [])

@@ -215,8 +215,9 @@ PolishReport polish(Selection& s) {
     // resolution 103, smallest radius 7.6 voxels: mismatch 30072 -> 29137 on the grid itself, 29258
     // coarsened by 2, in 0.26x the time; bunny 30: 55164 / 55086; a factor 3 there lost most of the
     // femur's gain, 29752). The exact mismatch that decides is always the generation grid's. The factor
-    // follows the tenth smallest radius in ten, not the smallest: one tip sphere of 1.9 voxels kept the
-    // ellipsoid 2:1:1 at 70 spheres (the others 30-52 voxels) on the full grid, at 8x the generation's time.
+    // follows the radius a tenth of the way up the sorted radii, not the smallest: one tip sphere of 1.9
+    // voxels kept the ellipsoid 2:1:1 at 70 spheres (the others 30-52 voxels) on the full grid, at 8x the
+    // generation's time.
     std::vector<double> radii;
     for (const Orbit& o : s.chosen) radii.push_back(o.r);
     std::nth_element(radii.begin(), radii.begin() + std::ptrdiff_t(radii.size() / 10), radii.end());
