@@ -93,13 +93,18 @@ VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& p
     for (const Plane& p : planes) validatePlane(p, "cutVoxelsByPlanes");
     VoxelGrid out = volume;
     const auto& d = volume.spec.dims;
+    // planeDistance's arithmetic with each unit normal computed once (it was most of the cut's cost: a
+    // square root and a division per solid voxel), so the same voxels are cut
+    std::vector<Plane> unit = planes;
+    for (Plane& p : unit) p.normal = p.normal.normalized();
+#pragma omp parallel for schedule(static)
     for (int k = 0; k < d[2]; ++k)
         for (int j = 0; j < d[1]; ++j)
             for (int i = 0; i < d[0]; ++i) {
                 if (!out(i, j, k)) continue;
                 const Vec3 c = volume.spec.voxelCenter(i, j, k);
-                for (const Plane& p : planes)
-                    if (planeDistance(p, c) < 0) out(i, j, k) = 0;
+                for (const Plane& p : unit)
+                    if ((c - p.point).dot(p.normal) < 0) out(i, j, k) = 0;
             }
     return out;
 }

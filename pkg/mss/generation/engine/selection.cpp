@@ -106,7 +106,8 @@ void Selection::warmStart(const std::vector<Orbit>& start) {
 }
 
 void Selection::takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stamp,
-                          std::vector<long long>& batch, std::vector<double>& gains) {
+                          std::vector<std::size_t>& lensStamp, std::vector<long long>& batch,
+                          std::vector<double>& gains) {
     // The batch: the stale entries from the top, as the serial rule takes them (a candidate's constraint
     // looked up when it is first reached; one that leaves no radius of at least rMin dropped). The
     // constraints and the gains are computed together in one parallel loop, on the assumption that
@@ -118,6 +119,16 @@ void Selection::takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stam
     while (!heap.empty() && batch.size() < kBatch) {
         const std::size_t p = static_cast<std::size_t>(-heap.top().second);
         if (stamp[p] == placed) break;
+        if (lensStamp[p] != placed) { // its key lowered to the lens bound first, where that is lower
+            lensStamp[p] = placed;
+            const double bound = lensBound(cands[p]);
+            if (bound < heap.top().first) {
+                const auto entry = heap.top();
+                heap.pop();
+                heap.push({bound, entry.second});
+                continue;
+            }
+        }
         const bool tooMany = sym.images(cands[p]).size() > std::size_t(t.budget) - placed;
         if (tooMany && !allowBreak) {
             stopper = p;
@@ -192,11 +203,36 @@ void Selection::takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stam
     }
 }
 
+double Selection::lensBound(const Orbit& o) const {
+    constexpr double kBall = 4.18879; // 4 pi / 3
+    constexpr double kPi = 3.14159265358979323846;
+    const double a = o.r;
+    const double whole = kBall * a * a * a + 10.0; // the first key: the ball's volume, a little widened
+    if (sym.images(o).size() != 1) return whole;
+    double lens = 0.0;
+    for (const Orbit& c : chosen)
+        for (const Ball& b : sym.images(c)) {
+            const double d = (b.c - o.c).norm(), r = b.r;
+            if (d >= a + r) continue;
+            double v;
+            if (d <= std::abs(a - r)) { // one inside the other
+                const double m = std::min(a, r);
+                v = kBall * m * m * m;
+            } else { // the lens of two spheres
+                const double t = a + r - d;
+                v = kPi * t * t * (d * d + 2.0 * d * (a + r) - 3.0 * (a - r) * (a - r)) / (12.0 * d);
+            }
+            lens = std::max(lens, v);
+        }
+    // 0.9: the voxels of a lens are its volume only to within its surface's rounding
+    return whole - 0.9 * lens;
+}
+
 void Selection::greedy() {
     // Stale entries are re-evaluated in batches of kBatch, in parallel; the batch size does not depend on
     // the thread count, so neither does the result.
     GreedyHeap heap;
-    std::vector<std::size_t> stamp(cands.size(), SIZE_MAX);
+    std::vector<std::size_t> stamp(cands.size(), SIZE_MAX), lensStamp(cands.size(), SIZE_MAX);
     for (std::size_t q = 0; q < cands.size(); ++q)
         if (!used[q]) heap.push({key[q], -static_cast<long long>(q)});
     std::vector<long long> batch;
@@ -219,7 +255,7 @@ void Selection::greedy() {
             used[q] = 1;
             continue;
         }
-        takeBatch(heap, stamp, batch, gains);
+        takeBatch(heap, stamp, lensStamp, batch, gains);
         evaluations += batch.size();
         for (std::size_t e = 0; e < batch.size(); ++e) {
             stamp[std::size_t(-batch[e])] = placed;
