@@ -27,6 +27,7 @@ from ._args import integer, number, vector3
 from ._clumps import _Members, _Plan, _build, _offsetWarning, _yade, bodyOptions, matrix, stateTensor
 from ._generate import GENERATE_OPTIONS, _generate, generate
 from ._keywords import split as splitKeywords
+from ._loads import memberLoads
 from ._records import encodeGrain, grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
 from ._sources import _flat
 
@@ -292,6 +293,7 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
         pc, pr_, n, least = _pieceSpheres(where, mesh, pr, n, gen, resolution, (point, sign * normal), mine)
         # off the cut plane, whatever reached a contact point: pieces must not overlap each other
         pr_ = np.minimum(pr_, np.maximum(sign * (pc - point).dot(normal), 0.0))
+        pc, pr_ = _holdCentroid(mesh, pr, pc, pr_)
         pc, pr_ = _within(O, near, depthBefore, pc, pr_, least)
         # the grain as its record holds it (in member 0's frame), encoded here: zlib lets the others run
         grain = encodeGrain(mesh[0] - pc[0], mesh[1]) if n > 1 and len(pc) > 1 else None
@@ -361,6 +363,25 @@ def _sideBySide(calls, threads):
 
 
 _pool = None  # (the process it was started in, the pool)
+
+
+def _holdCentroid(mesh, props, c, r):
+    """The spheres (c, r) of a piece, with one more at its centre of mass where that lies outside the hull of
+    their centres and inside the piece. There the loads that give YADE the exact centre mix large positive and
+    negative masses, and YADE's sums, which it takes about the world's origin, lose their precision (a sliver of
+    the femur, 4 spheres: masses from -384 to +217 times the piece's, principal moments 1% off). A sphere at the
+    centre, reaching the nearest surface point, takes the mass there."""
+    if len(r) < 2:
+        return c, r
+    volume = float(props['volume'])
+    loads = memberLoads(c, r, volume, props['centroid'], np.reshape(props['inertia'], (3, 3)))
+    if np.abs(loads.m).sum() <= 1.5 * volume:
+        return c, r
+    centroid = np.array(props['centroid'], dtype=float)
+    room = _mss.insideClearance(_flat(mesh[0]), _flat(mesh[1], np.int64), list(centroid))
+    if not room > 0:  # a bent piece: its centre of mass is outside it
+        return c, r
+    return np.vstack([c, centroid[None, :]]), np.append(r, room)
 
 
 def _pieceSpheres(where, mesh, props, n, gen, resolution, plane, contacts):

@@ -210,6 +210,38 @@ class Split(Base):
         with self.assertRaisesRegex(ValueError, 'carries no grain'):
             mssSplit(small[0], (vec(O.bodies[small[0]].state.pos), (1, 0, 0)))
 
+    def test_a_centre_of_mass_off_the_spheres_hull_gets_a_sphere_and_yade_takes_it_exactly(self):
+        """A piece whose centre of mass lies outside the hull of its sphere centres (a sliver of the femur in one
+        split: 4 spheres): the loads that give YADE that centre mix large positive and negative masses, and
+        YADE's sums about the world's origin, far for the piece's size, came out 1% off (the split failed its own
+        check). Here a cube of edge 2e-3 at ~(300, -250, 280) with four spheres crowded in one corner: without
+        the sphere at the centre of mass YADE's clump is off; with it, exact. A set around its centre is kept."""
+        from yade_mss import _mss
+        from yade_mss._breakage import _holdCentroid
+        from yade_mss._clumps import _Members, _Plan, _build
+        e, at = 2e-3, np.array([300.0, -250.0, 280.0])
+        V = at + e * np.array([[i, j, k] for k in (0, 1) for j in (0, 1) for i in (0, 1)], dtype=float)
+        T = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7],
+                      [0, 4, 2], [2, 4, 6], [1, 3, 5], [3, 7, 5]])
+        props = _mss.massMesh(V.ravel(), T.ravel().astype(np.int64), [])
+        C = np.array(props['centroid'])
+        c = at + e * np.array([[0.2, 0.2, 0.2], [0.203, 0.2, 0.2], [0.2, 0.203, 0.2], [0.2, 0.2, 0.203]])
+        r = np.full(4, 0.15 * e)
+        members = _Members('test', dict(material=self.mat))
+        with self.assertRaisesRegex(RuntimeError, 'did not take the requested mass properties'):
+            _build('test', [_Plan.of(c, r, props['volume'], C, props['inertia'])], members)
+        c2, r2 = _holdCentroid((V, T), props, c, r)
+        self.assertEqual(len(r2), 5)
+        np.testing.assert_allclose(c2[-1], C, rtol=0, atol=1e-12)
+        self.assertAlmostEqual(r2[-1], 0.5 * e, delta=1e-9 * e)  # to the nearest face
+        (cid, ids), = _build('test', [_Plan.of(c2, r2, props['volume'], C, props['inertia'])], members)
+        s = O.bodies[cid].state
+        self.assertLess(abs(s.mass - RHO * props['volume']), 1e-12 * s.mass)
+        self.assertLess(np.linalg.norm(vec(s.pos) - C), 1e-9 * np.linalg.norm(C))
+        around = C + e * np.array([[0.2, 0, 0], [-0.2, 0.1, 0], [0, -0.2, 0.1], [0, 0.1, -0.2]])
+        same, rs = _holdCentroid((V, T), props, around, r)
+        self.assertEqual(len(rs), 4)
+
     def test_piece_too_thin_for_rmin_becomes_one_sphere(self):
         """The ellipsoid's tip cut 0.4 thick: no sphere of rMin 0.5 fits in it (generation refuses), so it is
         one sphere at its centre of mass, as below minSize; the rest keeps its spheres of at least rMin."""
