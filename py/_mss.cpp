@@ -637,7 +637,11 @@ py::dict splitMesh(const py::object& vertices, const py::object& triangles, cons
     py::dict d;
     for (const auto& [name, side] : {std::pair{"above", &split.above}, std::pair{"below", &split.below}}) {
         py::list l;
-        for (const mss::TriangleMesh& m : *side) l.append(meshBytes(m));
+        for (const mss::TriangleMesh& m : *side) { // each piece with its mass properties (massMesh's)
+            py::dict piece = meshBytes(m);
+            piece["mass"] = mass(mss::meshMassProperties(m));
+            l.append(piece);
+        }
         d[name] = l;
     }
     return d;
@@ -895,7 +899,8 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("unionSurface", unionSurface, (py::arg("centers"), py::arg("radii"), py::arg("options")),
             "The boundary of the spheres' union as a closed mesh (mss surface).");
     py::def("splitMesh", splitMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("plane")),
-            "The pieces of a closed mesh on either side of a plane, each closed: {above, below}.");
+            "The pieces of a closed mesh on either side of a plane, each closed: {above, below}, lists of "
+            "{vertices, triangles, mass} (mass: as massMesh gives it).");
     py::def("insideClearance", insideClearance, (py::arg("vertices"), py::arg("triangles"), py::arg("point")),
             "Distance from a point inside a closed mesh to its surface; 0 outside.");
     py::def("writeMesh", writeMesh, (py::arg("vertices"), py::arg("triangles"), py::arg("path")),

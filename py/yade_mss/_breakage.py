@@ -278,7 +278,7 @@ def _split(func, clumpId, plane, nSpheres, minSize, resolution, options, info):
         raise ValueError('%s: the plane misses the grain of clump %d (all of it lies on one side)'
                          % (func, parent.id))
     sides = [(_meshOf(d), 1.0) for d in cut['above']] + [(_meshOf(d), -1.0) for d in cut['below']]
-    props = [_mss.massMesh(_flat(m[0]), _flat(m[1], np.int64), []) for m, _ in sides]
+    props = [d['mass'] for d in cut['above'] + cut['below']]
     volumes = [p['volume'] for p in props]
     counts = _counts(func, nSpheres, len(mids), volumes, sum(volumes))
     near = _neighbours(O, mids)
