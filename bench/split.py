@@ -1,7 +1,7 @@
 """What a split costs inside a YADE scene (mssSplit: cut, generate each piece from its in-memory mesh, build the
 clumps): breakable clumps of the ellipsoid and the femur cut through their centre of mass by planes of random
 normals (fixed seed), at piece resolutions 30, 40, 50 and 60 (the target: 20 ms a piece at the default
-resolution, 50); per piece (the pieces are generated side by side, one per core): each plane's split is made
+resolution, 40); per piece (the pieces are generated side by side, one per core): each plane's split is made
 REPEATS times on a fresh scene and its fastest kept (what it costs on an idle machine: the same split on this
 shared machine varies by up to 2x), then the median, least and most over PLANES planes. Beside it, the in-process generation
 alone at the same grids (one piece, best of 5), with and without the cut plane as a constraint. Prints a table
