@@ -69,6 +69,22 @@ def meta():
             % (os.cpu_count(), model), open('/proc/loadavg').read().split()[0]]
 
 
+def appendRows(name, columns, rows, fmt='%.4g'):
+    """Appends *rows* to bench/results/NAME, each after the run's date, commit, machine and load (meta()); the
+    header (those four, then *columns*) when the file is new. Floats are written with *fmt* (None: as they are).
+    :return: the file's path"""
+    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'results', name)
+    new = not os.path.exists(out)
+    m = meta()
+    with open(out, 'a', newline='') as f:
+        w = csv.writer(f)
+        if new:
+            w.writerow(['date', 'commit', 'machine', 'load'] + list(columns))
+        for r in rows:
+            w.writerow(m + [fmt % x if fmt and isinstance(x, float) else x for x in r])
+    return out
+
+
 def main():
     d = tempfile.mkdtemp()
     path = os.path.join(d, 'spec.npy')

@@ -11,7 +11,6 @@
 
 usage: bench/fidelity.py [--quick]   (build first: scripts/setup.sh; MSS_BINARY overrides ./build/mss)
 """
-import csv
 import os
 import statistics
 import subprocess
@@ -21,7 +20,7 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from batch_scale import meta  # noqa: E402
+from batch_scale import appendRows  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MSS = os.environ.get('MSS_BINARY', os.path.join(ROOT, 'build', 'mss'))
@@ -141,16 +140,10 @@ def problemTwo(tmp, quick):
 
 
 def save(rows):
-    path = os.path.join(ROOT, 'bench', 'results', 'problem_two.csv')
-    new = not os.path.exists(path)
-    with open(path, 'a', newline='') as f:
-        w = csv.writer(f)
-        if new:
-            w.writerow(['date', 'commit', 'machine', 'load', 'grain', 'resolution', 'target', 'spheres', 'dice',
-                        'seconds', 'seconds_fixed_same_count', 'ratio', 'fewest_fixed_count'])
-        for target, n, d, t, tn, fewest in rows:
-            w.writerow(meta() + ['femur', 103, target, n, '%.5f' % d, '%.3f' % t, '%.3f' % tn, '%.2f' % (t / tn),
-                                 fewest])
+    appendRows('problem_two.csv', ['grain', 'resolution', 'target', 'spheres', 'dice', 'seconds',
+                                   'seconds_fixed_same_count', 'ratio', 'fewest_fixed_count'],
+               [['femur', 103, target, n, '%.5f' % d, '%.3f' % t, '%.3f' % tn, '%.2f' % (t / tn), fewest]
+                for target, n, d, t, tn, fewest in rows])
 
 
 def main():

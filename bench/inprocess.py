@@ -2,7 +2,6 @@
 growing grids, 20 and 70 spheres, by default and on one thread; best of 5. The command line's figures are in
 bench/speed.sh. Prints a table and appends a row a case to bench/results/inprocess.csv.
 Run: PYTHONPATH=build/py /usr/bin/python3 bench/inprocess.py"""
-import csv
 import os
 import sys
 import time
@@ -11,7 +10,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from batch_scale import meta  # noqa: E402
+from batch_scale import appendRows  # noqa: E402
 
 import yade_mss  # noqa: E402
 from yade_mss import _mss  # noqa: E402
@@ -36,15 +35,7 @@ def main():
             dims = r.grid['dims']
             rows.append([res, n, 'x'.join(map(str, dims)), int(np.prod(dims)), best[0], best[1]])
             print('%10d %8d %16s %7d %12.1f %12.1f' % tuple(rows[-1]))
-    out = os.path.join(HERE, 'results', 'inprocess.csv')
-    new = not os.path.exists(out)
-    with open(out, 'a', newline='') as f:
-        w = csv.writer(f)
-        if new:
-            w.writerow(['date', 'commit', 'machine', 'load', 'resolution', 'spheres', 'grid', 'voxels', 'default_ms',
-                        'one_thread_ms'])
-        for r in rows:
-            w.writerow(meta() + ['%.4g' % x if isinstance(x, float) else x for x in r])
+    appendRows('inprocess.csv', ['resolution', 'spheres', 'grid', 'voxels', 'default_ms', 'one_thread_ms'], rows)
 
 
 if __name__ == '__main__':

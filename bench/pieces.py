@@ -8,7 +8,6 @@ shortest edge). Times: the generation's, in process, one thread, the best of two
 per resolution and their change against resolution 50, and appends a row a resolution to
 bench/results/pieces.csv.
 Run: PYTHONPATH=build/py /usr/bin/python3 bench/pieces.py"""
-import csv
 import os
 import sys
 import time
@@ -16,7 +15,7 @@ import warnings
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from batch_scale import meta  # noqa: E402
+from batch_scale import appendRows  # noqa: E402
 
 import numpy as np  # noqa: E402
 
@@ -74,15 +73,8 @@ def main():
         ratio = float(np.median(T / ref[1]))
         print('%10d %10.4f %+15.2f%% %12.1f %13.2fx' % (res, D.mean(), 100 * change, 1000 * T.mean(), ratio))
         rows.append([res, len(D), '%.5f' % D.mean(), '%.4f' % change, '%.2f' % (1000 * T.mean()), '%.3f' % ratio])
-    out = os.path.join(HERE, 'results', 'pieces.csv')
-    new = not os.path.exists(out)
-    with open(out, 'a', newline='') as f:
-        w = csv.writer(f)
-        if new:
-            w.writerow(['date', 'commit', 'machine', 'load', 'resolution', 'cases', 'mean_dice', 'dice_change_vs_50',
-                        'mean_ms', 'time_ratio_vs_50'])
-        for r in rows:
-            w.writerow(meta() + r)
+    appendRows('pieces.csv', ['resolution', 'cases', 'mean_dice', 'dice_change_vs_50', 'mean_ms', 'time_ratio_vs_50'],
+               rows)
 
 
 main()

@@ -5,7 +5,6 @@ grid (mss compare's: 100 voxels along the shortest edge, offset 0.37); times are
 the best of two. Prints every case, won or lost, and the mean change where the polish is kept, and appends a
 row a case to bench/results/polish.csv.
 Run: PYTHONPATH=build/py /usr/bin/python3 bench/polish.py [--quick]   (--quick: 30 spheres, bounded only)"""
-import csv
 import math
 import os
 import sys
@@ -14,7 +13,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from batch_scale import meta  # noqa: E402
+from batch_scale import appendRows  # noqa: E402
 from fidelity import randomRotation, tetrahedron  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -79,16 +78,8 @@ def main():
             print('%-9s mean change %+.2f%% over %d cases; won %d (mean %+.2f%%), worse on the independent grid %d'
                   % (mode, 100 * np.mean(c), len(c), len(won), 100 * np.mean(won) if won else 0.0,
                      sum(x > 0 for x in c)))
-    out = os.path.join(HERE, 'results', 'polish.csv')
-    new = not os.path.exists(out)
-    m = meta()
-    with open(out, 'a', newline='') as f:
-        w = csv.writer(f)
-        if new:
-            w.writerow(['date', 'commit', 'machine', 'load', 'grain', 'spheres', 'mode', 'dice', 'dice_polish',
-                        'change', 'seconds', 'seconds_polish', 'grid_dice', 'grid_dice_polish'])
-        for r in rows:
-            w.writerow(m + r)
+    out = appendRows('polish.csv', ['grain', 'spheres', 'mode', 'dice', 'dice_polish', 'change', 'seconds',
+                                    'seconds_polish', 'grid_dice', 'grid_dice_polish'], rows, fmt=None)
     print('wrote', out)
 
 

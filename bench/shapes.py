@@ -3,7 +3,6 @@ axis-aligned tetrahedron's 30: triangles, the mesh's volume error against the un
 D on the exact shapes with its standard error against the grid's at three offsets, and time. Prints a table and
 appends a row a case to bench/results/shapes.csv.
 Run: PYTHONPATH=build/py /usr/bin/python3 bench/shapes.py"""
-import csv
 import os
 import sys
 import tempfile
@@ -11,7 +10,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
-from batch_scale import meta  # noqa: E402
+from batch_scale import appendRows  # noqa: E402
 from fidelity import tetrahedron  # noqa: E402
 
 import numpy as np  # noqa: E402
@@ -47,16 +46,9 @@ def main():
     for r in rows:
         print('%-12s %4d %9d %9.5f %7.2f %9.5f %8.5f %7.2f %s' % (tuple(r[:5]) + (r[5], r[6], r[8])
                                                                   + (' / '.join('%.4f' % g for g in r[9:]),)))
-    out = os.path.join(HERE, 'results', 'shapes.csv')
-    new = not os.path.exists(out)
-    with open(out, 'a', newline='') as f:
-        w = csv.writer(f)
-        if new:
-            w.writerow(['date', 'commit', 'machine', 'load', 'grain', 'spheres', 'triangles', 'volume_error',
-                        'surface_s', 'dice_exact', 'dice_exact_se', 'samples', 'exact_s', 'dice_grid_0',
-                        'dice_grid_0.37', 'dice_grid_0.5'])
-        for r in rows:
-            w.writerow(meta() + ['%.6g' % x if isinstance(x, float) else x for x in r])
+    appendRows('shapes.csv', ['grain', 'spheres', 'triangles', 'volume_error', 'surface_s', 'dice_exact',
+                              'dice_exact_se', 'samples', 'exact_s', 'dice_grid_0', 'dice_grid_0.37', 'dice_grid_0.5'],
+               rows, fmt='%.6g')
 
 
 if __name__ == '__main__':

@@ -2,13 +2,12 @@
 each initialisation at r = 2 pixels (Algorithm 1 alone, then with relocations), the default (r chosen by least error), the time per fit and per iteration,
 and the error checked by an independent rasteriser. Appends a row a run to bench/results/spheropolygon.csv.
 Run: PYTHONPATH=build/py /usr/bin/python3 bench/spheropolygon.py"""
-import csv
 import os
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from batch_scale import meta  # noqa: E402
+from batch_scale import appendRows  # noqa: E402
 
 from yade_mss import spheropolygon  # noqa: E402
 from yade_mss._spheropolygon import cow, rasterizeNumpy  # noqa: E402
@@ -61,12 +60,5 @@ for label, kw in (('one radius (relocations)', {}),
                                            '%.2g-%.2g' % (min(radii), max(radii)), s, extra))
     rows.append((label, 100 * r['error'], r['errorPixels'], r['iterations'], s, float(min(radii))))
 
-out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'results', 'spheropolygon.csv')
-new = not os.path.exists(out)
-with open(out, 'a', newline='') as f:
-    w = csv.writer(f)
-    if new:
-        w.writerow(['date', 'commit', 'machine', 'load', 'run', 'error_percent', 'error_pixels', 'iterations',
-                    'seconds', 'spheroradius_px'])
-    for row in rows:
-        w.writerow(meta() + [row[0]] + ['%.4g' % x if isinstance(x, float) else x for x in row[1:]])
+appendRows('spheropolygon.csv', ['run', 'error_percent', 'error_pixels', 'iterations', 'seconds', 'spheroradius_px'],
+           rows)

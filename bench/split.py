@@ -7,7 +7,6 @@ shared machine varies by up to 2x), then the median, least and most over PLANES 
 alone at the same grids (one piece, best of 5), with and without the cut plane as a constraint. Prints a table
 and appends a row a case to bench/results/split.csv.
 Run: PYTHONPATH=build/py yade -n -x bench/split.py"""
-import csv
 import os
 import sys
 import time
@@ -16,7 +15,7 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(sys.argv[-1] if sys.argv[-1].endswith('split.py') else 'bench/split.py'))
 sys.path.insert(0, HERE)
-from batch_scale import meta  # noqa: E402
+from batch_scale import appendRows  # noqa: E402
 
 from yade import utils  # noqa: E402,F401
 from yade.wrapper import FrictMat, Omega  # noqa: E402
@@ -80,16 +79,9 @@ def main():
             rows.append([name, n, res, med, lo, hi, g0, g1, vox, REPEATS])
             print('%-10s %7d %10d %14.1f %12s %14.1f %14.1f %10d' % (name[:10], n, res, med, '%.0f-%.0f' % (lo, hi),
                                                                       g0, g1, vox))
-    out = os.path.join(HERE, 'results', 'split.csv')
-    new = not os.path.exists(out)
-    with open(out, 'a', newline='') as f:
-        w = csv.writer(f)
-        if new:
-            w.writerow(['date', 'commit', 'machine', 'load', 'grain', 'parent_spheres', 'resolution',
-                        'split_ms_per_piece', 'split_min_ms', 'split_max_ms', 'generate_ms', 'generate_plane_ms',
-                        'piece_voxels', 'repeats_per_plane'])
-        for r in rows:
-            w.writerow(meta() + ['%.4g' % x if isinstance(x, float) else x for x in r])
+    appendRows('split.csv', ['grain', 'parent_spheres', 'resolution', 'split_ms_per_piece', 'split_min_ms',
+                             'split_max_ms', 'generate_ms', 'generate_plane_ms', 'piece_voxels', 'repeats_per_plane'],
+               rows)
 
 
 main()
