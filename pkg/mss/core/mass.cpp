@@ -50,8 +50,14 @@ inline void subexpressions(double w0, double w1, double w2, double& f1, double& 
 
 MassProperties meshMassProperties(const TriangleMesh& mesh) {
     validateMesh(mesh, "meshMassProperties");
-    const MeshInfo info = analyzeMesh(mesh);
-    const Vec3 o = 0.5 * (info.lower + info.upper); // integrate about the box centre: less cancellation
+    // integrate about the box centre: less cancellation (the box alone: analyzeMesh also walks every edge,
+    // which was most of this function's time)
+    Vec3 lower = mesh.vertices[0], upper = mesh.vertices[0];
+    for (const Vec3& v : mesh.vertices) {
+        lower = lower.cwiseMin(v);
+        upper = upper.cwiseMax(v);
+    }
+    const Vec3 o = 0.5 * (lower + upper);
     double in[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     for (const auto& t : mesh.triangles) {
         const Vec3 p0 = mesh.vertices[t[0]] - o, p1 = mesh.vertices[t[1]] - o, p2 = mesh.vertices[t[2]] - o;
