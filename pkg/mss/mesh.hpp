@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mss {
@@ -37,6 +38,10 @@ void validateMesh(const TriangleMesh& mesh, const std::string& where);
 
 /// Topology, volume and bounding box. O(T log T).
 MeshInfo analyzeMesh(const TriangleMesh& mesh);
+
+/// The bounding box of the vertices (lower, upper corners; zero for no vertex): analyzeMesh's, without the
+/// edges. O(V).
+std::pair<Vec3, Vec3> meshBox(const TriangleMesh& mesh);
 
 /// The distance from @p p to the surface of a closed mesh when @p p lies inside it (generalised winding
 /// number of magnitude >= 1/2), else 0: the room a sphere centred there has. O(T log T) for the mesh's

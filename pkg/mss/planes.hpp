@@ -22,6 +22,17 @@ void validatePlane(const Plane& p, const char* where);
 /// Signed distance from @p x to the plane, positive on the allowed side.
 double planeDistance(const Plane& p, const Vec3& x);
 
+/// planeDistance() to one plane for many points, its normal made unit once (a square root and a division a
+/// point were most of cutting a grid's voxels): the same arithmetic, so the same distances bit for bit.
+class PlaneDistance {
+public:
+    explicit PlaneDistance(const Plane& p) : point_(p.point), unit_(p.normal.normalized()) {}
+    double operator()(const Vec3& x) const { return (x - point_).dot(unit_); }
+
+private:
+    Vec3 point_, unit_;
+};
+
 /// The part of a closed mesh on the allowed side of every plane, closed again: each triangle is clipped
 /// (Sutherland-Hodgman) and each cut is capped by a fan of triangles over its cut segments, from a point of
 /// the plane (a signed fan, exact for the integrals of meshMassProperties whatever the cut's shape: holes and

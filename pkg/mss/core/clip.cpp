@@ -24,7 +24,7 @@ void validatePlane(const Plane& p, const char* where) {
 }
 
 double planeDistance(const Plane& p, const Vec3& x) {
-    return (x - p.point).dot(p.normal.normalized());
+    return PlaneDistance(p)(x);
 }
 
 TriangleMesh clipMeshByPlanes(const TriangleMesh& mesh, const std::vector<Plane>& planes) {
@@ -38,9 +38,10 @@ TriangleMesh clipMeshByPlanes(const TriangleMesh& mesh, const std::vector<Plane>
         std::vector<std::array<Vec3, 3>> kept;
         std::vector<std::pair<Vec3, Vec3>> cuts; // (entry, exit) of each clipped polygon's cut edge
         Vec3 mean = Vec3::Zero();
+        const PlaneDistance distance(plane);
         for (const auto& tri : soup) {
             std::array<double, 3> s;
-            for (int q = 0; q < 3; ++q) s[q] = planeDistance(plane, tri[q]);
+            for (int q = 0; q < 3; ++q) s[q] = distance(tri[q]);
             if (s[0] >= 0 && s[1] >= 0 && s[2] >= 0) {
                 kept.push_back(tri);
                 continue;
@@ -93,18 +94,15 @@ VoxelGrid cutVoxelsByPlanes(const VoxelGrid& volume, const std::vector<Plane>& p
     for (const Plane& p : planes) validatePlane(p, "cutVoxelsByPlanes");
     VoxelGrid out = volume;
     const auto& d = volume.spec.dims;
-    // planeDistance's arithmetic with each unit normal computed once (it was most of the cut's cost: a
-    // square root and a division per solid voxel), so the same voxels are cut
-    std::vector<Plane> unit = planes;
-    for (Plane& p : unit) p.normal = p.normal.normalized();
+    std::vector<PlaneDistance> distances(planes.begin(), planes.end());
 #pragma omp parallel for schedule(static)
     for (int k = 0; k < d[2]; ++k)
         for (int j = 0; j < d[1]; ++j)
             for (int i = 0; i < d[0]; ++i) {
                 if (!out(i, j, k)) continue;
                 const Vec3 c = volume.spec.voxelCenter(i, j, k);
-                for (const Plane& p : unit)
-                    if ((c - p.point).dot(p.normal) < 0) out(i, j, k) = 0;
+                for (const PlaneDistance& distance : distances)
+                    if (distance(c) < 0) out(i, j, k) = 0;
             }
     return out;
 }

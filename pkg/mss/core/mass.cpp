@@ -50,13 +50,9 @@ inline void subexpressions(double w0, double w1, double w2, double& f1, double& 
 
 MassProperties meshMassProperties(const TriangleMesh& mesh) {
     validateMesh(mesh, "meshMassProperties");
-    // integrate about the box centre: less cancellation (the box alone: analyzeMesh also walks every edge,
-    // which was most of this function's time)
-    Vec3 lower = mesh.vertices[0], upper = mesh.vertices[0];
-    for (const Vec3& v : mesh.vertices) {
-        lower = lower.cwiseMin(v);
-        upper = upper.cwiseMax(v);
-    }
+    // integrate about the box centre: less cancellation (meshBox: analyzeMesh also walks every edge, which
+    // was most of this function's time)
+    const auto [lower, upper] = meshBox(mesh);
     const Vec3 o = 0.5 * (lower + upper);
     double in[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
     for (const auto& t : mesh.triangles) {

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
+#include <tuple>
 #include <unordered_map>
 
 namespace mss {
@@ -43,17 +44,21 @@ void validateMesh(const TriangleMesh& mesh, const std::string& where) {
     }
 }
 
+std::pair<Vec3, Vec3> meshBox(const TriangleMesh& mesh) {
+    if (mesh.vertices.empty()) return {Vec3::Zero(), Vec3::Zero()};
+    Vec3 lower = mesh.vertices[0], upper = mesh.vertices[0];
+    for (const Vec3& v : mesh.vertices) {
+        lower = lower.cwiseMin(v);
+        upper = upper.cwiseMax(v);
+    }
+    return {lower, upper};
+}
+
 MeshInfo analyzeMesh(const TriangleMesh& mesh) {
     MeshInfo info;
     info.vertices = mesh.vertices.size();
     info.triangles = mesh.triangles.size();
-    if (!mesh.vertices.empty()) {
-        info.lower = info.upper = mesh.vertices[0];
-        for (const Vec3& v : mesh.vertices) {
-            info.lower = info.lower.cwiseMin(v);
-            info.upper = info.upper.cwiseMax(v);
-        }
-    }
+    std::tie(info.lower, info.upper) = meshBox(mesh);
     // Directed edges grouped by undirected edge: count uses and directions per edge. Bucketed by the lower
     // vertex (a counting sort), each bucket (a few edges) sorted by the higher one and its direction bit.
     // Why not one std::sort of all edges: a mesh's edges come in runs, and introsort fell back to heapsort on

@@ -142,9 +142,9 @@ MeshSplit splitMeshByPlane(const TriangleMesh& input, const Plane& plane) {
     std::vector<Vec3> points = mesh.vertices;
     std::vector<double> s(points.size());
     double extent = 0.0;
-    const Vec3 unit = plane.normal.normalized(); // planeDistance's, once
+    const PlaneDistance distance(plane);
     for (std::size_t v = 0; v < points.size(); ++v)
-        s[v] = (points[v] - plane.point).dot(unit), extent = std::max(extent, std::abs(s[v]));
+        s[v] = distance(points[v]), extent = std::max(extent, std::abs(s[v]));
     // a vertex on the plane up to rounding is on it: otherwise the edges from it to the other side get cut
     // points at its own coordinates, and the pieces slivers of zero area and edges used four times (the
     // octahedron's vertex (1/16, 1/4, -11/16) and the plane x + 0.3 y + 0.2 z = 0: distance 3.5e-18)

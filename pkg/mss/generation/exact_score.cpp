@@ -211,11 +211,12 @@ ExactScore scoreSpheresExact(const TriangleMesh& target, const SphereSet& sphere
     // point
     std::unique_ptr<InsideCells> cells;
     if (info.closed) cells = std::make_unique<InsideCells>(q, info.lower, info.upper);
+    const std::vector<PlaneDistance> distances(planes.begin(), planes.end());
     return monteCarlo(
         info.lower, info.upper,
         [&](const Vec3& p) {
-            for (const Plane& pl : planes)
-                if (planeDistance(pl, p) < 0) return false;
+            for (const PlaneDistance& distance : distances)
+                if (distance(p) < 0) return false;
             return cells ? cells->inside(p) : q.inside(p);
         },
         spheres, samples, seed);

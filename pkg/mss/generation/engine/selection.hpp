@@ -76,11 +76,13 @@ private:
     static constexpr std::size_t kBatch = 8;
     /// A bound on the gain of a candidate of one ball @p o given the balls placed: the ball's voxels less
     /// those it shares with the placed ball it overlaps most, which are covered (a covered voxel gains
-    /// nothing). A stale key above it is lowered to it without an evaluation: most of a grain's candidates
-    /// lie on the ridge beside a placed ball, and their first keys (the ball's volume) put every one of them
-    /// through an exact evaluation (a fragment of 15 spheres at resolution 60: 3232 evaluations, 1718 with
-    /// this bound; femur 70: 6394 and 4712; the same spheres on the 143 grains and fragments compared).
-    /// Orbits of several balls keep their first key.
+    /// nothing). Volumes stand for voxel counts, as in the first keys, so it is an estimate of that bound,
+    /// not a guarantee (0.9 of the lens allows for its surface's rounding); a key below a candidate's gain
+    /// delays its evaluation, it does not drop it. A stale key above it is lowered to it without an
+    /// evaluation: most of a grain's candidates lie on the ridge beside a placed ball, and their first keys
+    /// (the ball's volume) put every one of them through an exact evaluation (a fragment of 15 spheres at
+    /// resolution 60: 3232 evaluations, 1718 with this bound; femur 70: 6394 and 4712; the same spheres on
+    /// the 143 grains and fragments compared). Orbits of several balls keep their first key.
     double lensBound(const Orbit& o) const;
     /// greedy(): the stale entries at the top of @p heap (@p stamp: the placements when each was evaluated;
     /// @p lensStamp: when its key was last set to lensBound) into @p batch, with their gains per ball.
