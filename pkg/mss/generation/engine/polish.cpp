@@ -66,16 +66,29 @@ public:
         w_.assign(n, 0.0f);
         q_.assign(n, 1.0f);
         sat_.assign(n, 0);
-        std::vector<int> solid(n, 0), all(n, 0);
         const auto& fd = S.spec.dims;
-        for (int k = 0; k < fd[2]; ++k)
-            for (int j = 0; j < fd[1]; ++j)
-                for (int i = 0; i < fd[0]; ++i) {
-                    const std::size_t p = index(i / f_, j / f_, k / f_);
-                    ++all[p];
-                    solid[p] += S(i, j, k) ? 1 : 0;
+        // a coarse slice's fine slices by one thread, each x's coarse column looked up (a division a voxel
+        // was most of this set-up's time)
+        std::vector<int> coarseX(static_cast<std::size_t>(fd[0]));
+        for (int i = 0; i < fd[0]; ++i) coarseX[std::size_t(i)] = i / f_;
+#pragma omp parallel for schedule(static)
+        for (int kc = 0; kc < d_[2]; ++kc) {
+            const std::size_t plane = static_cast<std::size_t>(d_[0]) * static_cast<std::size_t>(d_[1]);
+            std::vector<int> solid(plane, 0), all(plane, 0);
+            for (int k = kc * f_; k < std::min(fd[2], (kc + 1) * f_); ++k)
+                for (int j = 0; j < fd[1]; ++j) {
+                    const std::size_t row = std::size_t(d_[0]) * std::size_t(j / f_);
+                    const std::uint8_t* v = &S(0, j, k);
+                    for (int i = 0; i < fd[0]; ++i) {
+                        const std::size_t p = row + std::size_t(coarseX[std::size_t(i)]);
+                        ++all[p];
+                        solid[p] += v[i] ? 1 : 0;
+                    }
                 }
-        for (std::size_t p = 0; p < n; ++p) w_[p] = float(2.0 * solid[p] / std::max(1, all[p]) - 1.0);
+            const std::size_t at = index(0, 0, kc);
+            for (std::size_t p = 0; p < plane; ++p)
+                w_[at + p] = float(2.0 * solid[p] / std::max(1, all[p]) - 1.0);
+        }
     }
 
     /// d F / d (centre, radius) of each image, F = sum_p g(p) U(p), g = +1 on the target and -1 off it (the
