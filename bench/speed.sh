@@ -42,6 +42,9 @@ median "femur 70 --clip" 0.25 $D/human_femur.stl --spheres 70 --resolution 103 -
 median "ellipsoid 40 --clip" 0.5 $D/ellipsoid_2_1_1.stl --spheres 40 --resolution 103 --clip
 median "torus 40 --clip" 1.0 $D/torus.stl --spheres 40 --resolution 103 --clip
 median "femur 70 unbounded (--max-protrusion inf)" - $D/human_femur.stl --spheres 70 --resolution 103 --max-protrusion inf
+# the joint polish (opt-in): what it would cost as the default method's last stage, against the first two targets
+median "femur 70 --polish" - $D/human_femur.stl --spheres 70 --resolution 103 --polish
+median "ellipsoid 10 --polish" - $D/ellipsoid_2_1_1.stl --spheres 10 --resolution 103 --polish
 echo
 # What a second thread buys on this machine: femur 70 on one thread and on two, alternating, each phase's
 # median of 5. On the 2-core VM of these figures two busy threads each ran 25-40% slower than one alone (the
