@@ -69,11 +69,6 @@ struct Selection {
     void greedy();
     /// Problem (ii): drops orbits whose removal still meets the quality target, last placed first.
     bool prune();
-
-private:
-    using GreedyHeap =
-        std::priority_queue<std::pair<double, long long>>; ///< (key, -index): ties to the lower
-    static constexpr std::size_t kBatch = 8;
     /// A bound on the gain of a candidate of one ball @p o given the balls placed: the ball's voxels less
     /// those it shares with the placed ball it overlaps most, which are covered (a covered voxel gains
     /// nothing). Volumes stand for voxel counts, as in the first keys, so it is an estimate of that bound,
@@ -84,6 +79,11 @@ private:
     /// resolution 60: 3232 evaluations, 1718 with this bound; femur 70: 6394 and 4712; the same spheres on
     /// the 143 grains and fragments compared). Orbits of several balls keep their first key.
     double lensBound(const Orbit& o) const;
+
+private:
+    using GreedyHeap =
+        std::priority_queue<std::pair<double, long long>>; ///< (key, -index): ties to the lower
+    static constexpr std::size_t kBatch = 8;
     /// greedy(): the stale entries at the top of @p heap (@p stamp: the placements when each was evaluated;
     /// @p lensStamp: when its key was last set to lensBound) into @p batch, with their gains per ball.
     void takeBatch(GreedyHeap& heap, const std::vector<std::size_t>& stamp,
