@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 using namespace mss;
@@ -69,7 +70,7 @@ TEST(Selection, LensBoundIsAtLeastTheGainOfABallBesideThePlacedOnes) {
         const Orbit o{Vec3(4 + 40 * U(rng), 4 + 36 * U(rng), 4 + 32 * U(rng)), 1.5 + 10.5 * U(rng)};
         const double bound = s.lensBound(o);
         if (bound < double(s.orbitGain(o))) ++below;
-        if (bound < 4.18879 * o.r * o.r * o.r) ++lowered;
+        if (bound < 4.0 / 3.0 * M_PI * o.r * o.r * o.r) ++lowered;
     }
     EXPECT_EQ(below, 0);
     EXPECT_GT(lowered, 750);
