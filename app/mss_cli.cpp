@@ -301,7 +301,7 @@ int cmdGenerate(const Args& a) {
         if (st.label >= 0 && st.keepContacts) { // the grain's neighbours, as mss batch finds them
             const mss::LabelGrid labels =
                 mss::readNpyLabels(in, st.voxelSize > 0 ? st.voxelSize : 1.0, st.origin);
-            o.contacts = mss::contactPointsOf(mss::findContacts(labels), st.label);
+            o.contacts = mss::contactPointsOf(mss::findContacts(labels, st.contactGap), st.label);
             o.neighbours = neighboursOf(labels, st.label);
         }
         const double tRead = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -523,11 +523,12 @@ py::dict generateVoxels(const py::object& data, const py::object& shape, double 
     return result(r);
 }
 
-/// Every contact of a labelled volume of @p shape, read in slabs of @p layers along x: @p read(x0, x1) gives
-/// the int64 labels of layers x0 .. x1 - 1, x fastest (Fortran order). As {a, b, faces, point, normal (from a
-/// into b)} dicts. Two passes over the slabs: the peak is one slab, not the volume.
+/// Every contact of a labelled volume of @p shape within @p gap voxels (0: shared faces), read in slabs of
+/// @p layers along x (and the finder's margin on each side): @p read(x0, x1) gives the int64 labels of layers
+/// x0 .. x1 - 1, x fastest (Fortran order). As {a, b, faces, gap, point, normal (from a into b)} dicts. Two
+/// passes over the slabs: the peak is one slab, not the volume.
 py::list findContacts(const py::object& read, const py::object& shape, double voxelSize,
-                      const py::object& origin, int layers) {
+                      const py::object& origin, int layers, double gap) {
     if (layers < 1) throw std::invalid_argument("findContacts: layers must be >= 1");
     if (py::len(shape) != 3) throw std::invalid_argument("findContacts: the array must be 3-D");
     mss::GridSpec whole;
@@ -539,15 +540,16 @@ py::list findContacts(const py::object& read, const py::object& shape, double vo
     for (int a = 0; a < 3; ++a) whole.dims[std::size_t(a)] = int(dims[std::size_t(a)]);
     if (!(voxelSize > 0.0) || !std::isfinite(voxelSize) || !whole.origin.allFinite())
         throw std::invalid_argument("findContacts: voxel size must be > 0 and the origin finite");
-    mss::ContactFinder finder(whole);
+    mss::ContactFinder finder(whole, gap);
+    const int margin = finder.margin();
     for (int pass = 0; pass < 2; ++pass)
         for (int x0 = 0; x0 < whole.dims[0]; x0 += layers) {
             const int own = std::min(layers, whole.dims[0] - x0);
-            const int n = std::min(own + 1, whole.dims[0] - x0); // one layer of the next slab
+            const int lo = std::max(0, x0 - margin), hi = std::min(whole.dims[0], x0 + own + margin);
             mss::LabelGrid slab;
             slab.spec = whole;
-            slab.spec.dims[0] = n;
-            const py::object data = read(x0, x0 + n);
+            slab.spec.dims[0] = hi - lo;
+            const py::object data = read(lo, hi);
             char* buf = nullptr;
             Py_ssize_t len = 0;
             if (!PyBytes_Check(data.ptr()) || PyBytes_AsStringAndSize(data.ptr(), &buf, &len) != 0 ||
@@ -556,9 +558,9 @@ py::list findContacts(const py::object& read, const py::object& shape, double vo
             slab.labels.resize(slab.spec.size());
             std::memcpy(slab.labels.data(), buf, std::size_t(len));
             if (pass == 0)
-                finder.count(slab, x0, own);
+                finder.count(slab, lo, x0 - lo, own);
             else
-                finder.locate(slab, x0, own);
+                finder.locate(slab, lo, x0 - lo, own);
         }
     py::list out;
     for (const mss::LabelContact& c : finder.contacts()) {
@@ -566,6 +568,7 @@ py::list findContacts(const py::object& read, const py::object& shape, double vo
         d["a"] = c.a;
         d["b"] = c.b;
         d["faces"] = c.faces;
+        d["gap"] = c.gap;
         d["point"] = py::make_tuple(c.point.x(), c.point.y(), c.point.z());
         d["normal"] = py::make_tuple(c.normal.x(), c.normal.y(), c.normal.z());
         out.append(d);
@@ -889,7 +892,8 @@ BOOST_PYTHON_MODULE(_mss) {
             (py::arg("data"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("options"),
              py::arg("contacts") = py::list(), py::arg("neighbours") = py::object()));
     py::def("findContacts", findContacts,
-            (py::arg("read"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("layers")));
+            (py::arg("read"), py::arg("shape"), py::arg("voxelSize"), py::arg("origin"), py::arg("layers"),
+             py::arg("gap") = 1.0));
     py::def("massMesh", massMesh,
             (py::arg("vertices"), py::arg("triangles"), py::arg("planes") = py::list()));
     py::def("massVoxels", massVoxels,

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(build-essential cmake libcgal-dev libeigen3-dev libboost-dev libgmp-dev libmpfr-dev
           libgtest-dev libbenchmark-dev libcli11-dev libboost-python-dev python3-dev python3-numpy python3-matplotlib
-          python3-scipy python3-distributed python3-tifffile python3-tqdm python3-hypothesis yade chromium pkgconf
+          python3-scipy python3-skimage python3-distributed python3-tifffile python3-tqdm python3-hypothesis yade chromium pkgconf
           python3-sphinx python3-breathe doxygen python3-vtk9 liggghts)
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -104,6 +104,7 @@ struct Settings {
     long long label = -1;     ///< -1 = not given
     long long clumpId = -1;   ///< -1 = not given
     bool keepContacts = true; ///< a labelled volume's grain: reach its neighbours (GenerateOptions::contacts)
+    double contactGap = 1.0;  ///< voxels: grains within it are in contact (findContacts' gap)
     SurfaceOptions surface;   ///< mss surface: the mesh of the spheres' union
 };
 

@@ -60,29 +60,41 @@ struct ContactPoint {
     Vec3 inward = Vec3::UnitZ();
 };
 
-/// Two labels whose voxels share faces: how many, the one shared face nearest the centroid of them all (its
-/// centre, on both grains' surfaces) and the mean normal of their faces from @p a into @p b. The same for
-/// both grains, so that each can reach the same point.
+/// Two labels in contact: grains whose voxels share faces (a contact gap of 0) or, with a gap tolerance g,
+/// whose voxel cubes come within g voxels of each other (real segmentations separate touching grains by a
+/// line of background voxels: a marker watershed's lines, the labels of a thresholded scan). The patch is
+/// the voxel pairs within the tolerance; the point is the midpoint of a pair at the least gap nearest the
+/// centroid of those (on a shared face, or the middle of a separating line); the normal is the mean of the
+/// patch's offsets from @p a into @p b. The same for both grains, so that each can reach the same point.
 struct LabelContact {
     std::int64_t a = 0, b = 0; ///< a < b
-    std::size_t faces = 0;
+    std::size_t faces = 0;     ///< voxel pairs within the tolerance (shared faces with a tolerance of 0)
+    double gap = 0.0;          ///< the least gap between the two grains' voxel cubes, voxels (0: touching)
     Vec3 point = Vec3::Zero();
     Vec3 normal = Vec3::UnitZ();
 };
 
-/// Every pair of labels in contact (sharing a voxel face), ordered by (a, b).
-std::vector<LabelContact> findContacts(const LabelGrid& volume);
+/// The largest contact gap findContacts takes, voxels: its stencil grows as the cube of the gap.
+constexpr double kMaxContactGap = 8.0;
+
+/// Every pair of labels in contact, ordered by (a, b): sharing a voxel face (@p gap = 0) or with voxel cubes
+/// within @p gap voxels (the default, one voxel, covers watershed lines and labelled binary scans). Visits
+/// the boundary voxels only, each against a stencil of O(gap^3) offsets: O(voxels + boundary gap^3).
+/// @throws std::invalid_argument for labels that do not fill the grid or a gap outside [0, kMaxContactGap]
+std::vector<LabelContact> findContacts(const LabelGrid& volume, double gap = 1.0);
 
 /// findContacts for a volume that does not fit in memory, read in slabs along x: count() every slab, then
-/// locate() the same slabs, then contacts(). A slab holds layers x0 .. x0 + n - 1 of the volume; all but the
-/// last slab end with one layer more than they own (@p own = n - 1), the first layer of the next. The answer
-/// is findContacts' on the whole volume.
+/// locate() the same slabs, then contacts(). A slab's layer 0 is the volume's layer @p x0; it owns its
+/// layers first .. first + own - 1 and holds margin() more on each side of them where the volume has them
+/// (its first slab none before, its last none after). The answer is findContacts' on the whole volume.
 class ContactFinder {
 public:
-    /// @p volume: the whole volume's grid (its dims, voxel edge and origin)
-    explicit ContactFinder(const GridSpec& volume);
-    void count(const LabelGrid& slab, long long x0, int own);
-    void locate(const LabelGrid& slab, long long x0, int own);
+    /// @p volume: the whole volume's grid (its dims, voxel edge and origin); @p gap: the tolerance, voxels
+    explicit ContactFinder(const GridSpec& volume, double gap = 1.0);
+    /// The layers a slab needs beyond those it owns, on each side.
+    int margin() const;
+    void count(const LabelGrid& slab, long long x0, int first, int own);
+    void locate(const LabelGrid& slab, long long x0, int first, int own);
     std::vector<LabelContact> contacts() const;
 
 private:

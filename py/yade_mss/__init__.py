@@ -28,20 +28,20 @@ _os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
 from ._results import MassProperties, MssResult, readSpheres  # noqa: E402
 from ._sources import massProperties  # noqa: E402
 from ._generate import compareMany, generate, score  # noqa: E402
-from ._clumps import mssClump, totalMass  # noqa: E402
+from ._clumps import mssClump, porosity, totalMass  # noqa: E402
 from ._restore import restoreClumpProperties  # noqa: E402
 from ._clumpfiles import readClumps, writeClumps  # noqa: E402
 from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate  # noqa: E402
 from ._batch import batch  # noqa: E402
 from ._assembly import mssAssembly  # noqa: E402
-from ._specimen import findContacts, regions, syntheticSpecimen, voronoiBall  # noqa: E402
+from ._specimen import findContacts, packedSpecimen, regions, syntheticSpecimen, voronoiBall  # noqa: E402
 from ._spheropolygon import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
 from ._ochart import clumpOchart  # noqa: E402
 from ._breakage import MssBreakage, breakageLog, breakagePotential, grainSizes, mssSplit, relativeBreakage  # noqa: E402
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
-           'restoreClumpProperties', 'totalMass', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
-           'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen', 'voronoiBall', 'findContacts',
+           'restoreClumpProperties', 'totalMass', 'porosity', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
+           'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen', 'packedSpecimen', 'voronoiBall', 'findContacts',
            'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit',
            'MssBreakage', 'breakageLog', 'grainSizes', 'breakagePotential', 'relativeBreakage']

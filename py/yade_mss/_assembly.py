@@ -20,9 +20,36 @@ class Assembly(dict):
     :ivar scanContacts: the pairs of keys whose grains touch in the scan (a labelled volume; else empty)
     """
 
-    def __init__(self, items, scanContacts=()):
+    def __init__(self, items, scanContacts=(), contactGap=0.0):
         dict.__init__(self, items)
         self.scanContacts = list(scanContacts)
+        self.contactGap = contactGap  # world units: the scan's tolerance (the contact gap times the voxel edge)
+
+    def pairsWithin(self, gap=None):
+        """The pairs of keys whose clumps' spheres come within *gap* (world units; default :attr:`contactGap`,
+        the tolerance the scan's contacts were counted with) of each other in YADE now: the assembly's contacts,
+        counted as the scan's were, whether YADE has an interaction there yet or not."""
+        from scipy.spatial import cKDTree
+        from ._clumps import _yade
+        utils, O, me = _yade()
+        gap = self.contactGap if gap is None else float(gap)
+        keys, pos, rad, owner = list(self), [], [], []
+        for n, key in enumerate(keys):
+            for i in self[key][1]:
+                b = O.bodies[i]
+                pos.append([b.state.pos[0], b.state.pos[1], b.state.pos[2]])
+                rad.append(b.shape.radius)
+                owner.append(n)
+        if len(set(owner)) < 2:
+            return set()
+        pos, rad, owner = np.array(pos), np.array(rad), np.array(owner)
+        pairs = np.array(sorted(cKDTree(pos).query_pairs(2 * rad.max() + gap)), dtype=int).reshape(-1, 2)
+        i, j = pairs[:, 0], pairs[:, 1]
+        near = (owner[i] != owner[j]) & (np.linalg.norm(pos[i] - pos[j], axis=1) - rad[i] - rad[j] <= gap)
+        out = set()
+        for a, b in zip(owner[i[near]], owner[j[near]]):
+            out.add(_ordered(keys[a], keys[b]))
+        return out
 
     def timeStep(self):
         """The critical time step of the clumps' members as YADE's ``PWaveTimeStep`` computes it (each sphere's
@@ -53,14 +80,23 @@ class Assembly(dict):
                 continue
             a, b = owner.get(i.id1), owner.get(i.id2)
             if a is not None and b is not None and a != b:
-                out.add((a, b) if str(a) < str(b) else (b, a))
+                out.add(_ordered(a, b))
         return out
 
     def contactsKept(self):
         """(how many of the scan's contacts between built grains interact in YADE now, how many there are)."""
         built = [(a, b) for a, b in self.scanContacts if a in self and b in self]
         now = self.touching()
-        return sum(1 for a, b in built if ((a, b) if str(a) < str(b) else (b, a)) in now), len(built)
+        return sum(1 for a, b in built if _ordered(a, b) in now), len(built)
+
+
+def _ordered(a, b):
+    """A pair of keys in order: labels (integers) by value, as the scan's contacts are (a < b); file names
+    as text."""
+    try:
+        return (a, b) if a < b else (b, a)
+    except TypeError:
+        return (a, b) if str(a) < str(b) else (b, a)
 
 
 def _scanPairs(contacts):
@@ -117,6 +153,7 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
         if os.path.exists(path):
             with open(path, newline='') as f:
                 contacts = list(csv.DictReader(f))
+        tolerance = _tolerance(os.fspath(source))
     else:
         b = batch(source if isinstance(source, np.ndarray) else [source], None, workers=1,
                   minVoxels=minVoxels, excludeBorder=excludeBorder, labels=labels, voxelSize=voxelSize,
@@ -126,6 +163,7 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
                 '%s: %s' % (k, b.rows[k]['message']) for k in b.failed[:5]))
         results = {b.rows[k]['label']: r for k, r in b.results.items()}
         contacts = b.scanContacts or []
+        tolerance = gen.get('contactGap', 1.0)
     from ._clumps import _yade
     utils, O, me = _yade()
     out = {}
@@ -137,4 +175,15 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
         for cid, ids in out.values():
             O.bodies.erase(cid, True)
         raise
-    return Assembly(out, _scanPairs(contacts))
+    h = next(iter(results.values())).grid['voxelSize'] if results else 1.0
+    return Assembly(out, _scanPairs(contacts), tolerance * h)
+
+
+def _tolerance(outdir):
+    """The contact gap (voxels) a finished batch counted its scan's contacts with: its manifest's, or the
+    default."""
+    try:
+        with open(os.path.join(outdir, 'batch.json')) as f:
+            return float(json.load(f)['state']['contacts']['gap'])
+    except (OSError, ValueError, KeyError, TypeError):
+        return 1.0

@@ -17,19 +17,19 @@ import os
 import sys
 import time
 import zlib
+from collections.abc import Mapping
 
 import numpy as np
 
-from . import _options
+from . import _manifest, _options, _report
 from ._files import atomicWrite, requireRegularFile
 from ._generate import GENERATE_OPTIONS
+from ._report import COLUMNS
 from ._results import MssResult
-from ._specimen import _VOLUME_EXT, contactsByLabel, findContacts, readVolume, regions
+from ._specimen import (_VOLUME_EXT, binaryValue, contactsByLabel, pieces, readVolume, regions, scanContacts,
+                        segmentBinary)
 from ._sources import _MESH_EXT
 
-COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
-           'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contact_spheres',
-           'seconds', 'touches_border', 'message']
 TOO_SMALL = 'exceeds the largest inscribed radius'  # the core's message when rMin leaves a grain no sphere
 
 
@@ -238,6 +238,26 @@ def _inputs(inputs):
     return files
 
 
+def checkLabelled(vol, name, segment=False, memoryLimit=None):
+    """Refuses a binary scan (two values, in several pieces) given as a labelled volume: it would be one grain
+    of all its pieces. *segment*: the scan is meant to be binary; refused if it is not."""
+    value = binaryValue(vol, memoryLimit)
+    if segment:
+        if value is None:
+            raise ValueError('batch: %s: segment applies to a binary scan (0 and one other value); this volume holds '
+                             'labels: give it without --segment' % name)
+        return
+    if value is not None:
+        n = pieces(vol)
+        if n > 1:
+            raise ValueError('batch: %s holds two values (0 and %d) in %d separate pieces: a binary scan, not '
+                             'labelled grains (as labels it would be one grain of all %d). Give --segment '
+                             '(segment=True) to cut it into grains here (distance transform, h-maxima markers, '
+                             'marker watershed; the labels are written to OUT/labels.npy), or label it first '
+                             '(scipy.ndimage.label for grains apart, skimage.segmentation.watershed for touching '
+                             'ones)' % (name, value, n, n))
+
+
 def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, excludeBorder=False, labels=None):
     """The grains of the inputs: a labelled volume (one file, or an array) gives one task per label, read once;
     several files give one task each. Grains under *minVoxels* or (with *excludeBorder*) cut by
@@ -257,8 +277,10 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
     volumes = [f for f in files if os.path.splitext(f)[1].lower() in _VOLUME_EXT]
     if array is not None or (len(files) == 1 and volumes):
         vol = readVolume(files[0]) if array is None else array
+        checkLabelled(vol, files[0], memoryLimit=options.get('memoryLimit'))
         limit = options.get('memoryLimit')  # the volume is read by slabs under it: a CT larger than it is fine
-        found = findContacts(vol, h, org, limit) if options.get('contacts', True) else None
+        gap = options.get('contactGap', 1.0)
+        found = scanContacts(vol, h, org, limit, gap) if options.get('contacts', True) else None
         points = contactsByLabel(found or [])
         for reg in regions(vol, labels, limit):
             k = 'label_%d' % reg.label
@@ -300,18 +322,92 @@ class Batch(object):
     """What a batch did: rows (one per grain, in key order) and the results of the grains that are ok.
 
     :ivar seconds: this run's wall time
-    :ivar generated: grains generated in this run (the others were done by an earlier run of the same options)
+    :ivar generated: grains generated in this run
+    :ivar reused: grains whose results an earlier run of the same input and options had written
+    :ivar upToDate: True where the output folder already held this very batch, finished: nothing was done
     :ivar timeStep: the assembly's critical time step (the least a grain allows), or None without a grain
     :ivar setBy: the keys of the grains that set it (within 10% of the least)
     """
 
     def __init__(self):
-        self.rows, self.results, self.seconds, self.generated = {}, {}, 0.0, 0
-        self.timeStep, self.setBy = None, []
+        self.rows, self.results, self.seconds, self.generated, self.reused = {}, {}, 0.0, 0, 0
+        self.timeStep, self.setBy, self.upToDate, self._scan, self._scanFile = None, [], False, None, None
 
     @property
     def failed(self):
         return [k for k, r in self.rows.items() if r['status'] == 'failed']
+
+    @property
+    def scanContacts(self):
+        """The scan's contacts (:func:`findContacts`' dicts), or None (a folder of grains, contacts off); read
+        from the output folder's contacts.csv when the batch was up to date."""
+        if self._scan is None and self._scanFile is not None:
+            import csv
+            with open(self._scanFile, newline='') as f:
+                self._scan = [dict(a=int(r['a']), b=int(r['b']), faces=int(r['faces']), gap=float(r['gap']),
+                                   point=(float(r['x']), float(r['y']), float(r['z'])),
+                                   normal=(float(r['nx']), float(r['ny']), float(r['nz'])))
+                              for r in csv.DictReader(f)]
+        return self._scan
+
+    @scanContacts.setter
+    def scanContacts(self, value):
+        self._scan = value
+
+
+class _StoredResults(Mapping):
+    """The results of a finished batch's grains, each read from OUTDIR/grains/KEY.npz when first asked for."""
+
+    def __init__(self, outdir, keys):
+        self._outdir, self._keys, self._loaded = outdir, list(keys), {}
+
+    def __getitem__(self, key):
+        if key not in self._loaded:
+            if key not in self._keys:
+                raise KeyError(key)
+            self._loaded[key] = MssResult.load(os.path.join(self._outdir, 'grains', key + '.npz'))
+        return self._loaded[key]
+
+    def __iter__(self):
+        return iter(self._keys)
+
+    def __len__(self):
+        return len(self._keys)
+
+
+_STATE = ('timeStep', 'setBy', 'contacts', 'ranked', 'kinds', 'flagAt', 'previewed')
+
+
+def _state(b):
+    """What a finished batch gives back, for its manifest."""
+    out = {name: getattr(b, name, None) for name in _STATE}
+    out['rows'] = b.rows
+    out['scan'] = b.scanContacts is not None
+    return out
+
+
+def _upToDate(outdir, state, seconds):
+    """The Batch of a finished run in *outdir*, from its manifest's *state*: nothing generated, nothing read but
+    the manifest (results and contacts when asked for)."""
+    b = Batch()
+    b.rows = dict(state['rows'])
+    b.results = _StoredResults(outdir, [k for k, r in b.rows.items() if r['status'] == 'ok'])
+    for name in _STATE:
+        setattr(b, name, state.get(name))
+    if state.get('scan'):
+        b._scanFile = os.path.join(outdir, 'contacts.csv')
+    b.reused, b.upToDate, b.seconds = len(b.results), True, seconds
+    return b
+
+
+def _runKey(inputs, options, extra):
+    """The manifest's key of a batch: its inputs' identity on disk and every option."""
+    if isinstance(inputs, np.ndarray):
+        ident = _manifest.inputIdentity(array=inputs)
+    else:
+        ident = _manifest.inputIdentity(files=_inputs(inputs))
+    return json.loads(json.dumps({'inputs': ident, 'generate': options, 'batch': extra}, sort_keys=True,
+                                 default=str))
 
 
 def _done(outdir, key, optionsKey, digest):
@@ -322,7 +418,15 @@ def _done(outdir, key, optionsKey, digest):
             meta = json.load(f)
         if meta.get('options') != optionsKey or meta.get('input') != digest or meta['row']['status'] == 'failed':
             return None
-        r = MssResult.load(os.path.join(outdir, 'grains', key + '.npz')) if meta['row']['status'] == 'ok' else None
+        r = None
+        if meta['row']['status'] == 'ok':
+            # the result must be the one this grain wrote: a file swapped or edited since is made again
+            path = os.path.join(outdir, 'grains', key + '.npz')
+            with open(path, 'rb') as f:
+                data = f.read()
+            if hashlib.sha256(data).hexdigest() != meta.get('result'):
+                return None
+            r = MssResult.load(path)
         return meta['row'], r
     except (OSError, ValueError, KeyError):
         return None
@@ -334,11 +438,19 @@ def _store(outdir, key, row, result, optionsKey, digest=None):
     if png is not None:
         _atomic(os.path.join(g, key + '.png'), lambda p: _write(p, png))
         del result.png
+    made = None
     if result is not None:
-        _atomic(os.path.join(g, key + '.npz'), lambda p: result.save(p, compress=False))
+        sums = []
+
+        def save(p):
+            result.save(p, compress=False)
+            with open(p, 'rb') as f:
+                sums.append(hashlib.sha256(f.read()).hexdigest())
+        _atomic(os.path.join(g, key + '.npz'), save)
+        made = sums[0]
         _atomic(os.path.join(g, key + '.csv'), result.save)
     _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({'options': optionsKey, 'input': digest,
-                                                                            'row': row})))
+                                                                            'result': made, 'row': row})))
 
 
 def clusterSecurity(security=None, caFile=None, cert=None, key=None):
@@ -470,7 +582,7 @@ class _LocalPool(object):
 @_options.documented('batch')
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
           voxelSize=None, origin=None, progress=True, previews=False, security=None, density=1000.0, young=1e9,
-          format=None, **options):
+          format=None, segment=False, segmentH=1.0, **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
     assembly, as ``mss batch`` does (the options are the same, spelled for Python).
 
@@ -497,14 +609,38 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         format = _options.check('batch', 'batch', 'format', format)
         if outdir is None:
             raise ValueError('batch: format %r writes templates into the output folder: give outdir' % format)
+    t0 = time.perf_counter()
+    runKey = None
+    if outdir is not None:
+        runKey = _runKey(inputs, gen, {'voxelSize': voxelSize, 'origin': origin, 'minVoxels': minVoxels,
+                                       'excludeBorder': excludeBorder, 'labels': labels, 'previews': previews,
+                                       'density': density, 'young': young, 'format': format, 'segment': segment,
+                                       'segmentH': segmentH})
+        state = _manifest.finished(outdir, runKey)
+        if state is not None:
+            out = _upToDate(outdir, state, time.perf_counter() - t0)
+            if progress:
+                print('batch: %s is up to date (its inputs, options and files are those of its finished run): '
+                      'nothing to do\n%s' % (outdir, _report.summary(out, len(out.rows), density, young)),
+                      flush=True)
+            return out
+        _manifest.forget(outdir)
+    segmented = None
+    if segment or segmentH != 1.0:
+        segmentH = _options.check('batch', 'batch', 'segmentH', segmentH)
+        if not segment:
+            raise ValueError('batch: segmentH applies with segment (a binary scan to cut into grains)')
+        inputs, segmented = _segmented(inputs, outdir, segmentH, gen.get('memoryLimit'))
     tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+    if segmented is not None:
+        key = _optionsKey(key, {'segment': segmentH})
     if format == 'liggghts':
         from ._export import MAX_TEMPLATES
         if len(tasks) > MAX_TEMPLATES:  # said before the grains are generated, not after
             raise ValueError('batch: %d grains: LIGGGHTS templates are numbered by 32-bit seeds, at most %d'
                              % (len(tasks), MAX_TEMPLATES))
     out = Batch()
-    t0 = time.perf_counter()
+    out.segmented = segmented
     if outdir is not None:
         os.makedirs(os.path.join(outdir, 'grains'), exist_ok=True)
         for k, row in skipped.items():
@@ -548,10 +684,9 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         close()
         if bar is not None:
             bar.close()
-    out.generated = n
+    out.generated, out.reused = n, already
     out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
     out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
-    from . import _report
     _report.keptContacts(out, found, 1.0 if voxelSize is None else float(voxelSize))
     _report.annotate(out, gen, density, young)
     if outdir is not None:
@@ -563,9 +698,35 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
             from ._export import writeTemplates
             writeTemplates(outdir, out, format, density)
     out.seconds = time.perf_counter() - t0
+    if outdir is not None and not out.failed:
+        _manifest.write(outdir, runKey, _state(out), _atomic)
     if progress:
         print(_report.summary(out, total, density, young), flush=True)
     return out
+
+
+def _segmented(inputs, outdir, h, memoryLimit=None):
+    """A binary scan (one volume file or array) cut into grains (:func:`segmentBinary`), its labels written to
+    OUTDIR/labels.npy: (the label array, what the report shows of it: {'file', 'grains', 'h', 'binary' and
+    'labels': the middle section across z})."""
+    if isinstance(inputs, np.ndarray):
+        vol, name = inputs, '(array)'
+    else:
+        files = _inputs(inputs)
+        if len(files) != 1 or os.path.splitext(files[0])[1].lower() not in _VOLUME_EXT:
+            raise ValueError('batch: segment applies to one volume file (a binary scan), got %s'
+                             % ', '.join(files[:3]))
+        vol, name = readVolume(files[0]), files[0]
+    checkLabelled(vol, name, segment=True, memoryLimit=memoryLimit)
+    labels = segmentBinary(vol, h)
+    path = None
+    if outdir is not None:
+        os.makedirs(outdir, exist_ok=True)
+        path = os.path.join(outdir, 'labels.npy')
+        _atomic(path, lambda p: np.save(p, labels))
+    z = labels.shape[2] // 2
+    return labels, {'file': path, 'grains': int(labels.max()), 'h': h, 'binary': np.asarray(vol[:, :, z]) != 0,
+                    'labels': labels[:, :, z].copy(), 'z': z}
 
 
 def _order(key):
@@ -595,7 +756,7 @@ def main(argv=None):
     try:
         v = _options.parsed('batch', a)
         own = ('output', 'workers', 'scheduler', 'tlsCaFile', 'tlsCert', 'tlsKey', 'minVoxels', 'excludeBorder',
-               'labels', 'previews', 'voxelSize', 'origin', 'density', 'young', 'format')
+               'labels', 'previews', 'voxelSize', 'origin', 'density', 'young', 'format', 'segment', 'segmentH')
         gen = {k: x for k, x in v.items() if k not in own}
         labels = [int(x) for x in v['labels'].split(',')] if v.get('labels') else None
         b = batch(a.inputs, v['output'], workers=v.get('workers'), scheduler=v.get('scheduler'),
@@ -603,7 +764,8 @@ def main(argv=None):
                   security=clusterSecurity(None, v.get('tlsCaFile'), v.get('tlsCert'), v.get('tlsKey')),
                   excludeBorder=v.get('excludeBorder', False), labels=labels, voxelSize=v.get('voxelSize'),
                   origin=v.get('origin'), previews=v.get('previews', False), density=v.get('density', 1000.0),
-                  young=v.get('young', 1e9), format=v.get('format'), **gen)
+                  young=v.get('young', 1e9), format=v.get('format'), segment=v.get('segment', False),
+                  segmentH=v.get('segmentH', 1.0), **gen)
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)

@@ -562,3 +562,43 @@ def totalMass():
     counted twice there."""
     utils, O, me = _yade()
     return float(sum(b.state.mass for b in O.bodies if b is not None and not b.isClumpMember))
+
+
+def porosity(volume=None):
+    """The porosity of a specimen of clumps from the grains' exact volumes: one minus the solid volume over
+    *volume*. A clump counts its own mass over its members' density (for an mss clump the grain's exact volume;
+    for ``appendClumped``'s, YADE's sum of its members), a free sphere its ball. ``utils.porosity()`` instead
+    sums every sphere, members included: where members overlap (every clump) it counts that volume twice and
+    goes negative in a dense packing.
+
+    :param float volume: the container's volume (world units^3); default: the periodic cell's, or the box
+        that holds every sphere
+    :return: float
+    """
+    utils, O, me = _yade()
+    solid = 0.0
+    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
+    for b in O.bodies:
+        if b is None:
+            continue
+        if b.isClump:
+            ids = list(b.shape.members.keys())
+            if ids:
+                solid += b.state.mass / O.bodies[ids[0]].material.density
+        elif type(b.shape).__name__ == 'Sphere':
+            r = b.shape.radius
+            p = np.array([b.state.pos[0], b.state.pos[1], b.state.pos[2]])
+            lo, hi = np.minimum(lo, p - r), np.maximum(hi, p + r)
+            if not b.isClumpMember:
+                solid += 4.0 / 3.0 * math.pi * r ** 3
+    if volume is None:
+        if O.periodic:
+            volume = O.cell.volume
+        elif np.all(hi >= lo):
+            volume = float(np.prod(hi - lo))
+        else:
+            raise ValueError('porosity: no sphere in the scene and no volume given')
+    volume = number('porosity', 'volume', volume, 0.0)
+    if volume <= 0:
+        raise ValueError('porosity: volume must be > 0, got %r' % volume)
+    return 1.0 - solid / volume

@@ -15,7 +15,7 @@ from ._sources import _Mesh, _flat, _source
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=None, voxelSize=None,
              resolution=None, method='optimized', supersample=1, keepSymmetry=True, polish=False, maxIterations=100, deltaMin=1.0,
              threads=0, origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=(),
-             maxProtrusion=None, contacts=True, neighbourProtrusion=1.0):
+             maxProtrusion=None, contacts=True, contactGap=1.0, neighbourProtrusion=1.0):
     """Generates the sphere set of a grain (MSS paper, sections 2-3). The options are the option table's
     (``mss generate --help`` lists the same, spelled for the command line).
 
@@ -55,7 +55,8 @@ def _generate(source, given, contactPoints=None, neighbours=None, target=None):
             if label is not None and opts.get('contacts', True):  # its neighbours, as mss batch finds them
                 from ._specimen import contactPoints as pointsOf, findContacts, readVolume
                 labels = readVolume(source) if isinstance(source, (str, os.PathLike)) else np.asarray(source)
-                contactPoints = pointsOf(findContacts(labels, s.voxelSize, s.origin), label)
+                contactPoints = pointsOf(findContacts(labels, s.voxelSize, s.origin, gap=opts.get('contactGap', 1.0)),
+                                         label)
                 neighbours = (labels != 0) & (labels != label)
         d = _mss.generateVoxels(*s.args(), opts, contactPoints, None if neighbours is None else np.asfortranarray(
             neighbours, dtype=np.uint8).tobytes(order='F'))

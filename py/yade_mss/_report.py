@@ -12,6 +12,9 @@ import numpy as np
 
 from ._files import atomicWrite
 
+COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
+           'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_assembly',
+           'contact_spheres', 'seconds', 'touches_border', 'message']
 DICE_FLAG = 0.1  # D above this (or above a --dice target) flags a grain
 THIN_VOXELS = 2.5  # a largest inscribed radius under this (grains at most 4 voxels thick): thin, hard to fill
 STEP_MARGIN = 1.1  # grains whose time step is within 10% of the least "set" the assembly's
@@ -36,16 +39,39 @@ def _gap(r1, r2):
     return float((d - r1.radii[:, None] - r2.radii[None, :]).min())
 
 
+def _assemblyPairs(results, tolerance):
+    """The pairs of keys whose clumps come within *tolerance* (world units) of each other, with their gaps: the
+    clumps' bounding balls narrow the pairs first (a k-d tree), the spheres decide."""
+    from scipy.spatial import cKDTree
+    keys = list(results)
+    if len(keys) < 2:
+        return {}
+    centre = np.array([0.5 * (results[k].centers.min(axis=0) + results[k].centers.max(axis=0)) for k in keys])
+    reach = np.array([float((np.linalg.norm(results[k].centers - c, axis=1) + results[k].radii).max())
+                      for k, c in zip(keys, centre)])
+    out = {}
+    for i, j in cKDTree(centre).query_pairs(2 * reach.max() + tolerance):
+        if np.linalg.norm(centre[i] - centre[j]) > reach[i] + reach[j] + tolerance:
+            continue
+        g = _gap(results[keys[i]], results[keys[j]])
+        if g <= tolerance:
+            out[(keys[i], keys[j])] = g
+    return out
+
+
 def keptContacts(b, found, h):
-    """Each row's ``contacts_ct`` (the scan's contacts of the grain) and ``contacts_kept`` (those whose two
-    clumps come within KEPT_GAP voxels), and the batch's ``contacts`` (pairs in the scan, between two generated
-    grains, kept; the coordination numbers; the largest overlap of a kept pair, voxels). Nothing without
-    contacts (a folder of grains, or contacts off)."""
+    """Each row's ``contacts_ct`` (the scan's contacts of the grain: grains within the contact gap of it),
+    ``contacts_kept`` (those whose two clumps come within KEPT_GAP voxels) and ``contacts_assembly`` (the clumps
+    within the same contact gap of its clump, scan contacts or not), and the batch's ``contacts``: pairs in the
+    scan, between two generated grains, kept, in the assembly; the coordination numbers (both counted with the
+    same tolerance); the largest overlap of a kept pair (voxels); where the scan shows no pair, the gaps between
+    the grains near each other (``nearby``). Nothing without contacts (a folder of grains, or contacts off)."""
     b.contacts, b.scanContacts = None, found
     if found is None:
         return
+    tolerance = float(getattr(found, 'gap', 0.0))
     byLabel = {b.rows[k]['label']: k for k in b.results}
-    ct, kept = {}, {}
+    ct, kept, near = {}, {}, {}
     both, keptPairs, overlap = 0, 0, 0.0
     for c in found:
         for lab in (c['a'], c['b']):
@@ -60,14 +86,44 @@ def keptContacts(b, found, h):
             overlap = max(overlap, -g)
             for lab in (c['a'], c['b']):
                 kept[lab] = kept.get(lab, 0) + 1
+    assembly = _assemblyPairs(b.results, tolerance * h)
+    for ka, kb in assembly:
+        for k in (ka, kb):
+            near[k] = near.get(k, 0) + 1
     for k, row in b.rows.items():
         lab = row['label']
         if lab != '':
             row['contacts_ct'] = ct.get(lab, 0)
             row['contacts_kept'] = kept.get(lab, 0) if k in b.results else ''
+            row['contacts_assembly'] = near.get(k, 0) if k in b.results else ''
     n = max(1, len(b.results))
-    b.contacts = {'pairs': len(found), 'between': both, 'kept': keptPairs, 'overlap': overlap,
-                  'coordinationScan': 2.0 * both / n, 'coordinationAssembly': 2.0 * keptPairs / n}
+    b.contacts = {'pairs': len(found), 'between': both, 'kept': keptPairs, 'overlap': overlap, 'gap': tolerance,
+                  'assembly': len(assembly), 'coordinationScan': 2.0 * both / n,
+                  'coordinationAssembly': 2.0 * len(assembly) / n, 'nearby': getattr(found, 'nearby', None)}
+
+
+def gapsText(c):
+    """Why a scan shows no contacts: the tolerance, and the gaps between the grains near each other."""
+    text = 'No two grains of the scan come within %g voxel%s of each other (the contact gap, --contact-gap).' % (
+        c['gap'], '' if c['gap'] == 1 else 's')
+    near = c.get('nearby')
+    if near is None:
+        return text
+    if not near:
+        return text + ' None comes within %g voxels either: the grains lie apart.' % NEARBY
+    edges = [x for x in (1, 1.5, 2, 2.5, 3) if x > c['gap']]
+    parts, lo = [], c['gap']
+    for e in edges:
+        k = sum(1 for g in near if lo < g <= e + 1e-9)
+        if k:
+            parts.append('%d within (%g, %g]' % (k, lo, e))
+        lo = e
+    return text + (' %d pair%s of grains lie within %g voxels: %s (least gap %.3g voxels); a larger '
+                   '--contact-gap would count them.' % (len(near), '' if len(near) == 1 else 's', NEARBY,
+                                                       ', '.join(parts), min(near)))
+
+
+NEARBY = 3.0  # voxels: as _specimen.NEARBY_GAP
 
 
 def annotate(b, options, density, young):
@@ -145,32 +201,46 @@ def drawPreviews(outdir, b, tasks):
         b.previewed.append(k)
 
 
+def grains(n):
+    """'1 grain', '2 grains'."""
+    return '%d grain%s' % (n, '' if n == 1 else 's')
+
+
 def summary(b, total, density, young):
     """The line ``mss batch`` ends with."""
     rows = b.rows.values()
     ok = sum(1 for r in rows if r['status'] == 'ok')
-    text = ('batch: %d ok, %d skipped, %d failed of %d grains in %.2f s (%d generated in this run, %.1f grains/s)'
-            % (ok, sum(1 for r in rows if r['status'] == 'skipped'), len(b.failed), total, b.seconds, b.generated,
-               b.generated / b.seconds if b.seconds > 0 else 0.0))
+    text = ('batch: %d ok, %d skipped, %d failed of %s in %.2f s (%s generated in this run, %.1f grains/s%s)'
+            % (ok, sum(1 for r in rows if r['status'] == 'skipped'), len(b.failed), grains(total), b.seconds,
+               grains(b.generated), b.generated / b.seconds if b.seconds > 0 else 0.0,
+               '; %s reused from an earlier run' % grains(b.reused) if getattr(b, 'reused', 0) else ''))
     if b.timeStep is not None:
         text += '\nbatch: time step %.3g s (density %g, young %g), set by %s' % (
             b.timeStep, density, young, ', '.join(b.setBy[:5]) + (' and %d more' % (len(b.setBy) - 5)
                                                                 if len(b.setBy) > 5 else ''))
     if getattr(b, 'contacts', None):
         c = b.contacts
-        text += ('\nbatch: contacts: %d of the scan\'s %d between generated grains kept (gap <= %.1f voxel); '
-                 'coordination %.2f in the scan, %.2f in the assembly' % (c['kept'], c['between'], KEPT_GAP,
-                                                                        c['coordinationScan'],
-                                                                        c['coordinationAssembly']))
+        if c['pairs'] == 0:
+            text += '\nbatch: contacts: ' + gapsText(c)
+        else:
+            text += ('\nbatch: contacts: %d pairs of grains within %g voxel%s in the scan, %d between generated grains, '
+                     '%d of them kept (clumps within %.1f voxel); %d pairs within %g voxel%s in the assembly; '
+                     'coordination %.2f in the scan, %.2f in the assembly'
+                     % (c['pairs'], c['gap'], _s(c['gap']), c['between'], c['kept'], KEPT_GAP, c['assembly'],
+                        c['gap'], _s(c['gap']), c['coordinationScan'], c['coordinationAssembly']))
     if b.ranked and b.rows[b.ranked[0]]['problems']:
         k = b.ranked[0]
         text += '\nbatch: worst: %s (%s)' % (k, b.rows[k]['problems'])
     return text
 
 
+def _s(n):
+    """The plural's s: '1 voxel', '2 voxels'."""
+    return '' if n == 1 else 's'
+
+
 def writeOutputs(outdir, b, density, young):
     """grains.csv (label order), assembly.txt, assembly.vtk and report.html, each atomically."""
-    from ._batch import COLUMNS
     rows = list(b.rows.values())
 
     def table(p):  # a file name's bytes that are not UTF-8 are written as their escapes, never lost
@@ -200,9 +270,10 @@ def writeOutputs(outdir, b, density, young):
         def contacts(p):
             with open(p, 'w', newline='') as f:
                 w = csv.writer(f)
-                w.writerow(['a', 'b', 'faces', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
+                w.writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
                 for c in b.scanContacts:
-                    w.writerow([c['a'], c['b'], c['faces']] + ['%r' % x for x in c['point'] + c['normal']])
+                    w.writerow([c['a'], c['b'], c['faces'], '%r' % c.get('gap', 0.0)]
+                               + ['%r' % x for x in tuple(c['point']) + tuple(c['normal'])])
         _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
     _report(outdir, b, density, young)
 
@@ -276,7 +347,7 @@ def _charts(outdir, b):
         a3.hist(rv, bins=min(30, max(5, len(rv) // 2)), color='#8172b2')
         a3.set_ylabel('grains')
     a3.set_xlabel('smallest radius per grain (voxels)')
-    fig.suptitle('%d grains generated' % len(ok))
+    fig.suptitle('%s generated' % grains(len(ok)))
     fig.tight_layout()
     _atomic(os.path.join(outdir, 'report_distributions.png'), fig.savefig)
     plt.close(fig)
@@ -284,8 +355,32 @@ def _charts(outdir, b):
             'radii">')
 
 
+def _segmentationPicture(outdir, seg):
+    """The section of a segmented binary scan: the scan and its grains side by side (report_segmentation.png)."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+    labels = seg['labels']
+    rng = np.random.default_rng(0)
+    colours = np.vstack([[1, 1, 1], rng.uniform(0.15, 0.95, (max(1, int(labels.max())), 3))])
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 5), dpi=100)
+    a1.imshow(seg['binary'].T, origin='lower', cmap='gray_r', interpolation='nearest')
+    a1.set_title('the binary scan, section z = %d' % seg['z'])
+    a2.imshow(labels.T, origin='lower', cmap=ListedColormap(colours), vmin=0, vmax=len(colours) - 1,
+              interpolation='nearest')
+    a2.set_title('its grains (%s in the volume; a colour each)' % grains(seg['grains']))
+    for a in (a1, a2):
+        a.set_xlabel('x (voxels)')
+        a.set_ylabel('y (voxels)')
+    fig.tight_layout()
+    _atomic(os.path.join(outdir, 'report_segmentation.png'), fig.savefig)
+    plt.close(fig)
+    return ('<br><img src="report_segmentation.png" alt="a section of the binary scan and of its grains">')
+
+
 _SHOWN = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min_voxels',
-          'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'seconds', 'message']
+          'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_assembly', 'seconds', 'message']
 
 
 def _report(outdir, b, density, young):
@@ -294,25 +389,37 @@ def _report(outdir, b, density, young):
     notes = []
     cut = sum(1 for r in rows if int(r.get('touches_border') or 0))
     if cut:
-        notes.append('%d of %d grains are cut by the volume\'s border: their clumps end where the scan does '
-                     '(--exclude-border skips them).' % (cut, len(rows)))
+        notes.append('%d of %s are cut by the volume\'s border: their clumps end where the scan does '
+                     '(--exclude-border skips them).' % (cut, grains(len(rows))))
     if counts['failed']:
-        notes.append('%d grains failed: see their messages below.' % counts['failed'])
+        notes.append('%s failed: see %s below.' % (grains(counts['failed']), 'its message' if counts['failed'] == 1
+                                                    else 'their messages'))
     small = sum(1 for k in b.rows if b.kinds.get(k) == 'too small')
     if small:
-        notes.append('%d grains are too small for the radius bound (rMin, rMinVoxels) and are not in the '
-                     'assembly.' % small)
+        notes.append('%s too small for the radius bound (rMin, rMinVoxels): not in the assembly.'
+                     % grains(small))
     if b.timeStep is not None:
         notes.append('The assembly\'s critical time step is %.3g s (PWaveTimeStep: the smallest radius times '
                      'sqrt(density / young), density %g, young %g), set by %s.'
                      % (b.timeStep, density, young, ', '.join(_html(k) for k in b.setBy[:10])))
     if getattr(b, 'contacts', None):
         c = b.contacts
-        notes.append('Contacts: %d pairs of grains touch in the scan, %d of them between generated grains; %d of '
-                     'those touch in the assembly (spheres within %.1f voxel; largest overlap %.2f voxels). '
-                     'Coordination number %.2f in the scan, %.2f in the assembly.'
-                     % (c['pairs'], c['between'], c['kept'], KEPT_GAP, c['overlap'], c['coordinationScan'],
-                        c['coordinationAssembly']))
+        if c['pairs'] == 0:
+            notes.append(gapsText(c))
+        else:
+            notes.append('Contacts, counted with one tolerance (grains within %g voxel%s: --contact-gap): %d pairs '
+                         'of grains in the scan, %d of them between generated grains, %d of those kept in the '
+                         'assembly (clumps within %.1f voxel; largest overlap %.2f voxels); %d pairs of clumps in '
+                         'the assembly. Coordination number %.2f in the scan, %.2f in the assembly.'
+                         % (c['gap'], _s(c['gap']), c['pairs'], c['between'], c['kept'], KEPT_GAP, c['overlap'],
+                            c['assembly'], c['coordinationScan'], c['coordinationAssembly']))
+    seg = getattr(b, 'segmented', None)
+    if seg is not None:
+        notes.append('The scan was binary: it was segmented here into %s (its distance transform, a marker at each '
+                     'maximum standing %g voxels above its saddles, a marker watershed). The labels are in '
+                     '<a href="labels.npy">labels.npy</a>: inspect or correct them, then run the batch on them. '
+                     'Below, the section z = %d.%s' % (grains(seg['grains']), seg['h'], seg['z'],
+                                                        _segmentationPicture(outdir, seg)))
     generated = sum(_number(r['seconds']) or 0.0 for r in rows)
     previewed = set(getattr(b, 'previewed', []))
 
@@ -330,12 +437,14 @@ def _report(outdir, b, density, young):
             'td,th{padding:2px 8px;font:12px sans-serif}tr:nth-child(even){background:#eee}'
             'tr.bad td{background:#f4c7c3}tr.warn td{background:#fce8b2}p.note{background:#fce8b2;padding:4px}'
             '</style></head><body><h1>mss batch</h1>'
-            '<p>%d grains: %d ok, %d skipped, %d failed. This run: %.2f s, %d grains generated (the others were done '
-            'by an earlier run with the same options); generation time of all grains %.2f s. Files: '
+            '<p>%s: %d ok, %d skipped, %d failed. This run: %.2f s, %s generated%s; generation time of all grains '
+            '%.2f s. Files: '
             '<a href="assembly.txt">assembly.txt</a>, <a href="assembly.vtk">assembly.vtk</a> (ParaView), '
             '<a href="grains.csv">grains.csv</a>.</p>%s%s<h2>Grains, worst first</h2><table><tr><th>#</th>%s'
             '<th>preview</th></tr>%s</table></body></html>'
-            % (len(rows), counts['ok'], counts['skipped'], counts['failed'], b.seconds, b.generated, generated,
+            % (grains(len(rows)), counts['ok'], counts['skipped'], counts['failed'], b.seconds, grains(b.generated),
+               ', %s reused from an earlier run with the same input and options' % grains(b.reused)
+               if getattr(b, 'reused', 0) else '', generated,
                ''.join('<p class="note">%s</p>' % n for n in notes), _charts(outdir, b),
                ''.join('<th>%s</th>' % c for c in _SHOWN), cells))
     _atomic(os.path.join(outdir, 'report.html'), lambda p: _write(p, page))

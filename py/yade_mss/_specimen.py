@@ -136,20 +136,26 @@ def _sparseBoxes(labels, voxels):
 SLAB_VOXELS = 1 << 23  # findContacts reads the volume in slabs of about this many voxels (64 MB as int64)
 
 
-def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None):
-    """Every pair of labels whose voxels share faces (the scan's contacts), found once for the whole volume: a
-    list of dicts ``a``, ``b`` (a < b), ``faces`` (how many they share), ``point`` (the shared face nearest the
-    centroid of them all, world units) and ``normal`` (from a into b). The volume is read in slabs (a
-    memory-mapped .npy stays on disk but for one slab).
+def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None, gap=1.0):
+    """Every pair of grains in contact in the scan, found once for the whole volume: grains whose voxels share
+    faces (*gap* 0) or come within *gap* voxels of each other (the default, one voxel, covers the separating
+    lines of a marker watershed and the labels of a thresholded scan). A list of dicts ``a``, ``b`` (a < b),
+    ``faces`` (the voxel pairs within the tolerance: shared faces with a gap of 0), ``gap`` (the least gap
+    between the two grains' voxel cubes, voxels), ``point`` (the midpoint of a closest pair nearest the centroid
+    of them all, world units: on a shared face, or the middle of a separating line) and ``normal`` (from a into
+    b). The volume is read in slabs (a memory-mapped .npy stays on disk but for one slab).
 
     :param labels: a 3-D array of integers >= 0 (0 is background), or of booleans
     :param float voxelSize: the voxel edge, world units
     :param origin: the world position of the centre of voxel (0, 0, 0)
     :param memoryLimit: GiB, as generate's option: the slabs are a 128th of it at most (:func:`slabVoxels`)
+    :param float gap: the contact tolerance, voxels, in [0, 8]: the gap between two grains' voxel cubes up to
+        which they count as in contact; 0: shared faces only
     """
     a = labels if isinstance(labels, np.ndarray) else np.asarray(labels)
     if a.ndim != 3 or not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
         raise ValueError('findContacts: labels must be a 3-D array of integers, got %s of %s' % (a.shape, a.dtype))
+    gap = number('findContacts', 'gap', gap, 0.0, 8.0)
     layers = max(1, slabVoxels(memoryLimit) // max(1, a.shape[1] * a.shape[2]))
 
     def read(x0, x1):
@@ -158,7 +164,29 @@ def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None
             raise ValueError('findContacts: a label over 2^63 - 1')
         return np.asfortranarray(s, dtype=np.int64).tobytes(order='F')
     return _mss.findContacts(read, tuple(int(n) for n in a.shape), float(voxelSize), [float(x) for x in origin],
-                             layers)
+                             layers, gap)
+
+
+NEARBY_GAP = 3.0  # voxels: where no two grains are within the tolerance, the gaps looked at to say why
+
+
+class ScanContacts(list):
+    """:func:`findContacts`' list for a batch, with the tolerance it used (*gap*, voxels) and, where it found no
+    pair, *nearby*: the least gaps (voxels) of the pairs of grains within NEARBY_GAP voxels, the report's why."""
+
+    def __init__(self, contacts, gap, nearby=None):
+        list.__init__(self, contacts)
+        self.gap, self.nearby = gap, nearby
+
+
+def scanContacts(labels, voxelSize, origin, memoryLimit, gap):
+    """:class:`ScanContacts` of a labelled volume: findContacts at *gap*, and where it finds none (and the
+    tolerance is under NEARBY_GAP) the gaps between the grains that are near each other all the same."""
+    found = findContacts(labels, voxelSize, origin, memoryLimit, gap)
+    nearby = None
+    if not found and gap < NEARBY_GAP:
+        nearby = sorted(c['gap'] for c in findContacts(labels, voxelSize, origin, memoryLimit, NEARBY_GAP))
+    return ScanContacts(found, gap, nearby)
 
 
 def contactPoints(contacts, label):
@@ -177,13 +205,15 @@ def contactsByLabel(contacts):
     return out
 
 
-def voronoiBall(radius=50, cells=12, seed=1):
+def voronoiBall(radius=50, cells=12, seed=1, lines=False):
     """A dense specimen: a ball of *radius* voxels cut into *cells* Voronoi cells (labels 1..cells), every grain
     touching its neighbours: for tests and benchmarks of contacts.
 
     :param int radius: the ball's radius, voxels
     :param int cells: how many cells (grains)
     :param int seed: random seed of the cells' seeds
+    :param bool lines: separate the cells by a line of background voxels, as a watershed segmentation does
+        (a cell's voxel beside one of a higher label is cleared): no two grains share a face
     :return: int32 array of (2 radius + 5)^3 voxels, labels 1..cells
     """
     from scipy.spatial import cKDTree
@@ -201,7 +231,69 @@ def voronoiBall(radius=50, cells=12, seed=1):
     inside = np.linalg.norm(g - centre, axis=1) <= radius
     labels = np.zeros(n ** 3, dtype=np.int32)
     labels[inside] = cKDTree(np.array(seeds)).query(g[inside])[1] + 1
-    return labels.reshape(n, n, n)
+    labels = labels.reshape(n, n, n)
+    return separated(labels) if lines else labels
+
+
+def separated(labels):
+    """*labels* with a line of background between grains that share faces, as a segmentation with watershed lines
+    draws them: a voxel beside (across a face) a voxel of a higher label is cleared."""
+    out = np.array(labels, copy=True)
+    for axis in range(3):
+        for step in (1, -1):
+            there = np.roll(labels, -step, axis=axis)
+            edge = [slice(None)] * 3
+            edge[axis] = -1 if step == 1 else 0  # np.roll wraps around: nothing beyond the volume
+            there[tuple(edge)] = 0
+            out[(labels != 0) & (there > labels)] = 0
+    return out
+
+
+def packedSpecimen(shape=(60, 60, 60), grains=30, size=(4, 8), seed=1, lines=True):
+    """A dense specimen segmented as real pipelines do: overlapping balls packed at random (a grain's ball
+    overlaps its neighbours'), their union's distance transform, a marker at each ball's centre and a marker
+    watershed of the negated transform, with watershed lines (*lines*: a line of background voxels between
+    touching grains, as ``skimage.segmentation.watershed(..., watershed_line=True)`` draws it).
+
+    :param shape: the volume's size, 3 integers (voxels)
+    :param int grains: how many balls
+    :param size: the range of their radii, voxels
+    :param int seed: random seed
+    :param bool lines: separate touching grains by watershed lines
+    :return: int32 array, labels 1..n (a ball swallowed by its neighbours may leave no grain)
+    """
+    from scipy import ndimage
+    from skimage.segmentation import watershed
+    func = 'packedSpecimen'
+    if isinstance(shape, (str, bytes)) or not hasattr(shape, '__len__') or len(shape) != 3:
+        raise TypeError('%s: shape must be 3 integers, got %r' % (func, shape))
+    shape = tuple(integer(func, 'shape', n, 8, 4096) for n in shape)
+    if shape[0] * shape[1] * shape[2] > 1 << 31:
+        raise ValueError('%s: shape %r holds over 2^31 voxels' % (func, shape))
+    grains = integer(func, 'grains', grains, 1, 10 ** 7)
+    lo, hi = (number(func, 'size', v, 1.0) for v in size)
+    if lo > hi:
+        raise ValueError('%s: size must be (smallest, largest), got %r' % (func, size))
+    rng = np.random.default_rng(integer(func, 'seed', seed, 0, INT64_MAX))
+    radii = rng.uniform(lo, hi, grains)
+    # centres spread over the volume, each ball overlapping some (a dense packing's necks)
+    centres = rng.uniform(0, 1, (grains, 3)) * (np.array(shape) - 1)
+    solid = np.zeros(shape, dtype=bool)
+    markers = np.zeros(shape, dtype=np.int32)
+    for n, (c, r) in enumerate(zip(centres, radii), 1):
+        box = tuple(slice(max(0, int(c[d] - r - 1)), min(shape[d], int(c[d] + r + 2))) for d in range(3))
+        grid = np.stack(np.meshgrid(*[np.arange(s.start, s.stop) for s in box], indexing='ij'), axis=-1)
+        solid[box] |= ((grid - c) ** 2).sum(axis=-1) <= r * r
+    for n, c in enumerate(centres, 1):
+        markers[tuple(int(round(x)) for x in c)] = n
+    markers[~solid] = 0
+    dist = ndimage.distance_transform_edt(solid)
+    labels = watershed(-dist, markers, mask=solid, watershed_line=bool(lines)).astype(np.int32)
+    # labels 1..n in order, none missing (a marker inside another ball's core may have lost its voxels)
+    present = np.unique(labels[labels != 0])
+    table = np.zeros(int(labels.max()) + 1, dtype=np.int32)
+    table[present] = np.arange(1, present.size + 1, dtype=np.int32)
+    return table[labels]
 
 
 def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, gap=1, maxTries=20000):
@@ -259,4 +351,55 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
         placed += 1
         labels[tuple(box)][inside] = placed
         grown[tuple(box)] |= near
+    return labels
+
+
+def binaryValue(labels, memoryLimit=None):
+    """The one non-zero value of a volume that holds two (0 and it: a thresholded scan), or None (labels, or
+    nothing but background). Read in slabs: a memory-mapped volume stays on disk."""
+    a = labels if isinstance(labels, np.ndarray) else np.asarray(labels)
+    if a.dtype == bool:
+        return 1 if a.any() else None
+    layers = max(1, slabVoxels(memoryLimit) // max(1, a.shape[1] * a.shape[2]))
+    value = None
+    for x0 in range(0, a.shape[0], layers):
+        s = np.asarray(a[x0:x0 + layers])
+        nz = s[s != 0]
+        if not nz.size:
+            continue
+        lo, hi = nz.min(), nz.max()
+        if lo != hi or (value is not None and lo != value):
+            return None
+        value = lo
+    return None if value is None else int(value)
+
+
+def pieces(labels):
+    """How many separate pieces (face-connected) the non-zero voxels of a volume form."""
+    from scipy import ndimage
+    return int(ndimage.label(np.asarray(labels) != 0)[1])
+
+
+def segmentBinary(binary, h=1.0):
+    """A binary scan cut into grains as the usual pipeline does: the Euclidean distance transform of the solid,
+    a marker at each of its maxima that stands at least *h* voxels above the saddles around it (h-maxima), and
+    a marker watershed of the negated transform inside the solid. A piece with no such maximum (thinner than
+    *h*) is a grain of its own. Labels 1..n, no separating lines (grains touch where they meet).
+
+    :param binary: a 3-D array, non-zero where the solid is
+    :param float h: the markers' least height, voxels (larger: fewer, larger grains)
+    :return: int32 array of labels, 0 the background
+    """
+    from scipy import ndimage
+    from skimage.morphology import h_maxima
+    from skimage.segmentation import watershed
+    h = number('segment', 'segmentH', h, 0.0)
+    solid = np.asarray(binary) != 0
+    if solid.ndim != 3:
+        raise ValueError('segment: the scan must be 3-D, got %d-D' % solid.ndim)
+    dist = ndimage.distance_transform_edt(solid)
+    markers, n = ndimage.label(h_maxima(dist, h))
+    labels = watershed(-dist, markers, mask=solid).astype(np.int32)
+    rest, m = ndimage.label(solid & (labels == 0))
+    labels[rest != 0] = rest[rest != 0] + n
     return labels

@@ -7,10 +7,18 @@
 
 using namespace mss;
 
+namespace mss {
+// exact: the slabs and tolerances must give the very same numbers
+bool operator==(const LabelContact& x, const LabelContact& y) {
+    return x.a == y.a && x.b == y.b && x.faces == y.faces && x.gap == y.gap && x.point == y.point &&
+           x.normal == y.normal;
+}
+} // namespace mss
+
 namespace {
 /// Two boxes side by side along x, sharing a face of ny x nz voxels: label 1 at i < split, 2 at i >= split;
 /// a third label apart from them.
-LabelGrid twoBoxes(int nx, int ny, int nz, int split) {
+LabelGrid twoBoxes(int nx, int ny, int nz, int split, int line = 0) {
     LabelGrid g;
     g.spec.dims = {nx + 8, ny + 4, nz + 4};
     g.spec.h = 0.5;
@@ -18,7 +26,8 @@ LabelGrid twoBoxes(int nx, int ny, int nz, int split) {
     g.labels.assign(g.spec.size(), 0);
     for (int k = 2; k < nz + 2; ++k)
         for (int j = 2; j < ny + 2; ++j)
-            for (int i = 2; i < nx + 2; ++i) g.labels[g.spec.index(i, j, k)] = i < split ? 1 : 2;
+            for (int i = 2; i < nx + 2; ++i)
+                g.labels[g.spec.index(i, j, k)] = i < split ? 1 : (i < split + line ? 0 : 2);
     g.labels[g.spec.index(nx + 6, 1, 1)] = 7; // touches nobody
     return g;
 }
@@ -33,8 +42,15 @@ VoxelGrid solidOf(const LabelGrid& g, std::int64_t label) {
 
 TEST(Contacts, TwoBoxesShareOneFaceAtItsMiddle) {
     const LabelGrid g = twoBoxes(20, 9, 7, 12);
-    const std::vector<LabelContact> c = findContacts(g);
+    const std::vector<LabelContact> c = findContacts(g, 0.0);
     ASSERT_EQ(c.size(), 1u);
+    const std::vector<LabelContact> one = findContacts(g, 1.0);
+    ASSERT_EQ(one.size(), 1u); // touching grains: the same point and normal at any tolerance, a larger patch
+    EXPECT_EQ(one[0].point, c[0].point);
+    EXPECT_EQ(one[0].normal, c[0].normal);
+    EXPECT_EQ(one[0].gap, 0.0);
+    EXPECT_GT(one[0].faces, c[0].faces);
+    EXPECT_EQ(c[0].gap, 0.0);
     EXPECT_EQ(c[0].a, 1);
     EXPECT_EQ(c[0].b, 2);
     EXPECT_EQ(c[0].faces, 9u * 7u);
@@ -86,4 +102,110 @@ TEST(Contacts, BadContactPointsAreRefused) {
     LabelGrid g;
     g.spec.dims = {2, 2, 2};
     EXPECT_THROW(findContacts(g), std::invalid_argument); // labels that do not fill the grid
+    g.labels.assign(8, 1);
+    EXPECT_THROW(findContacts(g, -1.0), std::invalid_argument);
+    EXPECT_THROW(findContacts(g, NAN), std::invalid_argument);
+    EXPECT_THROW(findContacts(g, kMaxContactGap + 1), std::invalid_argument);
+}
+
+TEST(Contacts, test_watershed_line_hides_the_contact_at_gap_zero_only) {
+    // a line of background voxels between the two grains, as a marker watershed draws it: no shared face
+    const LabelGrid g = twoBoxes(21, 9, 7, 12, 1);
+    EXPECT_TRUE(findContacts(g, 0.0).empty());
+    const std::vector<LabelContact> c = findContacts(g, 1.0);
+    ASSERT_EQ(c.size(), 1u);
+    EXPECT_EQ(c[0].a, 1);
+    EXPECT_EQ(c[0].b, 2);
+    EXPECT_EQ(c[0].gap, 1.0);
+    // the middle of the line (voxel i = 12), at the middle of the patch
+    EXPECT_NEAR(c[0].point.x(), 1 + 0.5 * 12, 1e-12);
+    EXPECT_NEAR(c[0].point.y(), 2 + 0.5 * 6, 1e-12);
+    EXPECT_NEAR(c[0].point.z(), 3 + 0.5 * 5, 1e-12);
+    EXPECT_NEAR(c[0].normal.x(), 1.0, 1e-12);
+    // pairs across the line: 9 x 7 straight across and the diagonal ones within a voxel
+    EXPECT_GT(c[0].faces, 9u * 7u);
+    // two voxels of line: a gap of 2, seen at a tolerance of 2, not of 1.5
+    const LabelGrid wide = twoBoxes(22, 9, 7, 12, 2);
+    EXPECT_TRUE(findContacts(wide, 1.5).empty());
+    const std::vector<LabelContact> w = findContacts(wide, 2.0);
+    ASSERT_EQ(w.size(), 1u);
+    EXPECT_EQ(w[0].gap, 2.0);
+    EXPECT_NEAR(w[0].point.x(), 1 + 0.5 * 12.5, 1e-12);
+}
+
+TEST(Contacts, SlabsGiveTheWholeVolumesAnswer) {
+    // random labels with background: every tolerance, every slab thickness, the same contacts
+    LabelGrid g;
+    g.spec.dims = {17, 9, 8};
+    g.spec.h = 0.25;
+    g.spec.origin = Vec3(-1, 0.5, 2);
+    unsigned seed = 7;
+    for (std::size_t q = 0; q < g.spec.size(); ++q) {
+        seed = seed * 1103515245u + 12345u;
+        const unsigned r = (seed >> 16) % 10;
+        g.labels.push_back(r < 4 ? 0 : std::int64_t(r));
+    }
+    for (double gap : {0.0, 1.0, 1.5, 2.0}) {
+        const std::vector<LabelContact> whole = findContacts(g, gap);
+        ASSERT_FALSE(whole.empty());
+        for (int layers : {1, 2, 5}) {
+            ContactFinder f(g.spec, gap);
+            for (int pass = 0; pass < 2; ++pass)
+                for (int x0 = 0; x0 < g.spec.dims[0]; x0 += layers) {
+                    const int own = std::min(layers, g.spec.dims[0] - x0);
+                    const int lo = std::max(0, x0 - f.margin()),
+                              hi = std::min(g.spec.dims[0], x0 + own + f.margin());
+                    LabelGrid slab;
+                    slab.spec = g.spec;
+                    slab.spec.dims[0] = hi - lo;
+                    for (int k = 0; k < g.spec.dims[2]; ++k)
+                        for (int j = 0; j < g.spec.dims[1]; ++j)
+                            for (int i = lo; i < hi; ++i) slab.labels.push_back(0);
+                    for (int k = 0; k < g.spec.dims[2]; ++k)
+                        for (int j = 0; j < g.spec.dims[1]; ++j)
+                            for (int i = lo; i < hi; ++i)
+                                slab.labels[slab.spec.index(i - lo, j, k)] = g.labels[g.spec.index(i, j, k)];
+                    if (pass == 0)
+                        f.count(slab, lo, x0 - lo, own);
+                    else
+                        f.locate(slab, lo, x0 - lo, own);
+                }
+            EXPECT_EQ(f.contacts(), whole) << "gap " << gap << ", layers " << layers;
+        }
+    }
+}
+
+TEST(Contacts, GrainsAcrossALineReachItsMiddleAndTouch) {
+    // each grain's spheres reach the middle of the line (beyond the grain by half a voxel), so that the two
+    // clumps overlap there, even under a bound tighter than that (clipped: a contact ball is added, the only
+    // sphere beyond the grain); no other sphere leaves the bound
+    const LabelGrid g = twoBoxes(25, 10, 10, 12, 1);
+    const std::vector<LabelContact> c = findContacts(g, 1.0);
+    ASSERT_EQ(c.size(), 1u);
+    for (double share : {1.0, 0.25, 0.0}) {
+        SphereSet both[2];
+        for (std::int64_t label : {1, 2}) {
+            GenerateOptions o;
+            o.nSpheres = 3;
+            o.contacts = contactPointsOf(c, label);
+            o.neighbourProtrusion = std::max(share, 0.25);
+            if (share == 0) o.clip = true;
+            VoxelGrid others(g.spec, 0);
+            for (std::size_t q = 0; q < others.data.size(); ++q)
+                others.data[q] = g.labels[q] != 0 && g.labels[q] != label;
+            o.neighbours = others;
+            const Result r = generate(solidOf(g, label), o);
+            EXPECT_EQ(r.metrics.contactsMissed, 0u);
+            if (share == 0) EXPECT_EQ(r.metrics.contactsAdded, 1u); // clipped, none of its own reaches
+            // the contact ball reaches half a voxel and a twentieth beyond the grain, no more
+            EXPECT_LE(r.metrics.protrusion, std::max(r.metrics.protrusionLimit, 0.55 * g.spec.h) + 1e-12);
+            both[label - 1] = r.spheres;
+        }
+        double gap = 1e9;
+        for (std::size_t i = 0; i < both[0].size(); ++i)
+            for (std::size_t j = 0; j < both[1].size(); ++j)
+                gap = std::min(gap, (both[0].centers[i] - both[1].centers[j]).norm() - both[0].radii[i] -
+                                        both[1].radii[j]);
+        EXPECT_LE(gap, -0.1 * g.spec.h + 1e-12) << "share " << share; // they overlap: a DEM code sees them
+    }
 }

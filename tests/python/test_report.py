@@ -147,8 +147,16 @@ class Report(unittest.TestCase):
         self.assertEqual(again.generated, 0)
         with open(os.path.join(self.out, 'report.html')) as f:
             page = f.read()
-        self.assertIn('0 grains generated (the others were done by an earlier run', page)
+        # previews off: another batch, its grains reused, its page written anew
+        self.assertFalse(again.upToDate)
+        self.assertIn('0 grains generated, 4 grains reused from an earlier run with the same input', page)
         self.assertEqual(again.ranked, self.b.ranked)
+        # the same again: up to date, nothing written
+        before = os.stat(os.path.join(self.out, 'report.html')).st_mtime_ns
+        third = batch(self.L, self.out, workers=1, nSpheres=12, progress=False, density=2650, young=7e10)
+        self.assertTrue(third.upToDate)
+        self.assertEqual(third.ranked, self.b.ranked)
+        self.assertEqual(os.stat(os.path.join(self.out, 'report.html')).st_mtime_ns, before)
 
 
 class RadiusBound(unittest.TestCase):

@@ -280,6 +280,44 @@ class Assembly(Base):
             O.step()
             self.assertEqual(b.contactsKept(), (pairs, pairs))
 
+    def test_contacts_across_watershed_lines_interact_in_yade(self):
+        # a packing segmented with watershed lines: no two grains share a face, every pair within one voxel
+        # is a scan contact, counted again in YADE with the same tolerance, and an interaction after a step
+        from yade_mss import findContacts, mssAssembly, packedSpecimen
+        L = packedSpecimen((36, 36, 36), grains=20, size=(4, 6), seed=2)
+        h = 1e-3
+        self.assertEqual(findContacts(L, gap=0), [])
+        pairs = {(c['a'], c['b']) for c in findContacts(L, gap=1)}
+        self.assertGreater(len(pairs), 10)
+        O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator(gravity=(0, 0, 0))]
+        a = mssAssembly(L, voxelSize=h, nSpheres=6, minVoxels=10, material='grain')
+        self.assertAlmostEqual(a.contactGap, h)
+        built = {p for p in pairs if p[0] in a and p[1] in a}
+        self.assertTrue(built <= a.pairsWithin())  # the scan's pairs are within the tolerance in YADE too
+        self.assertTrue(built <= a.pairsWithin(0.0))  # and overlap
+        O.dt = 0.1 * a.timeStep()[0]
+        O.step()
+        self.assertEqual(a.contactsKept(), (len(built), len(built)))
+
+    def test_porosity_from_the_grains_exact_volumes(self):
+        from yade_mss import generate, mssClump, porosity
+        O.periodic = True
+        O.cell.setBox(0.04, 0.04, 0.04)
+        r = generate('tests/data/ellipsoid_2_1_1.stl', nSpheres=10)
+        exact = 0.0
+        for n in range(8):
+            mssClump(r, scale=2e-3, center=(0.005 + 0.01 * (n % 4), 0.01 + 0.02 * (n // 4), 0.02),
+                     material='grain')
+            exact += r.targetMass.volume * 2e-3 ** 3
+        self.assertAlmostEqual(porosity(), 1 - exact / 0.04 ** 3, delta=1e-12)
+        self.assertAlmostEqual(porosity(volume=1e-4), 1 - exact / 1e-4, delta=1e-12)
+        # YADE's sums every member: overlaps counted twice, the solid overestimated
+        self.assertLess(utils.porosity(0.04 ** 3), porosity() - 1e-4)
+        with self.assertRaises(ValueError):
+            porosity(volume=-1.0)
+
 
 if __name__ == '__main__':
     result = unittest.main(exit=False, verbosity=2).result

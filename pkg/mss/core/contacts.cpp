@@ -1,7 +1,10 @@
 #include "mss/voxelize.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -9,79 +12,168 @@ namespace mss {
 
 namespace {
 
-/// A shared face in half-voxel units of the whole volume: its centre is origin + h (x, y, z) / 2. Integers,
-/// so that sums and comparisons are exact and the same however the volume is cut into slabs.
-using Face = std::array<std::int64_t, 3>;
+/// A point in half-voxel units of the whole volume: origin + h (x, y, z) / 2. Integers, so that sums and
+/// comparisons are exact and the same however the volume is cut into slabs.
+using Half = std::array<std::int64_t, 3>;
 
-/// Calls @p f(a, b, face, axis, sign of the normal from a to b) for every face two different non-zero labels
-/// share in @p slab, whose layer x = 0 is the volume's layer @p x0. Faces across x are taken between all its
-/// layers; faces across y and z in its first @p own layers only (the last layer of a slab that overlaps the
-/// next by one is the next one's).
-template <class F> void eachSharedFace(const LabelGrid& slab, long long x0, int own, F&& f) {
+/// The offsets from a voxel to the voxels of another grain that count as its contact partners: with a gap
+/// tolerance of 0 the three face neighbours (shared faces); otherwise every offset whose voxel cube lies
+/// within @p gap voxels of this one's (the squared gap sum max(|d| - 1, 0)^2, an integer), half of them
+/// (the other half is the same pair seen from the far voxel).
+struct Stencil {
+    struct Offset {
+        int d[3];
+        std::int64_t gap2; ///< squared gap between the two cubes, voxels^2
+    };
+    std::vector<Offset> offsets;
+    int reach = 1;      ///< the largest |d| of an offset
+    bool faces = false; ///< shared faces only (a tolerance of 0)
+
+    explicit Stencil(double gap) {
+        if (gap == 0) {
+            faces = true;
+            offsets = {{{1, 0, 0}, 0}, {{0, 1, 0}, 0}, {{0, 0, 1}, 0}};
+            return;
+        }
+        reach = int(std::floor(gap)) + 1;
+        const double limit = gap * gap * (1 + 1e-12);
+        for (int z = -reach; z <= reach; ++z)
+            for (int y = -reach; y <= reach; ++y)
+                for (int x = -reach; x <= reach; ++x) {
+                    if (!(z > 0 || (z == 0 && (y > 0 || (y == 0 && x > 0))))) continue; // the positive half
+                    std::int64_t g2 = 0;
+                    for (int v : {x, y, z}) {
+                        const std::int64_t beyond = std::max(std::abs(v) - 1, 0);
+                        g2 += beyond * beyond;
+                    }
+                    if (double(g2) <= limit) offsets.push_back({{x, y, z}, g2});
+                }
+    }
+};
+
+} // namespace
+
+struct ContactFinder::Pairs {
+    struct Pair {
+        std::size_t faces = 0;   ///< voxel pairs within the tolerance
+        Half normals{0, 0, 0};   ///< the sum of their offsets, a to b: the patch's mean normal
+        std::int64_t least = -1; ///< the least squared gap of a voxel pair
+        std::size_t nearest = 0; ///< voxel pairs at the least gap
+        Half sum{0, 0, 0};       ///< the sum of their midpoints
+        double best = std::numeric_limits<double>::infinity();
+        Half at{0, 0, 0};
+        int axis = 0, sign = 1;
+    };
+    std::map<std::pair<std::int64_t, std::int64_t>, Pair> pairs;
+    Stencil stencil;
+    explicit Pairs(double gap) : stencil(gap) {}
+};
+
+ContactFinder::ContactFinder(const GridSpec& volume, double gap) : volume_(volume) {
+    if (!(gap >= 0) || !std::isfinite(gap) || gap > kMaxContactGap)
+        throw std::invalid_argument("findContacts: the contact gap must be in [0, " +
+                                    std::to_string(int(kMaxContactGap)) + "] voxels, got " +
+                                    std::to_string(gap));
+    pairs_ = std::make_shared<Pairs>(gap);
+}
+
+int ContactFinder::margin() const {
+    return pairs_->stencil.reach + 1;
+}
+
+namespace {
+
+/// Calls @p f(a, b, midpoint, offset a to b, squared gap) for every pair of voxels of two different non-zero
+/// labels within the stencil, both on their grain's boundary (a face neighbour of another value: the least
+/// gap between two grains is always between two such voxels), @p p in the slab's layers first ..
+/// first + own - 1. The slab's layer 0 is the volume's layer @p x0.
+template <class F>
+void eachPair(const LabelGrid& slab, long long x0, int first, int own, const Stencil& st, bool faces, F&& f) {
     const GridSpec& g = slab.spec;
-    const std::size_t stride[3] = {1, std::size_t(g.dims[0]),
-                                   std::size_t(g.dims[0]) * std::size_t(g.dims[1])};
-    for (int k = 0; k < g.dims[2]; ++k)
-        for (int j = 0; j < g.dims[1]; ++j)
-            for (int i = 0; i < g.dims[0]; ++i) {
-                const std::size_t q = g.index(i, j, k);
+    const long long nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
+    const auto at = [&](long long i, long long j, long long k) -> std::int64_t {
+        if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return 0;
+        return slab.labels[std::size_t(i + nx * (j + ny * k))];
+    };
+    // the boundary voxels of the slab, where the slab knows their neighbours (the layers beyond them: the
+    // caller gives margin() layers on each side of those it owns)
+    std::vector<char> edge;
+    if (!faces) {
+        edge.assign(slab.labels.size(), 0);
+        for (long long k = 0; k < nz; ++k)
+            for (long long j = 0; j < ny; ++j)
+                for (long long i = 0; i < nx; ++i) {
+                    const std::int64_t l = at(i, j, k);
+                    if (l == 0) continue;
+                    edge[std::size_t(i + nx * (j + ny * k))] = at(i - 1, j, k) != l || at(i + 1, j, k) != l ||
+                                                               at(i, j - 1, k) != l || at(i, j + 1, k) != l ||
+                                                               at(i, j, k - 1) != l || at(i, j, k + 1) != l;
+                }
+    }
+    for (long long k = 0; k < nz; ++k)
+        for (long long j = 0; j < ny; ++j)
+            for (long long i = first; i < first + own; ++i) {
+                const std::size_t q = std::size_t(i + nx * (j + ny * k));
                 const std::int64_t here = slab.labels[q];
-                if (here == 0) continue;
-                const int at[3] = {i, j, k};
-                for (int d = 0; d < 3; ++d) {
-                    if (at[d] + 1 >= g.dims[d] || (d > 0 && i >= own)) continue;
-                    const std::int64_t there = slab.labels[q + stride[d]];
-                    if (there == 0 || there == here) continue;
-                    Face c{2 * (x0 + i), 2 * std::int64_t(j), 2 * std::int64_t(k)};
-                    c[std::size_t(d)] += 1;
+                if (here == 0 || (!faces && !edge[q])) continue;
+                for (const Stencil::Offset& o : st.offsets) {
+                    const long long I = i + o.d[0], J = j + o.d[1], K = k + o.d[2];
+                    if (I < 0 || J < 0 || K < 0 || I >= nx || J >= ny || K >= nz) continue;
+                    const std::size_t r = std::size_t(I + nx * (J + ny * K));
+                    const std::int64_t there = slab.labels[r];
+                    if (there == 0 || there == here || (!faces && !edge[r])) continue;
+                    const Half mid{2 * (x0 + i) + o.d[0], 2 * j + o.d[1], 2 * k + o.d[2]};
                     if (here < there)
-                        f(here, there, c, d, 1);
+                        f(here, there, mid, o.d, 1, o.gap2);
                     else
-                        f(there, here, c, d, -1);
+                        f(there, here, mid, o.d, -1, o.gap2);
                 }
             }
 }
 
 } // namespace
 
-struct ContactFinder::Pairs {
-    struct Pair {
-        std::size_t faces = 0;
-        Face sum{0, 0, 0};
-        Face normals{0, 0, 0}; ///< the sum of the faces' normals (a to b): the patch's mean normal
-        double best = std::numeric_limits<double>::infinity();
-        Face at{0, 0, 0};
-        int axis = 0, sign = 1;
-    };
-    std::map<std::pair<std::int64_t, std::int64_t>, Pair> pairs;
-};
-
-ContactFinder::ContactFinder(const GridSpec& volume) : volume_(volume), pairs_(std::make_shared<Pairs>()) {}
-
-void ContactFinder::count(const LabelGrid& slab, long long x0, int own) {
+void ContactFinder::count(const LabelGrid& slab, long long x0, int first, int own) {
     if (slab.labels.size() != slab.spec.size())
         throw std::invalid_argument("findContacts: the labels do not fill the grid");
-    eachSharedFace(slab, x0, own, [&](std::int64_t a, std::int64_t b, const Face& c, int axis, int sign) {
-        Pairs::Pair& p = pairs_->pairs[{a, b}];
-        ++p.faces;
-        for (int d = 0; d < 3; ++d) p.sum[std::size_t(d)] += c[std::size_t(d)];
-        p.normals[std::size_t(axis)] += sign;
-    });
+    const bool faces = pairs_->stencil.faces;
+    eachPair(slab, x0, first, own, pairs_->stencil, faces,
+             [&](std::int64_t a, std::int64_t b, const Half& mid, const int* d, int sign, std::int64_t g2) {
+                 Pairs::Pair& p = pairs_->pairs[{a, b}];
+                 ++p.faces;
+                 for (int e = 0; e < 3; ++e) p.normals[std::size_t(e)] += sign * d[e];
+                 if (p.least < 0 || g2 < p.least) p.least = g2, p.nearest = 0, p.sum = {0, 0, 0};
+                 if (g2 == p.least) {
+                     ++p.nearest;
+                     for (int e = 0; e < 3; ++e) p.sum[std::size_t(e)] += mid[std::size_t(e)];
+                 }
+             });
 }
 
-void ContactFinder::locate(const LabelGrid& slab, long long x0, int own) {
-    // the face nearest the centroid of the pair's faces: on a flat facet its middle, where both grains have
-    // the most room for a ball through it; on a tie the least (x, y, z), so that the choice is the volume's
-    // alone, whatever the slabs
-    eachSharedFace(slab, x0, own, [&](std::int64_t a, std::int64_t b, const Face& c, int axis, int sign) {
-        Pairs::Pair& p = pairs_->pairs[{a, b}];
-        double d = 0;
-        for (int e = 0; e < 3; ++e) {
-            const double x = double(c[std::size_t(e)]) - double(p.sum[std::size_t(e)]) / double(p.faces);
-            d += x * x;
-        }
-        if (d < p.best || (d == p.best && c < p.at)) p.best = d, p.at = c, p.axis = axis, p.sign = sign;
-    });
+void ContactFinder::locate(const LabelGrid& slab, long long x0, int first, int own) {
+    // the midpoint of a pair at the least gap nearest the centroid of all of them: on a flat facet its
+    // middle, where both grains have the most room for a ball through it (across a separating line, the
+    // line's middle); on a tie the least (x, y, z), so that the choice is the volume's alone, whatever the
+    // slabs
+    const bool faces = pairs_->stencil.faces;
+    eachPair(slab, x0, first, own, pairs_->stencil, faces,
+             [&](std::int64_t a, std::int64_t b, const Half& mid, const int* d, int sign, std::int64_t g2) {
+                 Pairs::Pair& p = pairs_->pairs[{a, b}];
+                 if (g2 != p.least) return;
+                 double dist = 0;
+                 for (int e = 0; e < 3; ++e) {
+                     const double x =
+                         double(mid[std::size_t(e)]) - double(p.sum[std::size_t(e)]) / double(p.nearest);
+                     dist += x * x;
+                 }
+                 if (dist < p.best || (dist == p.best && mid < p.at)) {
+                     p.best = dist, p.at = mid;
+                     p.axis = int(
+                         std::max_element(d, d + 3, [](int u, int v) { return std::abs(u) < std::abs(v); }) -
+                         d);
+                     p.sign = sign * (d[p.axis] > 0 ? 1 : -1);
+                 }
+             });
 }
 
 std::vector<LabelContact> ContactFinder::contacts() const {
@@ -92,6 +184,7 @@ std::vector<LabelContact> ContactFinder::contacts() const {
         c.a = key.first;
         c.b = key.second;
         c.faces = p.faces;
+        c.gap = std::sqrt(double(p.least));
         c.point = volume_.origin + 0.5 * volume_.h * Vec3(double(p.at[0]), double(p.at[1]), double(p.at[2]));
         // the patch's mean normal: a facet oblique to the axes is a staircase of voxel faces, whose own
         // normals (the axes) point into the steps; a ball along the mean one stays clear of them (on a
@@ -100,7 +193,7 @@ std::vector<LabelContact> ContactFinder::contacts() const {
         c.normal = Vec3(double(p.normals[0]), double(p.normals[1]), double(p.normals[2]));
         if (c.normal.norm() > 0)
             c.normal.normalize();
-        else { // faces whose normals cancel: the chosen face's own
+        else { // offsets whose sum cancels: the chosen pair's main axis
             c.normal = Vec3::Zero();
             c.normal[p.axis] = p.sign;
         }
@@ -109,10 +202,10 @@ std::vector<LabelContact> ContactFinder::contacts() const {
     return out;
 }
 
-std::vector<LabelContact> findContacts(const LabelGrid& volume) {
-    ContactFinder f(volume.spec);
-    f.count(volume, 0, volume.spec.dims[0]);
-    f.locate(volume, 0, volume.spec.dims[0]);
+std::vector<LabelContact> findContacts(const LabelGrid& volume, double gap) {
+    ContactFinder f(volume.spec, gap);
+    f.count(volume, 0, 0, volume.spec.dims[0]);
+    f.locate(volume, 0, 0, volume.spec.dims[0]);
     return f.contacts();
 }
 

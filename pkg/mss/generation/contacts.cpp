@@ -3,6 +3,7 @@
 #include "mss/core/edt.hpp"
 #include "mss/core/mesh_query.hpp"
 #include "mss/planes.hpp"
+#include "mss/voxelize.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,6 +50,29 @@ std::function<double(const Vec3&)> withNeighbours(std::function<double(const Vec
     };
 }
 
+namespace {
+
+/// How far @p p lies beyond the solid voxel cubes of @p S (world units; 0 inside one), searched within
+/// half the largest contact gap and a voxel; 0 where none is so near (a point of no gap: the bound holds).
+double depthBeyond(const VoxelGrid& S, const Vec3& p) {
+    const double h = S.spec.h, span = 0.5 * kMaxContactGap + 1.0;
+    const Vec3 v = S.spec.toVoxel(p);
+    double best = std::numeric_limits<double>::infinity();
+    for (int k = std::max(0, int(std::floor(v.z() - span)));
+         k <= std::min(S.spec.dims[2] - 1, int(std::ceil(v.z() + span))); ++k)
+        for (int j = std::max(0, int(std::floor(v.y() - span)));
+             j <= std::min(S.spec.dims[1] - 1, int(std::ceil(v.y() + span))); ++j)
+            for (int i = std::max(0, int(std::floor(v.x() - span)));
+                 i <= std::min(S.spec.dims[0] - 1, int(std::ceil(v.x() + span))); ++i) {
+                if (!S(i, j, k)) continue;
+                const Vec3 off = ((Vec3(i, j, k) - v).cwiseAbs() - Vec3::Constant(0.5)).cwiseMax(0.0);
+                best = std::min(best, off.norm() * h);
+            }
+    return std::isfinite(best) ? best : 0.0;
+}
+
+} // namespace
+
 void reachContacts(SphereSet& spheres, const GenerateOptions& opt, const VoxelGrid& S, const ScalarGrid& E,
                    const std::function<double(const Vec3&)>& clearance, double H,
                    const std::shared_ptr<NeighbourClearance>& neighbours, Metrics& m) {
@@ -60,11 +84,11 @@ void reachContacts(SphereSet& spheres, const GenerateOptions& opt, const VoxelGr
     const double least = std::max(opt.rMin, 0.5 * h);
     const double bump = std::min(H, opt.neighbourProtrusion * H);
     const double inscribed = h * *std::max_element(E.data.begin(), E.data.end());
-    const auto limitAt = [&](const Vec3& c) {
+    const auto limitAt = [&](const Vec3& c, double own) {
         double limit = clearance(c);
         if (limit < 0) return -1.0; // a centre outside the grain
-        limit += bump;
-        if (neighbours) limit = std::min(limit, (*neighbours)(c) + bump);
+        limit += own;
+        if (neighbours) limit = std::min(limit, (*neighbours)(c) + own);
         for (const Plane& p : opt.planes) limit = std::min(limit, planeDistance(p, c));
         return limit;
     };
@@ -79,7 +103,11 @@ void reachContacts(SphereSet& spheres, const GenerateOptions& opt, const VoxelGr
         // most E - 1/2 voxels); the farthest that the exact bound allows wins: the largest ball through the
         // point
         const Vec3 n = cp.inward.normalized();
-        const double R = inscribed + h;
+        // a point across a separating line (findContacts' gap) lies beyond the grain: its ball may reach it
+        // there, so that the two grains' clumps touch; the bound holds everywhere else (the ball protrudes at
+        // most as far as the point lies beyond the grain's voxel cubes, plus the twentieth)
+        const double own = std::max(bump, depthBeyond(S, cp.point) + reach);
+        const double R = inscribed + std::max(h, own);
         const Vec3 lo = S.spec.toVoxel(cp.point - Vec3::Constant(R)),
                    hi = S.spec.toVoxel(cp.point + Vec3::Constant(R));
         std::vector<std::pair<double, Vec3>> candidates;
@@ -93,7 +121,7 @@ void reachContacts(SphereSet& spheres, const GenerateOptions& opt, const VoxelGr
                     const Vec3 c = S.spec.voxelCenter(i, j, k);
                     const double d = (c - cp.point).norm();
                     if (d > R || n.dot(c - cp.point) <= 0) continue;
-                    if (d + reach > (E(i, j, k) - 0.5) * h + bump) continue;
+                    if (d + reach > (E(i, j, k) - 0.5) * h + own) continue;
                     candidates.push_back({d, c});
                 }
         for (int s = 1; s * h / 8 <= R; ++s) // and along the patch's normal, between the voxel centres
@@ -103,7 +131,7 @@ void reachContacts(SphereSet& spheres, const GenerateOptions& opt, const VoxelGr
         bool added = false;
         for (const auto& [d, c] : candidates) {
             if (d + reach < least) break;
-            if (d + reach <= limitAt(c)) {
+            if (d + reach <= limitAt(c, own)) {
                 spheres.add(c, d + reach);
                 added = true;
                 break;

@@ -1,0 +1,86 @@
+"""A finished batch's manifest (OUTDIR/batch.json): what it was made from and what it wrote, so that a rerun of
+the same command with nothing changed costs a look at the files, not a run (make-like).
+
+The inputs are known by their identity on disk (device, inode, size, modification and change times in
+nanoseconds; an array by a digest of its bytes), the options by their values, the outputs by their identity
+too: a file rewritten, replaced or removed since (a grain's result swapped in grains/, an input edited or
+touched) sends the rerun down the ordinary path, which reuses each grain only for the same input and options.
+"""
+
+import hashlib
+import json
+import os
+import stat
+
+import numpy as np
+
+VERSION = 1
+NAME = 'batch.json'
+MAX_BYTES = 1 << 30  # a manifest is rows and file identities: 10^5 grains take tens of MB
+
+
+def _identity(path):
+    st = os.stat(path)
+    return [st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns]
+
+
+def inputIdentity(files=None, array=None):
+    """What a batch is made from: each file's path and identity on disk, or an array's shape, type and digest."""
+    if array is not None:
+        a = np.ascontiguousarray(array)
+        return {'array': [list(a.shape), a.dtype.str, hashlib.sha256(memoryview(a).cast('B')).hexdigest()]}
+    return {'files': [[os.path.abspath(f)] + _identity(f) for f in files]}
+
+
+def outputs(outdir):
+    """Every regular file the batch left in *outdir* (the manifest aside), relative path -> identity."""
+    out = {}
+    for top, dirs, names in os.walk(outdir):
+        dirs[:] = [d for d in dirs if not os.path.islink(os.path.join(top, d))]
+        for n in names:
+            p = os.path.join(top, n)
+            rel = os.path.relpath(p, outdir)
+            if rel == NAME or n.startswith('.'):
+                continue
+            st = os.lstat(p)
+            if stat.S_ISREG(st.st_mode):
+                out[rel] = [st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns]
+    return out
+
+
+def forget(outdir):
+    """Removes the manifest: a run that changes the folder makes it stale."""
+    try:
+        os.remove(os.path.join(outdir, NAME))
+    except FileNotFoundError:
+        pass
+
+
+def write(outdir, key, state, atomic):
+    """Writes the manifest of a finished batch: its *key* (inputs and options), the files in *outdir* now and
+    *state* (what the summary and the Python API give back)."""
+    text = json.dumps({'version': VERSION, 'key': key, 'outputs': outputs(outdir), 'state': state})
+
+    def put(p):
+        with open(p, 'w') as f:
+            f.write(text)
+    atomic(os.path.join(outdir, NAME), put)
+
+
+def finished(outdir, key):
+    """The *state* of a finished batch in *outdir* made with the same *key*, whose every output is as it left
+    it; None otherwise (no manifest, another key, a file changed, added or gone, a manifest unreadable)."""
+    path = os.path.join(outdir, NAME)
+    try:
+        st = os.lstat(path)
+        if not stat.S_ISREG(st.st_mode) or st.st_size > MAX_BYTES:
+            return None
+        with open(path) as f:
+            meta = json.load(f)
+        if not isinstance(meta, dict) or meta.get('version') != VERSION or meta.get('key') != key:
+            return None
+        if outputs(outdir) != meta.get('outputs'):
+            return None
+        return meta.get('state')
+    except (OSError, ValueError, TypeError):
+        return None
