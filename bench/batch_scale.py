@@ -190,6 +190,8 @@ def main():
                          '%d/%d' % (r['kept'], r['pairs']), int('Large object' in err or 'Traceback' in err),
                          '%.0f' % r['anon'], '%.3f' % per, '%.2f' % (per / first[label]), 'lines',
                          SPHERES, VOXELS, '', '', ''])
+        save(rows)  # after each count: a run cut short keeps what it measured
+        rows = []
         if n == COUNTS[-1]:
             out = os.path.join(d, RUNS[0].replace(' ', '_').replace(',', ''))
             a = assembly(out)
@@ -198,9 +200,9 @@ def main():
             rows.append([n, 'mssAssembly in YADE', '%.2f' % a['wall'], '%.1f' % (a['clumps'] / a['wall']), '',
                          '', '', '', 0, '', '%.3f' % (1000 * a['wall'] / a['clumps']), '', 'lines', SPHERES, VOXELS,
                          a['clumps'], a['bodies'], '%.0f' % a['peak']])
+            save(rows)
+            rows = []
         subprocess.run(['rm', '-rf', d])
-        save(rows)  # after each count: a run cut short keeps what it measured
-        rows = []
 
 
 def save(rows):

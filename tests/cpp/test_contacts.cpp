@@ -32,6 +32,15 @@ LabelGrid twoBoxes(int nx, int ny, int nz, int split, int line = 0) {
     return g;
 }
 
+/// The least gap between two sphere sets (negative: they overlap by that much).
+double setGap(const SphereSet& a, const SphereSet& b) {
+    double gap = 1e9;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        for (std::size_t j = 0; j < b.size(); ++j)
+            gap = std::min(gap, (a.centers[i] - b.centers[j]).norm() - a.radii[i] - b.radii[j]);
+    return gap;
+}
+
 /// The solid of one label, as a VoxelGrid on the same grid.
 VoxelGrid solidOf(const LabelGrid& g, std::int64_t label) {
     VoxelGrid v(g.spec, 0);
@@ -84,12 +93,8 @@ TEST(Contacts, EachGrainReachesTheSharedPointWithoutBumps) {
         EXPECT_LE(gap, -0.05 * g.spec.h + 1e-12); // the point inside the spheres
         both[label - 1] = r.spheres;
     }
-    double gap = 1e9;
-    for (std::size_t i = 0; i < both[0].size(); ++i)
-        for (std::size_t j = 0; j < both[1].size(); ++j)
-            gap = std::min(gap, (both[0].centers[i] - both[1].centers[j]).norm() - both[0].radii[i] -
-                                    both[1].radii[j]);
-    EXPECT_LE(gap, -0.1 * g.spec.h + 1e-12); // the two grains overlap there: a DEM code sees them touch
+    // the two grains overlap there: a DEM code sees them touch
+    EXPECT_LE(setGap(both[0], both[1]), -0.1 * g.spec.h + 1e-12);
 }
 
 TEST(Contacts, BadContactPointsAreRefused) {
@@ -201,11 +206,7 @@ TEST(Contacts, GrainsAcrossALineReachItsMiddleAndTouch) {
             EXPECT_LE(r.metrics.protrusion, std::max(r.metrics.protrusionLimit, 0.55 * g.spec.h) + 1e-12);
             both[label - 1] = r.spheres;
         }
-        double gap = 1e9;
-        for (std::size_t i = 0; i < both[0].size(); ++i)
-            for (std::size_t j = 0; j < both[1].size(); ++j)
-                gap = std::min(gap, (both[0].centers[i] - both[1].centers[j]).norm() - both[0].radii[i] -
-                                        both[1].radii[j]);
-        EXPECT_LE(gap, -0.1 * g.spec.h + 1e-12) << "share " << share; // they overlap: a DEM code sees them
+        // they overlap: a DEM code sees them touch
+        EXPECT_LE(setGap(both[0], both[1]), -0.1 * g.spec.h + 1e-12) << "share " << share;
     }
 }
