@@ -130,8 +130,7 @@ def appendRows(name, columns, rows, fmt='%.4g'):
 
 
 def runs(path, d):
-    """Each way of RUNS on the specimen at *path*: (label, the child's figures, its stderr)."""
-    out = []
+    """Each way of RUNS on the specimen at *path*, as it finishes: (label, the child's figures, its stderr)."""
     for label in RUNS:
         procs, address = [], None
         if label.startswith('dask'):
@@ -159,8 +158,7 @@ def runs(path, d):
                 os.remove(sched)
         if p.returncode != 0:
             raise SystemExit('%s failed:\n%s' % (label, p.stderr[-3000:]))
-        out.append((label, json.loads(p.stdout.strip().splitlines()[-1]), p.stderr))
-    return out
+        yield label, json.loads(p.stdout.strip().splitlines()[-1]), p.stderr
 
 
 def main():
@@ -190,8 +188,8 @@ def main():
                          '%d/%d' % (r['kept'], r['pairs']), int('Large object' in err or 'Traceback' in err),
                          '%.0f' % r['anon'], '%.3f' % per, '%.2f' % (per / first[label]), 'lines',
                          SPHERES, VOXELS, '', '', ''])
-        save(rows)  # after each count: a run cut short keeps what it measured
-        rows = []
+            save(rows)  # after each run: a bench cut short keeps what it measured
+            rows = []
         if n == COUNTS[-1]:
             out = os.path.join(d, RUNS[0].replace(' ', '_').replace(',', ''))
             a = assembly(out)
