@@ -165,6 +165,42 @@ template <class F> auto namingInput(const std::string& in, F&& f) -> decltype(f(
 }
 
 /// Whether @p path is a voxel volume (the format table's); one the core does not read is refused by name.
+/// A file written beside its final path under a fresh name (created exclusively, the same extension: the
+/// writers go by it) and renamed onto it by publish(); removed if never published.
+class PendingFile {
+public:
+    explicit PendingFile(const std::string& target) : target_(target) {
+        const std::string dir =
+            target.find('/') == std::string::npos ? "." : target.substr(0, target.rfind('/'));
+        const std::string ext = mss::fileExtension(target);
+        std::string name = dir + "/.mss-pending-XXXXXX" + ext;
+        std::vector<char> buf(name.begin(), name.end());
+        buf.push_back('\0');
+        const int fd = ::mkstemps(buf.data(), int(ext.size()));
+        if (fd < 0)
+            throw std::invalid_argument("generate: " + target + ": cannot write beside it (" +
+                                        std::strerror(errno) + ")");
+        ::close(fd);
+        path = buf.data();
+    }
+    ~PendingFile() {
+        if (!published_) ::unlink(path.c_str());
+    }
+    PendingFile(const PendingFile&) = delete;
+    PendingFile& operator=(const PendingFile&) = delete;
+    void publish() const {
+        if (std::rename(path.c_str(), target_.c_str()) != 0)
+            throw std::invalid_argument("generate: " + target_ + ": cannot write (" + std::strerror(errno) +
+                                        ")");
+        published_ = true;
+    }
+    std::string path;
+
+private:
+    std::string target_;
+    mutable bool published_ = false;
+};
+
 bool isVoxelFile(const std::string& path) {
     const mss::FileFormat* f = mss::findFormat(path, mss::FileKind::Voxels);
     if (f && !f->readByCore)
@@ -278,6 +314,9 @@ int cmdGenerate(const Args& a) {
     const std::string written = mss::formatList(mss::FileKind::Spheres, true);
     if (!a.has("output")) throw std::invalid_argument("generate needs -o OUT (" + written + ")");
     const std::string in = a.positional[0], out = a.text("output");
+    std::vector<std::pair<std::string, std::string>> outputs{{"-o", out}};
+    if (a.has("preview")) outputs.push_back({"--preview", a.text("preview")});
+    mss::detail::refuseOverInputs("generate", outputs, {in});
     if (const std::string format = templateFormat(out); !format.empty()) return generateTemplate(a, format);
     {
         const mss::FileFormat* f = mss::findFormat(out, mss::FileKind::Spheres);
@@ -316,16 +355,20 @@ int cmdGenerate(const Args& a) {
     }
     for (const std::string& w : r.metrics.warnings)
         std::cerr << "mss generate: warning: " << in << ": " << w << "\n";
-    mss::writeSpheres(r.spheres, out);
-    r.metrics.secondsTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    printMetrics(r);
-    std::cout << "wrote       " << out << std::endl;
-    if (a.has("preview")) {
-        std::vector<std::string> args{"preview", in, out, "-o", a.text("preview")};
+    if (!a.has("preview")) {
+        mss::writeSpheres(r.spheres, out);
+    } else { // the spheres are published only once their preview is drawn: a failed command leaves no output
+        const PendingFile pending(out);
+        mss::writeSpheres(r.spheres, pending.path);
+        std::vector<std::string> args{"preview", in, pending.path, "-o", a.text("preview")};
         for (const char* k : {"voxelSize", "origin", "label"})
             if (a.has(k) && isVoxelFile(in)) args.insert(args.end(), {flagOf(k), a.text(k)});
         if (runPython(args) != 0) throw std::runtime_error("the preview could not be drawn (see above)");
+        pending.publish();
     }
+    r.metrics.secondsTotal = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    printMetrics(r);
+    std::cout << "wrote       " << out << std::endl;
     return 0;
 }
 
@@ -417,11 +460,14 @@ int cmdCompare(const Args& a) {
     const mss::Settings st = mss::settingsFrom(values(a, mss::command::Compare), mss::command::Compare);
     const mss::CompareOptions& o = st.compare;
     const std::string in = a.positional[0];
+    const std::vector<std::string> files(a.positional.begin() + 1, a.positional.end());
+    std::vector<std::string> inputs = files;
+    inputs.push_back(in);
+    if (a.has("csv")) mss::detail::refuseOverInputs("compare", {{"--csv", a.text("csv")}}, inputs);
     const bool voxels = isVoxelFile(in);
     if (!voxels) voxelOptionsOnly(a, in, {"voxelSize", "origin", "label"});
     const mss::VoxelGrid v = voxels ? readVoxels(st, in) : mss::VoxelGrid();
     const mss::TriangleMesh mesh = voxels ? mss::TriangleMesh() : mss::readMesh(in);
-    const std::vector<std::string> files(a.positional.begin() + 1, a.positional.end());
     std::vector<mss::Comparison> rows;
     for (const std::string& f : files) {
         const mss::SphereSet s = mss::readSpheres(f, st.clumpId);
@@ -472,6 +518,7 @@ int cmdSurface(const Args& a) {
     const mss::Settings st = mss::settingsFrom(values(a, mss::command::Surface), mss::command::Surface);
     if (!a.has("output")) throw std::invalid_argument("surface needs -o MESH (.stl, .obj or .ply)");
     const std::string out = a.text("output");
+    mss::detail::refuseOverInputs("surface", {{"-o", out}}, {a.positional[0]});
     const mss::FileFormat* f = mss::findFormat(out, mss::FileKind::Mesh);
     if (!f || !f->formatMesh) // before the work: the extension decides the writer
         throw std::invalid_argument(out + ": unknown mesh extension '" + mss::fileExtension(out) +

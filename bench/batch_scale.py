@@ -165,7 +165,7 @@ def main():
     print('%-8s %-17s %8s %10s %12s %9s %14s %14s %16s %14s' % (
         'grains', 'run', 'wall s', 'grains/s', 'ms a grain', 'vs first', 'peak MiB batch', 'of it anon.',
         'peak MiB workers', 'contacts kept'))
-    first, rows = {}, []
+    first, rows = previousFirst(), []
     for n in COUNTS:
         d = tempfile.mkdtemp()
         path = os.path.join(d, 'spec.npy')
@@ -201,6 +201,21 @@ def main():
             save(rows)
             rows = []
         subprocess.run(['rm', '-rf', d])
+
+
+def previousFirst():
+    """{run: ms a grain} of the newest rows of 1000 grains of the same specimen, spheres and grain size in
+    bench/results/batch_scale.csv, when this run starts above 1000 grains (its cost is compared with theirs)."""
+    out = {}
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'results', 'batch_scale.csv')
+    if COUNTS[0] <= 1000 or not os.path.exists(path):
+        return out
+    with open(path, newline='') as f:
+        for r in csv.DictReader(f):
+            if (r.get('grains') == '1000' and r.get('specimen') == 'lines' and r.get('spheres') == str(SPHERES)
+                    and r.get('voxels_per_grain') == str(VOXELS) and r.get('ms_per_grain')):
+                out[r['run']] = float(r['ms_per_grain'])
+    return out
 
 
 def save(rows):

@@ -22,7 +22,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from . import _manifest, _options, _report
-from ._files import atomicWrite, requireRegularFile
+from ._files import atomicWrite, refuseLinkedFolders, refuseOverInputs, requireRegularFile
 from ._generate import GENERATE_OPTIONS
 from ._report import COLUMNS
 from ._results import MssResult
@@ -183,6 +183,9 @@ def _oneThread():
     except (OSError, AttributeError):
         pass
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it stops the workers
+    # the batch's own SIGTERM handler (a KeyboardInterrupt, _stopOnTerm) came with the fork: the pool's shutdown
+    # terminates its workers, which printed that interrupt's traceback; a worker just ends
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
     from . import _mss
     _mss.setOmpThreads(1)
 
@@ -472,7 +475,7 @@ def clusterSecurity(security=None, caFile=None, cert=None, key=None):
     return Security(tls_ca_file=caFile, tls_client_cert=cert, tls_client_key=key, require_encryption=True)
 
 
-def _executor(workers, scheduler, security=None):
+def _executor(workers, scheduler, security=None, connectTimeout=5.0):
     """(submit-all function yielding results as they finish, closer)."""
     if scheduler:
         try:
@@ -481,7 +484,12 @@ def _executor(workers, scheduler, security=None):
             raise RuntimeError('batch: --scheduler needs Dask (Debian: python3-distributed)')
         if security is not None and not str(scheduler).startswith('tls://'):
             raise ValueError('batch: with TLS the scheduler address is tls://HOST:PORT, got %s' % scheduler)
-        client = Client(scheduler, timeout=30, security=security)
+        try:
+            client = Client(scheduler, timeout=connectTimeout, security=security)
+        except (OSError, TimeoutError) as e:  # asyncio's and Dask's time-outs are both
+            raise RuntimeError('batch: the Dask scheduler at %s did not answer within %g s (--connect-timeout, '
+                               'connectTimeout): is it running and reachable? (%s: %s)'
+                               % (scheduler, connectTimeout, type(e).__name__, e))
 
         def run(tasks):
             # a few grains per task: Dask's per-task cost (~ms) stays small against the grains' own; still
@@ -582,7 +590,7 @@ class _LocalPool(object):
 @_options.documented('batch')
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
           voxelSize=None, origin=None, progress=True, previews=False, security=None, density=1000.0, young=1e9,
-          format=None, segment=False, segmentH=1.0, **options):
+          format=None, segment=False, segmentH=1.0, connectTimeout=5.0, **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
     assembly, as ``mss batch`` does (the options are the same, spelled for Python).
 
@@ -604,7 +612,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         workers = 1 if 'yade' in sys.modules else _freeCores()
     from ._args import integer
     workers = integer('batch', 'workers', workers, 1, 1024)
-    density, young = (_options.check('batch', 'batch', n, v) for n, v in (('density', density), ('young', young)))
+    density, young, connectTimeout = (_options.check('batch', 'batch', n, v) for n, v in (
+        ('density', density), ('young', young), ('connectTimeout', connectTimeout)))
     if format is not None:
         format = _options.check('batch', 'batch', 'format', format)
         if outdir is None:
@@ -612,6 +621,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     t0 = time.perf_counter()
     runKey = None
     if outdir is not None:
+        _refuseOverInputs(inputs, outdir)
         runKey = _runKey(inputs, gen, {'voxelSize': voxelSize, 'origin': origin, 'minVoxels': minVoxels,
                                        'excludeBorder': excludeBorder, 'labels': labels, 'previews': previews,
                                        'density': density, 'young': young, 'format': format, 'segment': segment,
@@ -663,7 +673,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     elif progress:
         print('batch: %d grains, %d done before, %d skipped, %d to generate' % (total, already, len(skipped), len(todo)),
               flush=True)
-    run, close = _executor(min(workers, max(1, len(todo))), scheduler, security)  # no idle processes for few grains
+    # no idle processes for few grains
+    run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
     n = 0
     digests = {t.key: t.digest for t in todo}
     try:
@@ -703,6 +714,29 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     if progress:
         print(_report.summary(out, total, density, young), flush=True)
     return out
+
+
+OUTPUTS = ('labels.npy', 'grains.csv', 'assembly.txt', 'assembly.vtk', 'contacts.csv', 'report.html',
+           'report_distributions.png', 'report_segmentation.png', _manifest.NAME, 'placements.csv')
+
+
+def _refuseOverInputs(inputs, outdir):
+    """Before any work: no output folder (or folder in it) that is a link, no output that is an input, no input
+    among the grains' files."""
+    outdir = os.fspath(outdir)
+    refuseLinkedFolders('batch', [outdir] + [os.path.join(outdir, d) for d in ('grains', 'templates')])
+    if isinstance(inputs, np.ndarray):
+        return
+    files = [os.fspath(f) for f in inputs if os.path.isfile(f)]
+    for d in inputs:
+        if os.path.isdir(d):
+            files += [os.path.join(d, f) for f in os.listdir(d)]
+    refuseOverInputs('batch', [('OUT/' + n, os.path.join(outdir, n)) for n in OUTPUTS], files)
+    grains = os.path.realpath(os.path.join(outdir, 'grains'))
+    for f in files:
+        if os.path.dirname(os.path.realpath(f)) == grains:
+            raise ValueError('batch: the input %s lies in the output folder\'s grains/, which the batch writes: move '
+                             'it out or name another output folder' % f)
 
 
 def _segmented(inputs, outdir, h, memoryLimit=None):
@@ -756,7 +790,8 @@ def main(argv=None):
     try:
         v = _options.parsed('batch', a)
         own = ('output', 'workers', 'scheduler', 'tlsCaFile', 'tlsCert', 'tlsKey', 'minVoxels', 'excludeBorder',
-               'labels', 'previews', 'voxelSize', 'origin', 'density', 'young', 'format', 'segment', 'segmentH')
+               'labels', 'previews', 'voxelSize', 'origin', 'density', 'young', 'format', 'segment', 'segmentH',
+               'connectTimeout')
         gen = {k: x for k, x in v.items() if k not in own}
         labels = [int(x) for x in v['labels'].split(',')] if v.get('labels') else None
         b = batch(a.inputs, v['output'], workers=v.get('workers'), scheduler=v.get('scheduler'),
@@ -765,7 +800,7 @@ def main(argv=None):
                   excludeBorder=v.get('excludeBorder', False), labels=labels, voxelSize=v.get('voxelSize'),
                   origin=v.get('origin'), previews=v.get('previews', False), density=v.get('density', 1000.0),
                   young=v.get('young', 1e9), format=v.get('format'), segment=v.get('segment', False),
-                  segmentH=v.get('segmentH', 1.0), **gen)
+                  segmentH=v.get('segmentH', 1.0), connectTimeout=v.get('connectTimeout', 5.0), **gen)
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)

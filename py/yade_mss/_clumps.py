@@ -384,13 +384,22 @@ def _build(func, plans, members, warn=None, grains=None):
     made = []
     try:
         for p in plans:
-            bodies, final, inertia = members.make(p.centers, p.radii)
+            # built about the world's origin, then moved where it goes: YADE sums the members' tensors about the
+            # origin and moves the sum to the centre, which cost eps M |C|^2 (a split piece 1.2 km from the origin
+            # took its inertia 5e-7 off)
+            shift = np.asarray(p.centroid, dtype=float)
+            bodies, final, inertia = members.make(p.centers - shift, p.radii)
             rho = members.density(bodies[0].mat)
             cid, ids = _withLoads([(bodies, (rho * p.m).tolist(), final, inertia, False, rho * p.j, p.V, None)],
                                   lambda: O.bodies.appendClumped(bodies, discretization=0), me)
             ids = list(ids)
             made.append((cid, ids))
-            _check(func, O, cid, rho * p.volume, p.centroid, (rho * p.moments).tolist())
+            _check(func, O, cid, rho * p.volume, np.zeros(3), (rho * p.moments).tolist())
+            if np.any(shift):
+                by = me.Vector3(*shift.tolist())
+                for i in [cid] + ids:
+                    st = O.bodies[i].state
+                    st.pos, st.refPos = st.pos + by, st.refPos + by
             if members.blocked:  # fixed=True (or dynamic=False) means the clump: members are never integrated
                 O.bodies[cid].state.blockedDOFs = members.blocked
             if p.offset > 0 and warn is not None:

@@ -15,7 +15,7 @@ import tempfile
 import numpy as np
 
 from . import _mss, _options
-from ._files import _umask, atomicWrite
+from ._files import _umask, atomicWrite, refuseOverInputs
 
 FORMATS = ('liggghts', 'kratos', 'mercurydpm', 'pfc', 'yade')
 EXTENSIONS = {'liggghts': '.in', 'kratos': '.clu', 'mercurydpm': '', 'pfc': '.p3dat', 'yade': '.txt'}  # batch's
@@ -404,6 +404,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         v = _options.parsed('export', a)
+        refuseOverInputs('export', [('-o', v.get('output'))], [a.input])
         own = ('output', 'format', 'density', 'frame', 'templateType', 'atomType')
         gen = {k: x for k, x in v.items() if k not in own}
         r = _result(a.input, gen)

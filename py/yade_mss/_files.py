@@ -45,6 +45,45 @@ def atomicWrite(path, write, where):
         raise
 
 
+def refuseOverInputs(where, outputs, inputs):
+    """Before any work: refuses an output that is one of the inputs (the same file by device and inode, through
+    links and other names), naming both, so that no command writes over what it reads. *outputs*: (what, path)
+    pairs ('-o', 'out.csv'); *inputs*: paths (those that do not exist yet are no input)."""
+    ids = {}
+    for path in inputs:
+        try:
+            st = os.stat(path)
+        except (OSError, TypeError, ValueError):
+            continue
+        ids.setdefault((st.st_dev, st.st_ino), os.fspath(path))
+    seen = {}
+    for what, path in outputs:
+        if path is None:
+            continue
+        try:
+            st = os.stat(path)
+        except (OSError, TypeError, ValueError):
+            continue
+        key = (st.st_dev, st.st_ino)
+        if key in ids:
+            raise ValueError('%s: %s %s is the input %s (the same file%s): it would be written over; name another '
+                             'output' % (where, what, os.fspath(path), ids[key],
+                                         '' if os.fspath(path) == ids[key] else ', through a link or another name'))
+        if key in seen:
+            raise ValueError('%s: %s and %s name the same file %s: one would write over the other'
+                             % (where, seen[key], what, os.fspath(path)))
+        seen[key] = what
+
+
+def refuseLinkedFolders(where, folders):
+    """Refuses an output folder, or a folder the command writes into inside it, that is a symbolic link: files
+    would land wherever the link points (a link planted in a shared output folder)."""
+    for path in folders:
+        if os.path.islink(path):
+            raise ValueError('%s: %s is a symbolic link: the outputs would be written where it points (%s); give '
+                             'a real folder' % (where, os.fspath(path), os.path.realpath(path)))
+
+
 def requireRegularFile(where, path):
     """Refuses a path that is not a regular file, by name (a FIFO would block the reader; a device never end). A
     missing path passes: the reader says it cannot open it."""

@@ -19,7 +19,7 @@ import time
 import numpy as np
 
 from . import _options
-from ._files import atomicWrite
+from ._files import atomicWrite, refuseOverInputs
 from ._generate import compareMany, generate
 from ._sources import _Mesh, _source
 
@@ -210,6 +210,12 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         v = _options.parsed('ochart', a)
+        if v.get('dice') is not None and not v.get('minCost'):
+            raise ValueError('ochart: --dice X chooses the cheapest clump with D <= X and applies with --min-cost; '
+                             'give --min-cost too, or leave --dice out')
+        base = os.path.splitext(v['output'])[0]
+        refuseOverInputs('ochart', [('-o', v['output']), ('its CSV', base + '.csv'),
+                                    ('its best clump', base + '_best.csv')], [a.grain])
         rows, best = clumpOchart(a.grain, v['output'], v.get('counts'), v.get('radii', '0.05:0.6'), v.get('points', 6),
                                  v.get('radiusPoints', 5), v.get('dice'), v.get('minCost', False),
                                  v.get('resolution', _options.default('resolution', 'ochart')), v.get('voxelSize'),

@@ -18,7 +18,7 @@ import numpy as np
 
 from . import _mss
 from . import _options
-from ._files import atomicWrite
+from ._files import atomicWrite, refuseOverInputs
 from ._generate import compareMany, generate
 from ._results import MssResult, readSpheres
 from ._sources import _Mesh, _source
@@ -281,6 +281,11 @@ def main(argv=None):
     try:
         v = _options.parsed(a.command, a)
         grain = dict(voxelSize=v.get('voxelSize'), origin=v.get('origin'), label=v.get('label'))
+        if a.command == 'preview':
+            refuseOverInputs('preview', [('-o', v['output'])], [a.grain, a.spheres])
+        else:
+            refuseOverInputs('curve', [('-o', v['output']), ('its CSV', os.path.splitext(v['output'])[0] + '.csv')],
+                             [a.grain] + list(v.get('compare', [])))
         if a.command == 'preview':
             row = preview(a.grain, a.spheres, v['output'], v.get('resolution', _options.default('resolution', 'preview')),
                           title=os.path.basename(a.spheres), **grain)

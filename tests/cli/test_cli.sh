@@ -222,5 +222,35 @@ else
     bash -c "ulimit -v 6000000; exec \"\$0\" generate \"\$1\" --spheres 3 --resolution 1200 --memory-limit 100000 -o \"\$2\"" "$MSS" "$DATA/cube.stl" "$TMP/x.csv"
 fi
 
+# no output over an input (issue 50): refused before any work, with both names, the input unchanged; through a
+# link too
+"$MSS" generate "$DATA/ellipsoid_2_1_1.stl" --spheres 4 --resolution 30 -o "$TMP/ovr_in.csv" > /dev/null
+cp "$TMP/ovr_in.csv" "$TMP/ovr_in.keep"
+expect_error "compare --csv over its sphere file" "is the input" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/ovr_in.csv" --csv "$TMP/ovr_in.csv"
+ln -s "$TMP/ovr_in.csv" "$TMP/ovr_link.csv"
+expect_error "compare --csv over its sphere file through a link" "through a link" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$TMP/ovr_in.csv" --csv "$TMP/ovr_link.csv"
+expect_error "surface -o over its sphere file" "is the input" "$MSS" surface "$TMP/ovr_in.csv" -o "$TMP/ovr_link.csv"
+cp "$DATA/cube.stl" "$TMP/ovr_cube.stl"
+expect_error "generate -o over its mesh" "is the input" "$MSS" generate "$TMP/ovr_cube.stl" --spheres 2 -o "$TMP/ovr_cube.stl"
+expect_error "export -o over its mesh" "is the input" "$MSS" export "$TMP/ovr_cube.stl" --spheres 2 --format pfc -o "$TMP/ovr_cube.stl"
+check "the inputs are unchanged" cmp -s "$TMP/ovr_in.csv" "$TMP/ovr_in.keep"
+check "the mesh is unchanged" cmp -s "$TMP/ovr_cube.stl" "$DATA/cube.stl"
+expect_error "generate -o and --preview the same file" "name the same file" "$MSS" generate "$DATA/cube.stl" --spheres 2 -o "$TMP/same.csv" --preview "$TMP/same.csv"
+expect_error "curve's CSV over its --compare input" "is the input" "$MSS" curve "$DATA/cube.stl" --counts 2:4 --points 2 -o "$TMP/ovr_in.png" --compare "$TMP/ovr_in.csv"
+expect_error "ochart --dice without --min-cost" "applies with --min-cost" "$MSS" ochart "$DATA/cube.stl" --dice 0.05 -o "$TMP/o.png"
+# a command that fails publishes nothing: the spheres only once their preview is drawn
+rm -f "$TMP/failed.csv"
+expect_error "generate with a preview it cannot write" "preview" "$MSS" generate "$DATA/cube.stl" --spheres 2 --resolution 20 -o "$TMP/failed.csv" --preview "$TMP/no/such/folder/p.png"
+check "no sphere file left by the failed command" [ ! -e "$TMP/failed.csv" ]
+check "no temporary file left beside it" [ -z "$(ls -A "$TMP" | grep mss-pending)" ]
+"$MSS" generate "$DATA/cube.stl" --spheres 2 --resolution 20 -o "$TMP/ok.csv" --preview "$TMP/ok.png" > /dev/null
+check "with its preview drawn, the spheres are written" [ -s "$TMP/ok.csv" ] && [ -s "$TMP/ok.png" ]
+# sphere files are read by their header's names
+printf 'r,x,y,z\n0.5,1,2,3\n' > "$TMP/named.csv"
+"$MSS" surface "$TMP/named.csv" -o "$TMP/named.stl" > "$TMP/named.log"
+check "columns by the header's names (r first)" grep -qE '^union_volume +0.523' "$TMP/named.log"
+printf 'x,y,radius,q\n1,2,0.5,3\n' > "$TMP/lacks.csv"
+expect_error "a header without z is refused by name" "names no column z" "$MSS" surface "$TMP/lacks.csv" -o "$TMP/l.stl"
+
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

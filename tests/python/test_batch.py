@@ -152,9 +152,9 @@ class Integrity(unittest.TestCase):
         asked = []
         real = B._executor
 
-        def spy(workers, scheduler, security=None):
+        def spy(workers, scheduler, *rest):
             asked.append(workers)
-            return real(workers, scheduler, security)
+            return real(workers, scheduler, *rest)
         B._executor = spy
         try:
             with tempfile.TemporaryDirectory() as d:

@@ -137,6 +137,29 @@ class Split(Base):
         self.assertEqual(sorted(log[1]['pieces']), sorted(c for c, ids in again))
         self.assertAlmostEqual(sum(log[1]['volumes']), log[1]['parentVolume'], delta=1e-12 * log[1]['parentVolume'])
 
+    def test_every_generation_of_pieces_keeps_mass_and_inertia_far_from_the_origin(self):
+        # the bug: a second split summed to its parent's mass +5.06e-8, inertia lost digits with the distance
+        # from the origin (the mesh was cut in world coordinates); now cut in the grain's own frame
+        for where in ((0.0, 0.0, 0.0), (1.2e6, -3.4e5, 8.0e5)):  # the femur (mm) 1.2 km from the origin
+            O.reset()
+            self.mat = O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5))
+            cid = self.femur(n=30, center=where)
+            parent = cid
+            for generation in range(3):
+                s = O.bodies[parent].state
+                before = totals([parent])
+                I0 = tensor(s)
+                made = mssSplit(parent, (vec(s.pos), (0.3, -0.2, 1.0) if generation % 2 else (1.0, 0.4, -0.1)))
+                mine = [c for c, ids in made]
+                M, C, P, L = totals(mine)
+                self.assertLess(abs(M - before[0]), 1e-13 * before[0], (where, generation))
+                self.assertLess(np.linalg.norm(C - before[1]), 1e-9 * M ** (1 / 3.0) / RHO ** (1 / 3.0) + 1e-15 *
+                                np.linalg.norm(before[1]), (where, generation))
+                J = sum(tensor(O.bodies[m].state) + O.bodies[m].state.mass * (
+                    np.dot(d, d) * np.eye(3) - np.outer(d, d)) for m in mine for d in [vec(O.bodies[m].state.pos) - C])
+                self.assertLess(np.abs(J - I0).max(), 1e-10 * np.abs(I0).max(), (where, generation))
+                parent = max(mine, key=lambda m: O.bodies[m].state.mass)
+
     def test_plane_that_misses_is_an_error_and_changes_nothing(self):
         cid = self.femur()
         n = len(O.bodies)
@@ -215,8 +238,8 @@ class Split(Base):
         split: 4 spheres): the loads that give YADE that centre mix large positive and negative masses, and
         YADE's sums about the world's origin, far for the piece's size, came out 1% off (the split failed its own
         check). Here a cube of edge 2e-3 at ~(300, -250, 280) with four spheres crowded in one corner (loads up to
-        3599 times the mass in all): without the sphere at the centre of mass YADE's moments are off by about 9
-        times the check's tolerance; with it, exact. A set around its centre is kept."""
+        3599 times the mass in all): a clump built about the origin and moved takes them exactly; the sphere at
+        the centre of mass is still added (the loads stay moderate), and a set around its centre is kept."""
         from yade_mss import _mss
         from yade_mss._breakage import _holdCentroid
         from yade_mss._clumps import _Members, _Plan, _build
@@ -229,8 +252,15 @@ class Split(Base):
         c = at + e * np.array([[0.2, 0.2, 0.2], [0.2005, 0.2, 0.2], [0.2, 0.2005, 0.2], [0.2, 0.2, 0.2005]])
         r = np.full(4, 0.15 * e)
         members = _Members('test', dict(material=self.mat))
-        with self.assertRaisesRegex(RuntimeError, 'did not take the requested mass properties'):
-            _build('test', [_Plan.of(c, r, props['volume'], C, props['inertia'])], members)
+        # built about the origin and then moved, YADE takes even those loads: its moments exact to 1e-12 (they
+        # were off by 9 times the check's tolerance when it summed about the far origin)
+        (cid0, ids0), = _build('test', [_Plan.of(c, r, props['volume'], C, props['inertia'])], members)
+        s0 = O.bodies[cid0].state
+        want = np.linalg.eigvalsh(RHO * np.reshape(props['inertia'], (3, 3)))
+        got = np.sort([s0.inertia[0], s0.inertia[1], s0.inertia[2]])
+        self.assertLess(np.abs(got - want).max(), 1e-12 * want.max())
+        self.assertLess(np.linalg.norm(vec(s0.pos) - C), 1e-12 * np.linalg.norm(C))
+        O.bodies.erase(cid0, True)
         c2, r2 = _holdCentroid((V, T), props, c, r)
         self.assertEqual(len(r2), 5)
         np.testing.assert_allclose(c2[-1], C, rtol=0, atol=1e-12)

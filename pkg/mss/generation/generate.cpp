@@ -281,6 +281,8 @@ public:
 
 private:
     static bool waitersSleep() {
+        // the runtime started before the policy was set (yade_mss inside YADE says so): its waiters spin
+        if (std::getenv("MSS_OMP_SPINNING")) return false;
         if (const char* c = std::getenv("GOMP_SPINCOUNT")) {
             char* end = nullptr;
             const double spins = std::strtod(c, &end);

@@ -209,6 +209,8 @@ const std::vector<OptionSpec> kTable = {
      "tls://HOST:PORT (or tcp://) of a Dask scheduler: grains as its tasks. Without TLS anyone who reaches "
      "the port runs code as the workers' user",
      c::Batch},
+    {"connectTimeout", "--connect-timeout", true, T::Number, "5", 0, 600, true, false, "", "seconds", "S",
+     "give up on a Dask scheduler that does not answer within this, naming its address", c::Batch},
     {"tlsCaFile", "--tls-ca-file", false, T::Text, "", 0, 0, false, false, "", "", "PEM",
      "TLS: the CA certificate the cluster trusts", c::Batch},
     {"tlsCert", "--tls-cert", false, T::Text, "", 0, 0, false, false, "", "", "PEM",

@@ -54,4 +54,31 @@ void writeFileAtomically(const std::string& where, const std::string& path, cons
     }
 }
 
+bool sameFile(const std::string& a, const std::string& b) {
+    struct stat x {
+    }, y{};
+    return ::stat(a.c_str(), &x) == 0 && ::stat(b.c_str(), &y) == 0 && x.st_dev == y.st_dev &&
+           x.st_ino == y.st_ino;
+}
+
+void refuseOverInputs(const std::string& where,
+                      const std::vector<std::pair<std::string, std::string>>& outputs,
+                      const std::vector<std::string>& inputs) {
+    for (std::size_t o = 0; o < outputs.size(); ++o) {
+        const auto& [what, path] = outputs[o];
+        for (const std::string& in : inputs)
+            if (sameFile(path, in))
+                throw std::invalid_argument(where + ": " + what + " " + path + " is the input " + in +
+                                            (path == in ? " (the same file)"
+                                                        : " (the same file, through a link or "
+                                                          "another name)") +
+                                            ": it would be written over; name another output");
+        for (std::size_t p = 0; p < o; ++p)
+            if (path == outputs[p].second || sameFile(path, outputs[p].second))
+                throw std::invalid_argument(where + ": " + outputs[p].first + " and " + what +
+                                            " name the same file " + path +
+                                            ": one would write over the other");
+    }
+}
+
 } // namespace mss::detail

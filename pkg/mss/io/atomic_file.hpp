@@ -2,6 +2,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace mss::detail {
 
@@ -11,5 +13,15 @@ namespace mss::detail {
 /// refused, as is following a link planted at a predictable temporary name (there is none). Throws
 /// std::invalid_argument("WHERE: PATH: ...") naming the problem.
 void writeFileAtomically(const std::string& where, const std::string& path, const std::string& text);
+
+/// Whether @p a and @p b name the same existing file (device and inode: through links and other names).
+bool sameFile(const std::string& a, const std::string& b);
+
+/// Before any work: throws std::invalid_argument("WHERE: WHAT PATH is the input ...") where an output (a
+/// (what, path) pair: {"-o", "out.csv"}) is one of @p inputs or another output, so that no command writes
+/// over what it reads. Paths that do not exist are no input.
+void refuseOverInputs(const std::string& where,
+                      const std::vector<std::pair<std::string, std::string>>& outputs,
+                      const std::vector<std::string>& inputs);
 
 } // namespace mss::detail

@@ -5,6 +5,9 @@
 #include "mss/io/template_spheres.hpp"
 #include "mss/mesh.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -32,6 +35,40 @@ long long clumpIdOf(const std::string& tok) {
     const double v = std::strtod(tok.c_str(), &end);
     if (end == tok.c_str() || *end != '\0' || !(v >= 0.0) || v > 9e15 || v != std::floor(v)) return -1;
     return static_cast<long long>(v);
+}
+/// The columns a header line names: x, y, z, r (or radius) and a clump id (clumpId, clump_id, clump, id),
+/// in any order, case aside. A header that names none of them is text, the columns by position; one that
+/// names some but not all four is refused, naming what it lacks (reading by position would mix them up).
+std::array<int, 5> headerColumns(const std::string& line, const std::string& path, std::size_t lineNo) {
+    std::array<int, 5> at{-1, -1, -1, -1, -1};
+    std::istringstream words(line);
+    int k = 0;
+    for (std::string w; words >> w; ++k) {
+        std::transform(w.begin(), w.end(), w.begin(), [](unsigned char c) { return std::tolower(c); });
+        const int slot = w == "x"                                                           ? 0
+                         : w == "y"                                                         ? 1
+                         : w == "z"                                                         ? 2
+                         : (w == "r" || w == "radius" || w == "rad")                        ? 3
+                         : (w == "clumpid" || w == "clump_id" || w == "clump" || w == "id") ? 4
+                                                                                            : -1;
+        if (slot < 0) continue;
+        if (at[std::size_t(slot)] >= 0)
+            throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
+                                        ": the header names '" + w + "' twice");
+        at[std::size_t(slot)] = k;
+    }
+    const int named = int(at[0] >= 0) + int(at[1] >= 0) + int(at[2] >= 0) + int(at[3] >= 0);
+    if (named == 0) return {0, 1, 2, 3, 4};
+    if (named < 4) {
+        std::string lacks;
+        const char* names[4] = {"x", "y", "z", "r (or radius)"};
+        for (int c = 0; c < 4; ++c)
+            if (at[std::size_t(c)] < 0) lacks += (lacks.empty() ? "" : ", ") + std::string(names[c]);
+        throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
+                                    ": the header names no column " + lacks +
+                                    " (a sphere file's columns: x, y, z, r, any order, named in its header)");
+    }
+    return at;
 }
 } // namespace
 
@@ -61,6 +98,7 @@ SphereSet readSpheres(const std::string& path, long long clumpId) {
     std::set<long long> distinct;
     std::string line;
     std::size_t lineNo = 0;
+    std::array<int, 5> columns{0, 1, 2, 3, 4}; // x, y, z, r and the clump id (-1: none), by position
     while (std::getline(in, line)) {
         ++lineNo;
         if (lineNo == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0)
@@ -73,19 +111,33 @@ SphereSet readSpheres(const std::string& path, long long clumpId) {
         std::string first;
         if (!(ls >> first)) continue;
         // a header line (x,y,z,r) is allowed before any data: one whose first word is not a number ('nan' and
-        // 'inf' are numbers, refused below, never a header)
+        // 'inf' are numbers, refused below, never a header); where it names the columns, they are read by
+        // name
         if (s.size() == 0) {
             char* end = nullptr;
             std::strtod(first.c_str(), &end);
-            if (end == first.c_str() || *end != '\0') continue;
+            if (end == first.c_str() || *end != '\0') {
+                columns = headerColumns(line, path, lineNo);
+                continue;
+            }
         }
-        std::istringstream all(line);
+        std::vector<std::string> toks;
+        {
+            std::istringstream all(line);
+            for (std::string tok; all >> tok;) toks.push_back(tok);
+        }
+        const std::size_t need = std::size_t(*std::max_element(columns.begin(), columns.begin() + 4)) + 1;
+        if (toks.size() < need)
+            throw std::invalid_argument(
+                "readSpheres: " + path + ": line " + std::to_string(lineNo) + ": expected x y z r" +
+                (need > 4 ? " (in columns " + std::to_string(columns[0] + 1) + ", " +
+                                std::to_string(columns[1] + 1) + ", " + std::to_string(columns[2] + 1) +
+                                ", " + std::to_string(columns[3] + 1) + " as the header names them)"
+                          : std::string()));
         double v[4];
-        for (double& x : v) {
-            std::string tok;
-            if (!(all >> tok))
-                throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
-                                            ": expected x y z r");
+        for (int c = 0; c < 4; ++c) {
+            double& x = v[c];
+            const std::string& tok = toks[std::size_t(columns[std::size_t(c)])];
             char* end = nullptr;
             x = std::strtod(tok.c_str(), &end);
             if (end == tok.c_str() || *end != '\0')
@@ -97,7 +149,9 @@ SphereSet readSpheres(const std::string& path, long long clumpId) {
         }
         std::string fifth;
         long long id = -1;
-        if (all >> fifth) { // a clump id: never merged with another by rounding or by being dropped
+        const int idColumn = columns[4];
+        if (idColumn >= 0 && std::size_t(idColumn) < toks.size()) fifth = toks[std::size_t(idColumn)];
+        if (!fifth.empty()) { // a clump id: never merged with another by rounding or by being dropped
             id = clumpIdOf(fifth);
             if (id < 0)
                 throw std::invalid_argument("readSpheres: " + path + ": line " + std::to_string(lineNo) +
