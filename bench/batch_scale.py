@@ -8,7 +8,8 @@ for the largest count, mssAssembly of the finished folder in YADE (time and peak
 second, the cost per grain against the smallest count's, the batch's overhead over its grains' generation
 times, the peak memory (the batch process, and of it the anonymous memory: the rest is the mapped volume's
 pages; its local workers), the contacts kept, and appends a row per run to bench/results/batch_scale.csv.
-Run on a quiet machine: /usr/bin/python3 bench/batch_scale.py (MSS_RUNS='one process' to run one way only)."""
+Run on a quiet machine: /usr/bin/python3 bench/batch_scale.py (MSS_RUNS='one process' to run one way only,
+MSS_ASSEMBLY=0 to leave YADE out)."""
 import csv
 import json
 import os
@@ -190,7 +191,7 @@ def main():
                          SPHERES, VOXELS, '', '', ''])
             save(rows)  # after each run: a bench cut short keeps what it measured
             rows = []
-        if n == COUNTS[-1]:
+        if n == COUNTS[-1] and os.environ.get('MSS_ASSEMBLY', '1') != '0':
             out = os.path.join(d, RUNS[0].replace(' ', '_').replace(',', ''))
             a = assembly(out)
             print('mssAssembly of %d grains in YADE: %.1f s, %d bodies, peak %.0f MiB'

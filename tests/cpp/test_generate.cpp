@@ -255,3 +255,32 @@ TEST(Generate, MismatchOfSpheresEqualsTheirVoxelisation) {
     const VoxelGrid target = voxelizeMesh(femur, r.grid, 1);
     EXPECT_EQ(mismatch(target, voxelizeSpheres(r.spheres, r.grid)).dice, r.metrics.dice);
 }
+
+TEST(Generate, test_one_voxel_grain_gets_one_sphere_of_its_volume) {
+    // the bug: a grain of one voxel (a watershed fragment in a specimen) failed with "no sphere is left": a ball
+    // of radius E = 1 covers its six neighbours too, so none lowered the mismatch
+    for (int n : {1, 2}) {
+        VoxelGrid g(GridSpec{{5 + n, 5, 5}, 0.5, Vec3(1, 2, 3)}, 0);
+        for (int i = 0; i < n; ++i) g(2 + i, 2, 2) = 1;
+        GenerateOptions o;
+        o.nSpheres = 4;
+        const Result r = generate(g, o);
+        ASSERT_GE(r.spheres.size(), 1u) << n;
+        if (n == 1) {
+            ASSERT_EQ(r.spheres.size(), 1u);
+            EXPECT_EQ(r.spheres.centers[0], g.spec.voxelCenter(2, 2, 2));
+            EXPECT_NEAR(r.spheres.radii[0], 0.5 * std::cbrt(3.0 / (4.0 * M_PI)), 1e-12); // the voxel's volume
+            EXPECT_DOUBLE_EQ(r.metrics.dice, 0.0);
+            ASSERT_EQ(r.metrics.warnings.size(), 1u);
+            EXPECT_NE(r.metrics.warnings[0].find("one sphere of its volume"), std::string::npos);
+        }
+        EXPECT_LE(r.metrics.protrusion, r.metrics.protrusionLimit + 1e-12);
+    }
+    // a radius bound above the voxel's: refused as before, naming it
+    VoxelGrid g(GridSpec{{5, 5, 5}, 1.0, Vec3::Zero()}, 0);
+    g(2, 2, 2) = 1;
+    GenerateOptions o;
+    o.nSpheres = 4;
+    o.rMin = 0.9;
+    EXPECT_THROW(generate(g, o), std::invalid_argument);
+}

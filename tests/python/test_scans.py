@@ -51,12 +51,14 @@ class WatershedLines(unittest.TestCase):
         self.assertGreater(sum(1 for g in self.gaps.values() if g <= 1.0), 30)
 
     def test_every_scan_contact_is_kept_within_half_a_voxel(self):
-        b = batch(self.L, None, workers=1, progress=False, nSpheres=6, minVoxels=20)
+        b = batch(self.L, None, workers=1, progress=False, nSpheres=6)
         c = b.contacts
         self.assertEqual(c['gap'], 1.0)
         self.assertEqual(c['pairs'], sum(1 for g in self.gaps.values() if g <= 1.0))
+        self.assertEqual(len(b.results), int(self.L.max()))  # every grain, the watershed's smallest fragments too
         self.assertGreater(c['between'], 30)
-        self.assertEqual(c['kept'], c['between'])  # every pair of generated grains within half a voxel
+        self.assertEqual(c['between'], c['pairs'])
+        self.assertEqual(c['kept'], c['pairs'])  # every pair of the scan within half a voxel in the assembly
         # no bump: every grain within its bound but for the contact balls' reach (half a voxel and a twentieth)
         for k, r in b.results.items():
             self.assertLessEqual(r.metrics['protrusion'], 1.0 + 1e-9, k)
