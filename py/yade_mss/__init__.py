@@ -56,8 +56,9 @@ from ._ochart import clumpOchart  # noqa: E402
 from ._breakage import MssBreakage, breakageLog, breakagePotential, grainSizes, mssSplit, relativeBreakage  # noqa: E402
 from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
 
-__all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties', 'mssClump',
-           'restoreClumpProperties', 'totalMass', 'porosity', 'writeClumps', 'readClumps', 'mssTemplate', 'MssTemplate', 'mssClumpCloud',
-           'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions', 'syntheticSpecimen', 'packedSpecimen', 'voronoiBall', 'findContacts',
-           'spheropolygon', 'spheropolygons', 'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit',
-           'MssBreakage', 'breakageLog', 'grainSizes', 'breakagePotential', 'relativeBreakage']
+__all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties',
+           'mssClump', 'restoreClumpProperties', 'totalMass', 'porosity', 'writeClumps', 'readClumps',
+           'mssTemplate', 'MssTemplate', 'mssClumpCloud', 'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions',
+           'syntheticSpecimen', 'packedSpecimen', 'voronoiBall', 'findContacts', 'spheropolygon', 'spheropolygons',
+           'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit', 'MssBreakage', 'breakageLog', 'grainSizes',
+           'breakagePotential', 'relativeBreakage']

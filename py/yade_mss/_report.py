@@ -223,7 +223,8 @@ def summary(b, total, density, young):
         if c['pairs'] == 0:
             text += '\nbatch: contacts: ' + gapsText(c)
         else:
-            text += ('\nbatch: contacts: %d pairs of grains within %g voxel%s in the scan, %d between generated grains, '
+            text += ('\nbatch: contacts: %d pairs of grains within %g voxel%s in the scan, %d between generated '
+                     'grains, '
                      '%d of them kept (clumps within %.1f voxel); %d pairs within %g voxel%s in the assembly; '
                      'coordination %.2f in the scan, %.2f in the assembly'
                      % (c['pairs'], c['gap'], _s(c['gap']), c['between'], c['kept'], KEPT_GAP, c['assembly'],
