@@ -257,8 +257,8 @@ TEST(Generate, MismatchOfSpheresEqualsTheirVoxelisation) {
 }
 
 TEST(Generate, test_one_voxel_grain_gets_one_sphere_of_its_volume) {
-    // the bug: a grain of one voxel (a watershed fragment in a specimen) failed with "no sphere is left": a ball
-    // of radius E = 1 covers its six neighbours too, so none lowered the mismatch
+    // the bug: a grain of one voxel (a watershed fragment in a specimen) failed with "no sphere is left": a
+    // ball of radius E = 1 covers its six neighbours too, so none lowered the mismatch
     for (int n : {1, 2}) {
         VoxelGrid g(GridSpec{{5 + n, 5, 5}, 0.5, Vec3(1, 2, 3)}, 0);
         for (int i = 0; i < n; ++i) g(2 + i, 2, 2) = 1;
