@@ -245,6 +245,9 @@ check "no sphere file left by the failed command" [ ! -e "$TMP/failed.csv" ]
 check "no temporary file left beside it" [ -z "$(ls -A "$TMP" | grep mss-pending)" ]
 "$MSS" generate "$DATA/cube.stl" --spheres 2 --resolution 20 -o "$TMP/ok.csv" --preview "$TMP/ok.png" > /dev/null
 check "with its preview drawn, the spheres are written" [ -s "$TMP/ok.csv" ] && [ -s "$TMP/ok.png" ]
+# the help's range is the check's (the bug: --help said [1, 16], the voxeliser refused 9..16)
+check "--help gives --supersample's real range" bash -c '"$0" generate --help | grep -- --supersample | grep -qF "[1, 8]"' "$MSS"
+expect_error "--supersample 9 refused by the option's range" "supersample" "$MSS" generate "$DATA/cube.stl" --spheres 2 --supersample 9 -o "$TMP/s9.csv"
 # sphere files are read by their header's names
 printf 'r,x,y,z\n0.5,1,2,3\n' > "$TMP/named.csv"
 "$MSS" surface "$TMP/named.csv" -o "$TMP/named.stl" > "$TMP/named.log"

@@ -96,7 +96,7 @@ const std::vector<OptionSpec> kTable = {
      "a mesh's generation grid: this many voxels along the shortest bounding-box edge (scored on a grid "
      "of 100, offset 0.37)",
      c::Curve | c::Ochart},
-    {"supersample", "--supersample", true, T::Integer, "1", 1, 16, false, false, "", "", "K",
+    {"supersample", "--supersample", true, T::Integer, "1", 1, 8, false, false, "", "", "K",
      "K^3 samples per voxel (K this) when voxelising a mesh (1: voxel centres)", kGen | c::Compare},
     {"memoryLimit", "--memory-limit", true, T::Number, "8", 0, kMaxMemoryGiB, true, false, "", "GiB", "GIB",
      "refuse a mesh's grid whose working memory would exceed this; mss batch reads a labelled volume "
