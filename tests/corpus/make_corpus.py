@@ -133,3 +133,5 @@ w('cluster_inf.clu', 'Begin centers_and_radii\n0 0 0 inf\nEnd centers_and_radii\
 w('pfc_short.p3dat', "clump template create name 'x' ...\n    pebbles 1000000 ...\n    1 0 0 0 ...\n    volume 1\n")
 w('pfc_bubblepack.p3dat', "clump template create name 'x' geometry 'g' bubblepack distance 120 surfcalculate\n")
 w('yade_export_bad_row.txt', '# written by mss export --format yade from x.stl\n0 0 0 1 0\n1 0 0\n')
+w('header_lacks_z.csv', 'x,y,radius,q\n1,2,0.5,3\n')
+w('header_twice_x.csv', 'x,x,y,z,r\n1,1,2,3,0.5\n')
