@@ -200,6 +200,9 @@ def _blank():
     return dict({c: '' for c in COLUMNS}, spheres=0, voxels=0, touches_border=0)
 
 
+_WORKER_DIED = ('a worker process died', 'every worker process died')
+
+
 def _failedRow(task, message):
     """The row of a grain whose worker died: as :func:`runGrain` records a failure."""
     return task.key, dict(_row(task), status='failed', message=message), None
@@ -679,7 +682,9 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     digests = {t.key: t.digest for t in todo}
     try:
         for k, row, r in run(todo):
-            if outdir is not None:
+            # a grain whose worker died is not the grain's failure: nothing is written for it (the pool's stop,
+            # an interrupted batch's workers ending before the batch, must not look like a finished grain)
+            if outdir is not None and not row['message'].startswith(_WORKER_DIED):
                 _store(outdir, k, row, r, key, digests[k])
             out.rows[k] = row
             if r is not None:
