@@ -428,9 +428,7 @@ def _done(outdir, key, optionsKey, digest):
         if meta['row']['status'] == 'ok':
             # the result must be the one this grain wrote: a file swapped or edited since is made again
             path = os.path.join(outdir, 'grains', key + '.npz')
-            with open(path, 'rb') as f:
-                data = f.read()
-            if hashlib.sha256(data).hexdigest() != meta.get('result'):
+            if _fileDigest(path) != meta.get('result'):
                 return None
             r = MssResult.load(path)
         return meta['row'], r
@@ -450,8 +448,7 @@ def _store(outdir, key, row, result, optionsKey, digest=None):
 
         def save(p):
             result.save(p, compress=False)
-            with open(p, 'rb') as f:
-                sums.append(hashlib.sha256(f.read()).hexdigest())
+            sums.append(_fileDigest(p))
         _atomic(os.path.join(g, key + '.npz'), save)
         made = sums[0]
         _atomic(os.path.join(g, key + '.csv'), result.save)

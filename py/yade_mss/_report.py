@@ -11,6 +11,7 @@ import urllib.parse
 import numpy as np
 
 from ._files import atomicWrite
+from ._specimen import NEARBY_GAP
 
 COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
            'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_assembly',
@@ -110,7 +111,7 @@ def gapsText(c):
     if near is None:
         return text
     if not near:
-        return text + ' None comes within %g voxels either: the grains lie apart.' % NEARBY
+        return text + ' None comes within %g voxels either: the grains lie apart.' % NEARBY_GAP
     edges = [x for x in (1, 1.5, 2, 2.5, 3) if x > c['gap']]
     parts, lo = [], c['gap']
     for e in edges:
@@ -119,11 +120,8 @@ def gapsText(c):
             parts.append('%d within (%g, %g]' % (k, lo, e))
         lo = e
     return text + (' %d pair%s of grains lie within %g voxels: %s (least gap %.3g voxels); a larger '
-                   '--contact-gap would count them.' % (len(near), '' if len(near) == 1 else 's', NEARBY,
+                   '--contact-gap would count them.' % (len(near), '' if len(near) == 1 else 's', NEARBY_GAP,
                                                        ', '.join(parts), min(near)))
-
-
-NEARBY = 3.0  # voxels: as _specimen.NEARBY_GAP
 
 
 def annotate(b, options, density, young):

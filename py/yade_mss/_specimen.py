@@ -271,6 +271,8 @@ def packedSpecimen(shape=(60, 60, 60), grains=30, size=(4, 8), seed=1, lines=Tru
     if shape[0] * shape[1] * shape[2] > 1 << 31:
         raise ValueError('%s: shape %r holds over 2^31 voxels' % (func, shape))
     grains = integer(func, 'grains', grains, 1, 10 ** 7)
+    if isinstance(size, (str, bytes)) or not hasattr(size, '__len__') or len(size) != 2:
+        raise TypeError('%s: size must be (smallest, largest) radius in voxels, got %r' % (func, size))
     lo, hi = (number(func, 'size', v, 1.0) for v in size)
     if lo > hi:
         raise ValueError('%s: size must be (smallest, largest), got %r' % (func, size))

@@ -96,6 +96,14 @@ class VoronoiWithLines(unittest.TestCase):
         for k, r in b.results.items():
             self.assertEqual(r.metrics['contactsMissed'], 0, k)
 
+    def test_bad_specimen_arguments_name_themselves(self):
+        with self.assertRaisesRegex(TypeError, 'size must be'):
+            packedSpecimen((20, 20, 20), 3, size=(2, 3, 4))
+        with self.assertRaisesRegex(ValueError, 'gap'):
+            findContacts(np.zeros((4, 4, 4), dtype=np.int32), gap=9)
+        with self.assertRaisesRegex(ValueError, 'segmentH'):
+            segmentBinary(np.ones((4, 4, 4), dtype=bool), h=-1)
+
     def test_separated_clears_one_side_of_each_shared_face(self):
         L = np.zeros((6, 3, 3), dtype=np.int32)
         L[:3], L[3:] = 1, 2
