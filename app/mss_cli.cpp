@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -141,9 +142,20 @@ int runPython(const std::vector<std::string>& args) {
         std::perror("mss: cannot run " MSS_PYTHON);
         _exit(127);
     }
+    // Ctrl-C reaches the child too (one process group): the child stops cleanly and says so, this one waits
+    std::signal(SIGINT, SIG_IGN);
     int status = 0;
-    waitpid(pid, &status, 0);
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
     return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
+/// Ctrl-C: the running step stops at its next checkpoint (mss::Interrupted), publishing nothing; a second
+/// Ctrl-C ends the program at once.
+extern "C" void onInterrupt(int) {
+    mss::requestStop();
+    std::signal(SIGINT, SIG_DFL);
 }
 
 /// Writes @p text to @p path whole or not at all (an exclusive temporary file, then a rename; only a regular
@@ -844,6 +856,8 @@ int main(int argc, char** argv) {
                             : cmp->parsed() ? "compare"
                             : sur->parsed() ? "surface"
                                             : "info";
+    std::signal(SIGINT, onInterrupt);
+    mss::showProgressOnStandardError();
     try {
         if (cmd == "generate") return cmdGenerate(a);
         if (cmd == "compare") return cmdCompare(a);
@@ -858,6 +872,9 @@ int main(int argc, char** argv) {
     } catch (const mss::OptionError& e) { // named as the command line spells it
         std::cerr << "mss " << cmd << ": error: " << flagOf(e.option()) << e.detail() << "\n";
         return 1;
+    } catch (const mss::Interrupted&) {
+        std::cerr << "\nmss " << cmd << ": interrupted (Ctrl-C): nothing was written\n";
+        return 130;
     } catch (const std::exception& e) {
         std::cerr << "mss " << cmd << ": error: " << spelled(e.what()) << "\n";
         return 1;

@@ -854,6 +854,21 @@ void translateInvalid(const std::invalid_argument& e) {
 void translateRuntime(const std::runtime_error& e) {
     setError(PyExc_RuntimeError, e.what());
 }
+void translateInterrupted(const mss::Interrupted&) { // Ctrl-C inside the core: Python's own exception
+    mss::clearStop();
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+}
+
+/// Ctrl-C while the core works without the GIL: Python's handler only sets a flag, which the core's
+/// checkpoints ask for here (the main thread runs the handler; it raises KeyboardInterrupt, kept as a stop).
+bool pythonAsksToStop() {
+    const PyGILState_STATE g = PyGILState_Ensure();
+    const bool stop = PyErr_CheckSignals() != 0;
+    if (stop) PyErr_Clear(); // raised again as KeyboardInterrupt by translateInterrupted
+    PyGILState_Release(g);
+    return stop;
+}
+
 void translateBadAlloc(const std::bad_alloc&) { // memoryLimit allows more than this machine could give
     setError(PyExc_RuntimeError,
              "out of memory: the machine could not give what this run needs; lower the "
@@ -871,11 +886,23 @@ void setOmpThreads(int n) {
 #endif
 }
 
+/// The core's work limit for the Python front ends' own heavy steps (sweeps), with its message.
+void checkWork(const std::string& where, const std::string& what, double seconds, double maxWork,
+               const std::string& lighter) {
+    mss::checkWork(where, {what, seconds}, maxWork, lighter);
+}
+
 BOOST_PYTHON_MODULE(_mss) {
     py::register_exception_translator<std::invalid_argument>(&translateInvalid);
     py::register_exception_translator<std::runtime_error>(&translateRuntime);
     py::register_exception_translator<std::bad_alloc>(&translateBadAlloc);
+    py::register_exception_translator<mss::Interrupted>(&translateInterrupted); // after runtime_error: first
+    mss::setStopPoll(pythonAsksToStop);
+    mss::showProgressOnStandardError(); // as the command line shows it
     py::scope().attr("__doc__") = "yade-mss core (C++). Use the yade_mss package, which wraps this module.";
+    py::def("checkWork", checkWork,
+            (py::arg("where"), py::arg("what"), py::arg("seconds"), py::arg("maxWork"), py::arg("lighter")),
+            "Refuses (ValueError) an estimate over maxWork seconds.");
     py::def("setOmpThreads", setOmpThreads, (py::arg("n")), "OpenMP threads of this process from now on.");
     py::def("readMesh", readMesh, (py::arg("path")), "Mesh file -> (flat vertices, flat triangles).");
     py::def("readNpy", readNpy, (py::arg("path"), py::arg("label") = -1));

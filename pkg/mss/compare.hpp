@@ -3,6 +3,7 @@
 
 #include "mss/mass.hpp"
 #include "mss/score.hpp"
+#include "mss/work.hpp"
 
 #include <string>
 
@@ -34,10 +35,11 @@ struct CompareOptions {
     /// Without alignment: refuse a set most of whose volume lies outside the grain's bounding box (another
     /// frame). Off: score it as written all the same ("--align none").
     bool checkFrame = true;
-    int protrusionSamples = 400;   ///< points per sphere surface for the largest protrusion
-    bool exact = false;            ///< also score on the exact shapes (scoreSpheresExact)
-    std::size_t samples = 1000000; ///< its Monte Carlo points
-    std::uint64_t seed = 1;        ///< and their seed
+    int protrusionSamples = 400;      ///< points per sphere surface for the largest protrusion
+    bool exact = false;               ///< also score on the exact shapes (scoreSpheresExact)
+    std::size_t samples = 1000000;    ///< its Monte Carlo points
+    std::uint64_t seed = 1;           ///< and their seed
+    double maxWork = kDefaultMaxWork; ///< seconds: refuse heavier requests before they start (work.hpp)
 };
 
 /// One row of a comparison: the score (eq. 7, 27) and what a DEM user checks besides.

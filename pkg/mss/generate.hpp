@@ -7,6 +7,7 @@
 #include "mss/score.hpp"
 #include "mss/spheres.hpp"
 #include "mss/voxelize.hpp"
+#include "mss/work.hpp"
 
 #include <optional>
 #include <string>
@@ -42,7 +43,7 @@ struct GenerateOptions {
     double deltaMin = 1.0;   ///< minimal distance between sphere centres, voxels (paper section 3.4, δmin)
     Method method = Method::Optimized;
     bool keepSymmetry = true; ///< optimized: detect mirror planes of the voxelised grain and keep them
-    bool polish = false; ///< optimized: the joint polish of all centres and radii as the last stage
+    bool polish = false;      ///< optimized: the joint polish of all centres and radii as the last stage
     int threads = 0;          ///< OpenMP threads; 0 = the default. The result does not depend on it.
     /// No sphere protrudes from the solid (paper section 3.5, exactly): a mesh's spheres get radii at most
     /// the exact distance from their centre to the surface, a sphere whose centre is outside is not placed; a
@@ -75,6 +76,8 @@ struct GenerateOptions {
     /// clumps from overlapping by more than the bound, at a cost in D where grains share much of their
     /// surface; 1: the bound as elsewhere.
     double neighbourProtrusion = 1.0;
+    /// Seconds: a generation estimated to take longer is refused before it starts (mss/work.hpp).
+    double maxWork = kDefaultMaxWork;
 };
 
 /// Figures of a generation, on the generation grid.

@@ -5,6 +5,7 @@
 #include "mss/mesh.hpp"
 #include "mss/planes.hpp"
 #include "mss/spheres.hpp"
+#include "mss/work.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -47,14 +48,16 @@ struct ExactScore {
 /// allowed side) and the spheres. Point i depends on @p seed and i alone (SplitMix64), so a run gives the
 /// same figures on any machine and any number of threads. The standard errors are the delta method's; for
 /// D they fall as 1 / sqrt(samples). O(samples (log T + spheres per cell)).
-/// @throws std::invalid_argument on bad input or samples outside [1000, 1e9].
+/// @throws std::invalid_argument on bad input, samples outside [1000, 1e9], or an estimate over @p maxWork
+/// seconds (mss/work.hpp); Interrupted on a stop request.
 ExactScore scoreSpheresExact(const TriangleMesh& target, const SphereSet& spheres,
                              std::size_t samples = 1000000, std::uint64_t seed = 1,
-                             const std::vector<Plane>& planes = {});
+                             const std::vector<Plane>& planes = {}, double maxWork = kDefaultMaxWork);
 
 /// The same against a voxel volume, whose exact shape is the union of its solid voxels' cubes.
 ExactScore scoreSpheresExact(const VoxelGrid& target, const SphereSet& spheres, std::size_t samples = 1000000,
-                             std::uint64_t seed = 1, const std::vector<Plane>& planes = {});
+                             std::uint64_t seed = 1, const std::vector<Plane>& planes = {},
+                             double maxWork = kDefaultMaxWork);
 
 /// Relative mismatch eq. 7 and Dice mismatch eq. 27 of two volumes on the same grid.
 struct Mismatch {

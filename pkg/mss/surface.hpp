@@ -3,6 +3,7 @@
 
 #include "mss/mesh.hpp"
 #include "mss/spheres.hpp"
+#include "mss/work.hpp"
 
 #include <cstddef>
 
@@ -17,6 +18,8 @@ struct SurfaceOptions {
     double maxEdge = 0.0;
     /// Refused when meeting the bounds needs more triangles than this.
     std::size_t maxTriangles = 20000000;
+    /// Seconds: refuse bounds whose estimated work is more, before the work (mss/work.hpp).
+    double maxWork = kDefaultMaxWork;
 };
 
 /// What unionSurface did, for reports.

@@ -8,14 +8,23 @@ from ._ochart import main as ochart
 from ._pictures import main as pictures
 from ._spheropolygon import main as spheropolygon
 
-if __name__ == '__main__':
-    command = sys.argv[1] if len(sys.argv) > 1 else ''
+
+def run(argv):
+    command = argv[0] if argv else ''
     if command == 'batch':
-        sys.exit(batch(sys.argv[2:]))
+        return batch(argv[1:])
     if command == 'export':
-        sys.exit(export(sys.argv[2:]))
+        return export(argv[1:])
     if command == 'ochart':
-        sys.exit(ochart(sys.argv[2:]))
+        return ochart(argv[1:])
     if command == 'spheropolygon':
-        sys.exit(spheropolygon(sys.argv[2:]))
-    sys.exit(pictures(sys.argv[1:]))
+        return spheropolygon(argv[1:])
+    return pictures(argv)
+
+
+if __name__ == '__main__':
+    try:
+        sys.exit(run(sys.argv[1:]))
+    except KeyboardInterrupt:  # Ctrl-C: whatever was being written is not published (atomic writes)
+        print('\nmss %s: interrupted (Ctrl-C)' % (sys.argv[1] if len(sys.argv) > 1 else ''), file=sys.stderr)
+        sys.exit(130)

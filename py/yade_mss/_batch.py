@@ -620,6 +620,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
             raise ValueError('batch: format %r writes templates into the output folder: give outdir' % format)
     t0 = time.perf_counter()
     runKey = None
+    if outdir is not None and not isinstance(outdir, (str, bytes, os.PathLike)):
+        raise TypeError('batch: outdir must be a folder path, got %s' % type(outdir).__name__)
     if outdir is not None:
         _refuseOverInputs(inputs, outdir)
         runKey = _runKey(inputs, gen, {'voxelSize': voxelSize, 'origin': origin, 'minVoxels': minVoxels,

@@ -15,7 +15,7 @@ from ._sources import _Mesh, _flat, _source
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=None, voxelSize=None,
              resolution=None, method='optimized', supersample=1, keepSymmetry=True, polish=False, maxIterations=100, deltaMin=1.0,
              threads=0, origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=(),
-             maxProtrusion=None, contacts=True, contactGap=1.0, neighbourProtrusion=1.0):
+             maxProtrusion=None, contacts=True, contactGap=1.0, neighbourProtrusion=1.0, maxWork=None):
     """Generates the sphere set of a grain (MSS paper, sections 2-3). The options are the option table's
     (``mss generate --help`` lists the same, spelled for the command line).
 
@@ -103,7 +103,7 @@ def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=N
 
 @_options.documented('compare')
 def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes=(), clumpId=None, voxelSize=None,
-                origin=None, label=None, supersample=1, exact=False, samples=None, seed=None):
+                origin=None, label=None, supersample=1, exact=False, samples=None, seed=None, maxWork=None):
     """Compares sphere files (or :class:`MssResult` objects) of any generator with a grain, one row each, as
     ``mss compare GRAIN A B C`` prints them.
 
@@ -118,7 +118,7 @@ def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes
     items = list(spheres) if isinstance(spheres, (list, tuple)) else [spheres]
     opts = _options.collect('compareMany', 'compare', dict(resolution=resolution, offset=offset, align=align,
                                                            planes=planes, supersample=supersample, exact=exact,
-                                                           samples=samples, seed=seed))
+                                                           samples=samples, seed=seed, maxWork=maxWork))
     s = _source(target, voxelSize, origin, label)
     if isinstance(s, _Mesh) and (voxelSize is not None or origin is not None or label is not None):
         raise ValueError('compareMany: %s: voxelSize, origin and label apply to voxel volumes; this is a mesh '

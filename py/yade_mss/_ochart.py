@@ -18,7 +18,7 @@ import time
 
 import numpy as np
 
-from . import _options
+from . import _options, _work
 from ._files import atomicWrite, refuseOverInputs
 from ._generate import compareMany, generate
 from ._sources import _Mesh, _source
@@ -65,7 +65,7 @@ def cheapest(rows, dice):
 @_options.documented('ochart', skip=('counts', 'radii'))
 def clumpOchart(grain, output, counts=None, radii='0.05:0.6', points=6, radiusPoints=5, dice=None,
                 minCost=False, resolution=103, voxelSize=None, origin=None, label=None, maxProtrusion=None,
-                scoreResolution=100):
+                scoreResolution=100, maxWork=None):
     """The O-chart of a grain's clumps: for each sphere count n and radius bound rMin, the Dice mismatch D
     (eq. 27) on an independent grid (a mesh) or the volume's own voxels, the cost T = n / r_min relative to one
     sphere of the grain's volume, and O = T x D. Writes OUT.csv and the charts (OUT.png: D, T and O over the
@@ -104,24 +104,34 @@ def clumpOchart(grain, output, counts=None, radii='0.05:0.6', points=6, radiusPo
     rows, results = [], {}
     volume = None
     # the grain's largest inscribed radius (on the generation grid), which the bounds are fractions of
-    inscribed = generate(src, nSpheres=1, maxProtrusion=maxProtrusion, **kw).metrics['inscribedRadius']
+    maxWork = _options.check('ochart', 'ochart', 'maxWork', _options.default('maxWork', 'ochart')
+                             if maxWork is None else maxWork)
+    t0 = time.perf_counter()
+    inscribed = generate(src, nSpheres=1, maxProtrusion=maxProtrusion, maxWork=maxWork, **kw).metrics['inscribedRadius']
+    # one generation of one sphere tells what the chart's will cost, each scored (as much again)
+    rest = _work.checkSweep('ochart', 2 * (time.perf_counter() - t0), 1, [n for n in ns for _ in rs], maxWork,
+                            'ask for fewer points or radius points')
+    bar = _work.bar(len(ns) * len(rs), 'mss ochart', rest)
     for n in ns:
         for rv in rs:
+            bar.update()
             t0 = time.perf_counter()
             row = dict({c: '' for c in _COLUMNS}, n_asked=n, rmin_fraction_asked=rv, rmin_asked=rv * inscribed)
             try:
-                r = generate(src, nSpheres=n, rMin=rv * inscribed, maxProtrusion=maxProtrusion, **kw)
+                r = generate(src, nSpheres=n, rMin=rv * inscribed, maxProtrusion=maxProtrusion, maxWork=maxWork,
+                             **kw)
             except ValueError as e:  # a bound the grain cannot hold: a point of the chart with no clump
                 row.update(message=str(e), seconds=time.perf_counter() - t0)
                 rows.append(row)
                 continue
             volume = r.targetMass.volume
-            c = compareMany(src, [r], **score)[0]
+            c = compareMany(src, [r], maxWork=maxWork, **score)[0]
             h = r.grid['voxelSize']
             row.update(n=len(r), r_min=float(r.radii.min()), r_min_voxels=float(r.radii.min()) / h, D=c['dice'],
                        seconds=time.perf_counter() - t0)
             results[(n, rv)] = r
             rows.append(row)
+    bar.close()
     if volume is None:
         raise ValueError('ochart: no point of the chart gave a clump (every radius bound exceeds the grain\'s '
                          'largest inscribed radius?)')
@@ -219,7 +229,7 @@ def main(argv=None):
         rows, best = clumpOchart(a.grain, v['output'], v.get('counts'), v.get('radii', '0.05:0.6'), v.get('points', 6),
                                  v.get('radiusPoints', 5), v.get('dice'), v.get('minCost', False),
                                  v.get('resolution', _options.default('resolution', 'ochart')), v.get('voxelSize'),
-                                 v.get('origin'), v.get('label'), v.get('maxProtrusion'))
+                                 v.get('origin'), v.get('label'), v.get('maxProtrusion'), maxWork=v.get('maxWork'))
     except (ValueError, RuntimeError) as e:
         print('mss ochart: error: %s' % e, file=sys.stderr)
         return 1

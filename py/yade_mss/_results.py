@@ -274,6 +274,9 @@ def readSpheres(path, clumpId=None):
     """
     from ._args import INT64_MAX, integer
     clump = -1 if clumpId is None else integer('readSpheres', 'clumpId', clumpId, 0, INT64_MAX)
+    if not isinstance(path, (str, bytes, os.PathLike)):
+        raise TypeError('spheres must be a sphere file (its path) or an MssResult (MssResult(centers, radii) of '
+                        'arrays), got %s' % type(path).__name__)
     c, r = _mss.readSpheres(os.fspath(path), clump)
     return MssResult(c, r, source=os.path.basename(os.fspath(path)))
 

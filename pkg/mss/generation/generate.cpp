@@ -4,6 +4,7 @@
 #include "mss/generation/contacts.hpp"
 #include "mss/generation/engine/optimized.hpp"
 #include "mss/generation/engine/paper.hpp"
+#include "mss/generation/estimates.hpp"
 #include "mss/generation/tiny_grain.hpp"
 #include "mss/options.hpp"
 #include "mss/platform/big_vector.hpp"
@@ -367,9 +368,14 @@ Result generateOnGrid(const VoxelGrid& grain, const GenerateOptions& given, Metr
                 "generate: no part of the solid lies on the allowed side of the planes");
     }
     const VoxelGrid& S = opt.planes.empty() ? grain : fragment;
+    const Work work = detail::generationWork(S, opt);
+    checkWork("generate", work, opt.maxWork,
+              "ask for fewer spheres (the option nSpheres) or a coarser grid (the option resolution)");
+    Progress progress("generate", work.seconds);
     const auto t0 = Clock::now();
     const ScalarGrid E = distanceTransform(S); // eq. 8
     m.secondsEdt = secondsSince(t0);
+    progress.update(-1.0, "distance transform done");
     const double h = S.spec.h;
     const double H = protrusionLimit(opt, h);
     m.protrusionLimit = H;
@@ -480,6 +486,7 @@ void validateOptions(const GenerateOptions& o) {
     check("neighbourProtrusion", o.neighbourProtrusion);
     check("maxIterations", (long long)o.maxIterations);
     check("deltaMin", o.deltaMin);
+    check("maxWork", o.maxWork);
     // more threads than libgomp can start end in "Thread creation failed" (2000) or overflow its stacks
     check("threads", (long long)o.threads);
     if (o.maxProtrusion) check("maxProtrusion", *o.maxProtrusion);

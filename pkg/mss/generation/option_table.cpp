@@ -64,6 +64,11 @@ const std::vector<OptionSpec> kTable = {
      "and until no edge is longer than this; 0: no bound", c::Surface},
     {"maxTriangles", "--max-triangles", true, T::Integer, "20000000", 1, kIntMax, false, false, "", "", "N",
      "refuse bounds that need more triangles than this", c::Surface},
+    // heavy requests (mss/work.hpp): refused before they start past this, with the estimate
+    {"maxWork", "--max-work", true, T::Number, "600", 0, kInf, true, true, "", "seconds", "S",
+     "refuse a request whose estimated work (seconds on a 2-core machine) exceeds this, before it starts, "
+     "naming the estimate; a long run shows its progress and stops on Ctrl-C",
+     kGen | c::Compare | c::Surface | c::Preview | c::Curve | c::Ochart | c::Spheropolygon},
     // termination (paper section 3.5): generation stops at the first met
     {"nSpheres", "--spheres", true, T::Integer, "", 1, 65535, false, false, "", "", "N",
      "at most this many spheres (problem (i) of the paper, eq. 2)", kGen},

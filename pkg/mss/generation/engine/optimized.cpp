@@ -1,6 +1,7 @@
 #include "mss/generation/engine/optimized.hpp"
 #include "mss/generation/engine/polish.hpp"
 #include "mss/generation/engine/refine.hpp"
+#include "mss/work.hpp"
 
 namespace mss::engine {
 
@@ -57,6 +58,7 @@ void growToTarget(Selection& s, Report& m, double& secondsRefine) {
     constexpr int kSweeps = 1;
     int budget = std::min(cap, 4);
     while (true) {
+        tick("growing to " + std::to_string(budget) + " spheres");
         s.t.budget = budget;
         const std::size_t kept = s.chosen.size();
         auto t0 = Clock::now();
@@ -99,6 +101,7 @@ std::vector<Ball> runOptimized(const VoxelGrid& S, const ScalarGrid& E, const Re
     m.iterations = 0;
     if (s.t.hasQuality() && start.empty()) growToTarget(s, m, secondsRefine);
     for (; m.iterations < opt.maxIterations; ++m.iterations) {
+        tick("round " + std::to_string(m.iterations + 1) + ", " + std::to_string(s.placed) + " spheres");
         const std::size_t before = s.placed;
         const auto t0 = Clock::now();
         s.greedy();

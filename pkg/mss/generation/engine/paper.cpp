@@ -3,6 +3,7 @@
 #include "mss/core/maxima.hpp"
 #include "mss/score.hpp"
 #include "mss/voxelize.hpp"
+#include "mss/work.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -22,6 +23,8 @@ std::vector<Ball> runPaper(const VoxelGrid& S, const ScalarGrid& E, const Reques
         std::size_t added = 0;
         for (const Maximum& c : cands) {
             if (balls.size() >= budget) break;
+            tick("iteration " + std::to_string(m.iterations + 1) + ", " + std::to_string(balls.size()) +
+                 " spheres");
             if (c.voxelValue < rMinVox)
                 continue; // section 3.5: minimal radius (voxelValue holds the radius here)
             bool near = false;
