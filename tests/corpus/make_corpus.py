@@ -135,3 +135,15 @@ w('pfc_bubblepack.p3dat', "clump template create name 'x' geometry 'g' bubblepac
 w('yade_export_bad_row.txt', '# written by mss export --format yade from x.stl\n0 0 0 1 0\n1 0 0\n')
 w('header_lacks_z.csv', 'x,y,radius,q\n1,2,0.5,3\n')
 w('header_twice_x.csv', 'x,x,y,z,r\n1,1,2,3,0.5\n')
+# messages that name the value and the line; sphere files at the ends of the double range; heavy requests
+w('obj_number_out_of_range.obj', 'v 0 0 1e999\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 3 4\n')
+w('obj_negative_index.obj', 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 -9\n')
+_ply_head = ('ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n'
+             'element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n')
+w('ply_bad_list_length.ply', _ply_head + '3 0 1 2\n-3 0 1 3\n')
+w('ply_list_ends_early.ply', _ply_head + '3 0 1 2\n3 0 1\n')
+with open(os.path.join(D, 'npy_structured.npy'), 'wb') as f:
+    np.save(f, np.zeros((4, 4, 4), dtype=[('a', 'u1'), ('b', '<f4')]))
+w('huge_radius.csv', 'x,y,z,r\n0.5,0.5,0.5,1e300\n')
+w('denormal_radius.csv', 'x,y,z,r\n0.5,0.5,0.5,1e-310\n0.6,0.5,0.5,1e-310\n')
+w('one_sphere.csv', 'x,y,z,r\n0.5,0.5,0.5,0.5\n')

@@ -1,9 +1,12 @@
 // The text helpers the mesh readers share (mesh_readers.hpp).
 #include "mss/io/mesh_readers.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 
 namespace mss::detail {
 
@@ -43,13 +46,25 @@ std::vector<std::string_view> words(std::string_view line) {
 
 Vec3 vertexOf(const std::vector<std::string_view>& w, std::size_t first, const std::string& path,
               const std::string& at) {
-    double x, y, z;
-    if (w.size() < first + 3 || !parseDouble(w[first], x) || !parseDouble(w[first + 1], y) ||
-        !parseDouble(w[first + 2], z))
-        fail(path, at + ": a vertex needs three numbers");
-    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
-        fail(path, at + ": non-finite coordinate");
-    return Vec3(x, y, z);
+    if (w.size() < first + 3)
+        fail(path, at + ": a vertex needs three numbers, got " +
+                       std::to_string(w.size() - std::min(first, w.size())));
+    double c[3];
+    for (int k = 0; k < 3; ++k) {
+        const std::string_view t = w[first + std::size_t(k)];
+        if (parseDouble(t, c[k]) && std::isfinite(c[k])) continue;
+        // a number past the double range (1e999) is not "not a number": say which it is
+        const std::string text(t.substr(0, 40));
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool numeric = !text.empty() && end == text.c_str() + text.size();
+        fail(path, at + ": coordinate " + "xyz"[k] + " '" + text + "' " +
+                       (numeric && (errno == ERANGE || !std::isfinite(v))
+                            ? "is beyond the range of a double (about 1.8e308)"
+                            : "is not a finite number"));
+    }
+    return Vec3(c[0], c[1], c[2]);
 }
 
 } // namespace mss::detail

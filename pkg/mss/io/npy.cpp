@@ -101,8 +101,14 @@ NpyHeader readNpyHeader(const std::string& path, std::ifstream& in, std::streamo
     // std::regex recursed once per character and overflowed the stack on long headers)
     std::string descr, order, shapeText;
     if (!headerValue(header, "descr", '\'', '\'', descr) || !headerWord(header, "fortran_order", order) ||
-        !headerValue(header, "shape", '(', ')', shapeText) || !(order == "True" || order == "False"))
+        !headerValue(header, "shape", '(', ')', shapeText) || !(order == "True" || order == "False")) {
+        const std::size_t d = header.find("'descr'");
+        const std::size_t open = d == std::string::npos ? d : header.find_first_not_of(": ", d + 7);
+        if (open != std::string::npos && header[open] == '[') // numpy writes a structured dtype as a list
+            fail(path, "a structured dtype (named fields): save one field as a plain array "
+                       "(np.save(path, volume['field']))");
         fail(path, "malformed header");
+    }
     const bool fortran = order == "True";
     std::vector<long long> shape;
     {

@@ -30,7 +30,12 @@ TriangleMesh readObj(const std::string& path) {
             for (std::size_t k = 1; k < w.size(); ++k) {
                 long long idx;
                 if (!parseInt(w[k].substr(0, w[k].find('/')), idx) || idx == 0)
-                    fail(path, at + ": '" + std::string(w[k]) + "' is not a vertex index");
+                    fail(path, at + ": '" + std::string(w[k].substr(0, 40)) + "' is not a vertex index");
+                const auto defined = static_cast<long long>(mesh.vertices.size());
+                if (idx < 0 && -idx > defined) // named as written, not as the index it would stand for
+                    fail(path, at + ": vertex index " + std::to_string(idx) +
+                                   " counts back from the last vertex, but " + std::to_string(defined) +
+                                   " are defined before this line");
                 poly.push_back(idx > 0 ? idx - 1 : static_cast<long long>(mesh.vertices.size()) + idx);
             }
             addPolygon(mesh, poly, path, at);

@@ -115,24 +115,36 @@ PlyHeader readPlyHeader(const std::string& path, const FileBytes& buf, std::size
 class PlyValues {
 public:
     PlyValues(const std::string& path, const FileBytes& buf, std::size_t pos, const std::string& format)
-        : path_(path), buf_(buf), pos_(pos), ascii_(format == "ascii"), swap_(format == "binary_big_endian") {
+        : path_(path), buf_(buf), pos_(pos), start_(pos), ascii_(format == "ascii"),
+          swap_(format == "binary_big_endian") {
         if (ascii_) tokens_ = words(std::string_view(buf.data() + pos, buf.size() - pos));
     }
     double operator()(const std::string& type) {
         if (ascii_) {
-            if (tok_ >= tokens_.size()) fail(path_, "PLY data ends early");
+            if (tok_ >= tokens_.size()) fail(path_, "PLY data ends early" + where());
             double v;
             if (!parseDouble(tokens_[tok_++], v))
-                fail(path_, "PLY data: '" + std::string(tokens_[tok_ - 1]) + "' is not a number");
+                fail(path_, "PLY data" + where() + ": '" + std::string(tokens_[tok_ - 1].substr(0, 40)) +
+                                "' is not a number");
             return v;
         }
         const int n = plyTypeSize(type);
-        if (pos_ + static_cast<std::size_t>(n) > buf_.size()) fail(path_, "PLY data ends early");
+        if (pos_ + static_cast<std::size_t>(n) > buf_.size()) fail(path_, "PLY data ends early" + where());
         unsigned char b[8];
         std::memcpy(b, buf_.data() + pos_, static_cast<std::size_t>(n));
         pos_ += static_cast<std::size_t>(n);
         if (swap_) std::reverse(b, b + n);
         return binary(type, b);
+    }
+
+    /// Where the last value read lies: " at line N" (ASCII: the file's line) or " at byte N" (binary), for
+    /// messages (counted only then).
+    std::string where() const {
+        if (!ascii_) return " at byte " + std::to_string(pos_);
+        const char* at = tok_ == 0                ? buf_.data() + start_
+                         : tok_ <= tokens_.size() ? tokens_[tok_ - 1].data()
+                                                  : buf_.data() + buf_.size();
+        return " at line " + std::to_string(1 + std::count(buf_.data(), at, '\n'));
     }
 
 private:
@@ -153,7 +165,7 @@ private:
     }
     const std::string& path_;
     const FileBytes& buf_;
-    std::size_t pos_;
+    std::size_t pos_, start_;
     bool ascii_, swap_;
     std::vector<std::string_view> tokens_;
     std::size_t tok_ = 0;
@@ -195,12 +207,21 @@ void readPlyElement(const std::string& path, const PlyElement& e, PlyValues& val
                 continue;
             }
             const double len = value(p.countType);
-            if (!(len >= 0 && len <= 1e6) || len != std::floor(len)) fail(path, "PLY data: bad list length");
+            if (!(len >= 0 && len <= 1e6) || len != std::floor(len)) {
+                std::ostringstream os;
+                os << "PLY " << e.name << " " << n << value.where() << ": a list of " << len
+                   << " values (a count from 0 to 1e6 is expected)";
+                fail(path, os.str());
+            }
             for (long long q = 0; q < static_cast<long long>(len); ++q) {
                 const double idx = value(p.type);
                 if (k == il) {
-                    if (idx != std::floor(idx) || std::abs(idx) > 9e18)
-                        fail(path, "PLY data: bad vertex index");
+                    if (idx != std::floor(idx) || std::abs(idx) > 9e18) {
+                        std::ostringstream os;
+                        os << "PLY " << e.name << " " << n << value.where() << ": vertex index " << idx
+                           << " is not a whole number";
+                        fail(path, os.str());
+                    }
                     poly.push_back(static_cast<long long>(idx));
                 }
             }
