@@ -16,7 +16,7 @@ from yade import utils  # noqa: E402
 from yade.wrapper import *  # noqa: F401,F403,E402
 import yade.minieigenHP as me  # noqa: E402
 
-from yade_mss import MssBreakage, breakageLog, mssClump, mssSplit  # noqa: E402
+from yade_mss import MssBreakage, breakageLog, mssClump, mssSplit, restoreClumpProperties  # noqa: E402
 from yade_mss._breakage import opposingPair, weibullStrength, contactsByClump  # noqa: E402
 
 O = Omega()
@@ -159,6 +159,29 @@ class Split(Base):
                     np.dot(d, d) * np.eye(3) - np.outer(d, d)) for m in mine for d in [vec(O.bodies[m].state.pos) - C])
                 self.assertLess(np.abs(J - I0).max(), 1e-10 * np.abs(I0).max(), (where, generation))
                 parent = max(mine, key=lambda m: O.bodies[m].state.mass)
+
+    def test_restored_properties_keep_their_digits_far_from_the_origin(self):
+        # the bug: restoreClumpProperties let YADE sum the members about the origin; 1.2 km away the grain's
+        # inertia came back 4.6e-7 off (2e-16 at the origin). Now summed about the clump's centre.
+        unions = []
+        for where in ((0.0, 0.0, 0.0), (1.2e6, -3.4e5, 8.0e5)):
+            O.reset()
+            self.mat = O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5))
+            cid, ids = mssClump(FEMUR, nSpheres=30, resolution=50, material=self.mat, center=where)
+            s = O.bodies[cid].state
+            M0, I0, C0 = s.mass, tensor(s), vec(s.pos)
+            O.bodies.updateClumpProperties(discretization=0)
+            self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
+            s = O.bodies[cid].state
+            self.assertEqual(s.mass, M0)
+            self.assertLess(np.abs(tensor(s) - I0).max(), 1e-13 * np.abs(I0).max(), where)
+            self.assertLess(np.linalg.norm(vec(s.pos) - C0), 1e-15 * np.linalg.norm(C0) + 1e-12, where)
+            O.bodies.releaseFromClump(ids[-1], cid)  # the rest is a union of spheres now
+            self.assertEqual(restoreClumpProperties(), [(cid, 'union')])
+            s = O.bodies[cid].state
+            unions.append((s.mass, np.linalg.eigvalsh(tensor(s))))
+        self.assertLess(abs(unions[1][0] - unions[0][0]), 1e-10 * unions[0][0])
+        self.assertLess(np.abs(unions[1][1] - unions[0][1]).max(), 1e-10 * unions[0][1].max())
 
     def test_plane_that_misses_is_an_error_and_changes_nothing(self):
         cid = self.femur()
