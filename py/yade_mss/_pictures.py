@@ -147,8 +147,8 @@ def preview(grain, spheres, path, resolution=160, title=None, voxelSize=None, or
     maxWork = _options.check('preview', 'preview', 'maxWork', _options.default('maxWork', 'preview')
                              if maxWork is None else maxWork)
     # the drawing: a numpy pass a sphere in each of the five panels, about 0.1 ms (measured: 30,000 spheres)
-    _work.check('preview', 'drawing %d spheres in five panels' % len(sp), 1e-4 * len(sp), maxWork,
-                'draw fewer spheres')
+    drawing = 1e-4 * len(sp)
+    _work.check('preview', 'drawing %d spheres in five panels' % len(sp), drawing, maxWork, 'draw fewer spheres')
     row = compareMany(grain, [sp], resolution=scoreResolution, voxelSize=voxelSize, origin=origin, label=label,
                       align='none', maxWork=maxWork)[0]
     solid, h, org = grainVoxels(grain, resolution, voxelSize, origin, label)
@@ -165,14 +165,18 @@ def preview(grain, spheres, path, resolution=160, title=None, voxelSize=None, or
     fig, axs = plt.subplots(1, 5, figsize=(20, 5.2), dpi=100, constrained_layout=True)
     panels = (('y', False, 'the clump alone, along -y'), ('y', True, 'with the grain, along -y'),
               ('x', True, 'with the grain, along -x'), ('z', True, 'with the grain, along -z'))
+    bar = _work.bar(5, 'mss preview', drawing)
     for ax, (axis, withGrain, label_) in zip(axs[:4], panels):
         img, ext = _view(solid, h, org, sp.centers, sp.radii, colors, axis, pixel, withGrain)
+        bar.update()
         ax.imshow(img, extent=ext, interpolation='nearest')
         r, u, _ = _AXES[axis]
         ax.set_xlabel('xyz'[r])
         ax.set_ylabel('xyz'[u])
         ax.set_title(label_)
     img, ext, zc = _section(solid, h, org, sp.centers, sp.radii, 'z')
+    bar.update()
+    bar.close()
     axs[4].imshow(img, extent=ext, interpolation='nearest')
     axs[4].set_title('section z = %.4g (red: missed, blue: outside)' % zc, fontsize=10)
     axs[4].set_xlabel('x')
