@@ -19,10 +19,26 @@ def _flat(a, dtype=float):
     return np.ascontiguousarray(a, dtype=dtype).ravel()
 
 
+def _rows3(what, a, dtype=None):
+    """*a* as rows of 3 (n, 3), or a message naming *what* and the shape given (numpy's reshape error named
+    neither)."""
+    if a is None:
+        raise TypeError('mesh: %s are missing (None); give an array of shape (n, 3)' % what)
+    try:
+        a = np.asarray(a, dtype=dtype)
+    except (TypeError, ValueError) as e:
+        raise TypeError('mesh: %s must be numbers (an array of shape (n, 3)), got %s (%s)'
+                        % (what, type(a).__name__, e)) from None
+    if a.dtype == object or a.ndim not in (1, 2) or (a.ndim == 2 and a.shape[1] != 3) or a.size % 3:
+        raise ValueError('mesh: %s must have shape (n, 3) (or 3n numbers), got shape %s'
+                         % (what, 'x'.join(str(n) for n in a.shape) or 'scalar'))
+    return a.reshape(-1, 3)
+
+
 class _Mesh(object):
     def __init__(self, vertices, triangles, name):
-        self.vertices = np.asarray(vertices, dtype=float).reshape(-1, 3)
-        self.triangles = np.asarray(triangles).reshape(-1, 3)
+        self.vertices = _rows3('vertices', vertices, float)
+        self.triangles = _rows3('triangles', triangles)
         if self.triangles.size and not np.issubdtype(self.triangles.dtype, np.integer):
             if not np.all(np.mod(self.triangles, 1) == 0):
                 raise ValueError('mesh: triangle indices must be integers')

@@ -180,6 +180,13 @@ class Python(unittest.TestCase):
             yade_mss.batch([ELLIPSOID], outdir=5)
         with self.assertRaisesRegex(ValueError, 'source must be a mesh file.*got NoneType'):
             yade_mss.generate(None, nSpheres=3)
+        # the bug: numpy's "cannot reshape array of size 4 into shape (3)", naming neither array
+        with self.assertRaisesRegex(ValueError, r'mesh: vertices must have shape \(n, 3\).*got shape 4x2'):
+            yade_mss.generate((np.zeros((4, 2)), np.zeros((1, 3), int)), nSpheres=2)
+        with self.assertRaisesRegex(ValueError, r'mesh: triangles must have shape \(n, 3\).*got shape 4'):
+            yade_mss.generate((np.zeros((4, 3)), np.zeros(4, int)), nSpheres=2)
+        with self.assertRaisesRegex(TypeError, r'mesh: triangles are missing \(None\)'):
+            yade_mss.generate((np.zeros((4, 3)), None), nSpheres=2)
 
 
 if __name__ == '__main__':
