@@ -223,8 +223,21 @@ bool isVoxelFile(const std::string& path) {
     return f != nullptr;
 }
 
+/// A voxel volume's voxel edge and origin as read, times --scale.
+double scaledVoxelSize(const mss::Settings& st) {
+    return (st.voxelSize > 0 ? st.voxelSize : 1.0) * st.scale;
+}
+
 mss::VoxelGrid readVoxels(const mss::Settings& st, const std::string& path) {
-    return mss::readNpy(path, st.voxelSize > 0 ? st.voxelSize : 1.0, st.origin, st.label);
+    return mss::readNpy(path, scaledVoxelSize(st), st.origin * st.scale, st.label);
+}
+
+/// A mesh file with its vertices times --scale (a mesh in millimetres to metres).
+mss::TriangleMesh readScaledMesh(const mss::Settings& st, const std::string& path) {
+    mss::TriangleMesh mesh = mss::readMesh(path);
+    if (st.scale != 1.0)
+        for (mss::Vec3& v : mesh.vertices) v *= st.scale;
+    return mesh;
 }
 
 /// The other grains near @p label, on its bounding box widened by 2 voxels (the grid mss batch gives it;
@@ -350,8 +363,7 @@ int cmdGenerate(const Args& a) {
                                         "own voxels (--voxel-size sets their edge)");
         const mss::VoxelGrid v = readVoxels(st, in);
         if (st.label >= 0 && st.keepContacts) { // the grain's neighbours, as mss batch finds them
-            const mss::LabelGrid labels =
-                mss::readNpyLabels(in, st.voxelSize > 0 ? st.voxelSize : 1.0, st.origin);
+            const mss::LabelGrid labels = mss::readNpyLabels(in, scaledVoxelSize(st), st.origin * st.scale);
             o.contacts = mss::contactPointsOf(mss::findContacts(labels, st.contactGap), st.label);
             o.neighbours = neighboursOf(labels, st.label);
         }
@@ -360,7 +372,7 @@ int cmdGenerate(const Args& a) {
         r.metrics.secondsRead = tRead;
     } else {
         voxelOptionsOnly(a, in, {"label", "origin"});
-        const mss::TriangleMesh mesh = mss::readMesh(in);
+        const mss::TriangleMesh mesh = readScaledMesh(st, in);
         const double tRead = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         r = namingInput(in, [&] { return mss::generate(mesh, st.resolution, o, st.supersample); });
         r.metrics.secondsRead = tRead;
@@ -375,6 +387,7 @@ int cmdGenerate(const Args& a) {
         std::vector<std::string> args{"preview", in, pending.path, "-o", a.text("preview")};
         for (const char* k : {"voxelSize", "origin", "label"})
             if (a.has(k) && isVoxelFile(in)) args.insert(args.end(), {flagOf(k), a.text(k)});
+        if (a.has("scale")) args.insert(args.end(), {flagOf("scale"), a.text("scale")});
         if (runPython(args) != 0) throw std::runtime_error("the preview could not be drawn (see above)");
         pending.publish();
     }
@@ -479,7 +492,7 @@ int cmdCompare(const Args& a) {
     const bool voxels = isVoxelFile(in);
     if (!voxels) voxelOptionsOnly(a, in, {"voxelSize", "origin", "label"});
     const mss::VoxelGrid v = voxels ? readVoxels(st, in) : mss::VoxelGrid();
-    const mss::TriangleMesh mesh = voxels ? mss::TriangleMesh() : mss::readMesh(in);
+    const mss::TriangleMesh mesh = voxels ? mss::TriangleMesh() : readScaledMesh(st, in);
     std::vector<mss::Comparison> rows;
     for (const std::string& f : files) {
         const mss::SphereSet s = mss::readSpheres(f, st.clumpId);
@@ -507,7 +520,7 @@ int cmdInfo(const Args& a) {
         return 0;
     }
     voxelOptionsOnly(a, in, {"voxelSize", "origin", "label"});
-    const mss::TriangleMesh mesh = mss::readMesh(in);
+    const mss::TriangleMesh mesh = readScaledMesh(st, in);
     const mss::MeshInfo i = mss::analyzeMesh(mesh);
     std::cout << "vertices      " << i.vertices << "\n";
     std::cout << "triangles     " << i.triangles << "\n";

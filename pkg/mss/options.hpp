@@ -106,6 +106,9 @@ struct Settings {
     bool keepContacts = true; ///< a labelled volume's grain: reach its neighbours (GenerateOptions::contacts)
     double contactGap = 1.0;  ///< voxels: grains within it are in contact (findContacts' gap)
     SurfaceOptions surface;   ///< mss surface: the mesh of the spheres' union
+    /// A factor on the grain's coordinates as read (a mesh's vertices; a voxel volume's voxel size and
+    /// origin): 1e-3 makes a mesh in millimetres one in metres. Applied by the front ends as they read.
+    double scale = 1.0;
 };
 
 /// Settings from the values of command @p cmd (a command:: bit): each value checked against its row (type,

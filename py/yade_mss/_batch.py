@@ -279,6 +279,12 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
     org = np.zeros(3) if origin is None else np.asarray(origin, dtype=float).reshape(3)
     key = _optionsKey(options, {'voxelSize': h, 'origin': org.tolist(), 'minVoxels': minVoxels,
                                 'excludeBorder': bool(excludeBorder)})
+    # scale multiplies a volume's coordinates as read (its voxel edge and origin: here, once for all its
+    # grains) and a mesh's vertices (in generate); a mesh's voxelSize is its generation grid, in world units
+    meshGrid = h
+    scale = float(options.get('scale') or 1.0)
+    h, org = h * scale, org * scale
+    voxelOptions = {o: v for o, v in options.items() if o != 'scale'}
     tasks, skipped = [], {}
     volumes = [f for f in files if os.path.splitext(f)[1].lower() in _VOLUME_EXT]
     if array is not None or (len(files) == 1 and volumes):
@@ -300,7 +306,7 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
                 start = np.array([s.start for s in reg.box]) - 2  # the crop's voxel (0, 0, 0), as reg.crop says
                 crop = (lambda reg=reg: reg.crop(vol)[0])
                 near = (lambda reg=reg: reg.neighbours(vol)) if found is not None else None
-                tasks.append(GrainTask(k, options, label=reg.label, path=files[0] if array is None else None,
+                tasks.append(GrainTask(k, voxelOptions, label=reg.label, path=files[0] if array is None else None,
                                        crop=crop, voxelSize=h, contacts=None if found is None else
                                        points.get(reg.label, []), neighbours=near,
                                        origin=(org + h * start).tolist(), voxels=reg.voxels,
@@ -312,11 +318,11 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
         try:
             if os.path.splitext(f)[1].lower() in _VOLUME_EXT:  # a grain's volume: all its voxels are the grain
                 vol = readVolume(f)
-                opts = {o: v for o, v in options.items() if o != 'resolution'}
+                opts = {o: v for o, v in voxelOptions.items() if o != 'resolution'}
                 tasks.append(GrainTask(k, opts, path=f, crop=np.asarray(vol), voxelSize=h,
                                        origin=org.tolist(), voxels=int(np.count_nonzero(vol))))
             elif voxelSize is not None and 'resolution' not in options:  # a mesh's grid at that voxel edge
-                tasks.append(GrainTask(k, dict(options, voxelSize=h), path=f))
+                tasks.append(GrainTask(k, dict(options, voxelSize=meshGrid), path=f))
             else:
                 tasks.append(GrainTask(k, options, path=f))
         except (OSError, ValueError) as e:  # a bad file is recorded, the batch goes on
@@ -702,7 +708,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     out.generated, out.reused = n, already
     out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
     out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
-    _report.keptContacts(out, found, 1.0 if voxelSize is None else float(voxelSize))
+    h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
+    _report.keptContacts(out, found, h)
     _report.annotate(out, gen, density, young)
     if outdir is not None:
         if previews:

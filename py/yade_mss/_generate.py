@@ -15,7 +15,7 @@ from ._sources import _Mesh, _flat, _source
 def generate(source, nSpheres=None, eta=None, dice=None, rMin=None, rMinVoxels=None, voxelSize=None,
              resolution=None, method='optimized', supersample=1, keepSymmetry=True, polish=False, maxIterations=100, deltaMin=1.0,
              threads=0, origin=None, label=None, memoryLimit=None, clip=False, refill=True, planes=(),
-             maxProtrusion=None, contacts=True, contactGap=1.0, neighbourProtrusion=1.0, maxWork=None):
+             maxProtrusion=None, contacts=True, contactGap=1.0, neighbourProtrusion=1.0, maxWork=None, scale=None):
     """Generates the sphere set of a grain (MSS paper, sections 2-3). The options are the option table's
     (``mss generate --help`` lists the same, spelled for the command line).
 
@@ -39,7 +39,7 @@ def _generate(source, given, contactPoints=None, neighbours=None, target=None):
     the caller has them (a dict as _mss.massMesh gives), not computed again."""
     opts = _options.collect('generate', 'generate', given)
     label, origin, resolution = given.get('label'), given.get('origin'), given.get('resolution')
-    s = _source(source, opts.get('voxelSize'), opts.get('origin'), opts.get('label'))
+    s = _source(source, opts.get('voxelSize'), opts.get('origin'), opts.get('label'), opts.get('scale'))
     if isinstance(s, _Mesh):
         if label is not None:  # it would be ignored
             raise ValueError('generate: %s: label applies to labelled voxel volumes; this is a mesh' % s.name)
@@ -65,6 +65,8 @@ def _generate(source, given, contactPoints=None, neighbours=None, target=None):
         warnings.warn('%s: %s' % (s.name, w))
     r = MssResult(d['centers'], d['radii'], d['metrics'], d['grid'], target, s.name)
     r.grain = source if label is None else None  # a labelled volume needs its label again: not kept
+    if opts.get('scale', 1.0) != 1.0:  # the grain as generated: scaled (a volume would need its scale again)
+        r.grain = (s.vertices, s.triangles) if isinstance(s, _Mesh) else None
     return r
 
 
@@ -74,7 +76,7 @@ GENERATE_OPTIONS = tuple(p for p in inspect.signature(generate).parameters if p 
 
 @_options.documented('compare')
 def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=None, label=None, planes=(),
-          exact=False, samples=None, seed=None):
+          exact=False, samples=None, seed=None, scale=None):
     """Scores a sphere set (an :class:`MssResult` or a sphere file) against a target on a grid of its own, as
     ``mss compare`` does (with fewer figures: :func:`compareMany` gives them all).
 
@@ -86,10 +88,11 @@ def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=N
         sphereVolumeError (Monte Carlo on the exact shapes, one standard error each), samples, seed
     """
     opts = _options.collect('score', 'compare', dict(resolution=resolution, offset=offset, planes=planes,
-                                                     exact=exact, samples=samples, seed=seed))
+                                                     exact=exact, samples=samples, seed=seed, scale=scale))
+    scale = opts.get('scale')
     resolution, offset, cuts = opts['resolution'], opts['offset'], opts.get('planes', [])
     sp = spheres if isinstance(spheres, MssResult) else readSpheres(spheres)
-    s = _source(target, voxelSize, origin, label)
+    s = _source(target, voxelSize, origin, label, scale)
     if isinstance(s, _Mesh):
         d = _mss.scoreMesh(*s.args(), _flat(sp.centers), sp.radii.tolist(), resolution, offset, 1, cuts)
     else:
@@ -103,7 +106,8 @@ def score(target, spheres, resolution=100, offset=0.37, voxelSize=None, origin=N
 
 @_options.documented('compare')
 def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes=(), clumpId=None, voxelSize=None,
-                origin=None, label=None, supersample=1, exact=False, samples=None, seed=None, maxWork=None):
+                origin=None, label=None, supersample=1, exact=False, samples=None, seed=None, maxWork=None,
+                scale=None):
     """Compares sphere files (or :class:`MssResult` objects) of any generator with a grain, one row each, as
     ``mss compare GRAIN A B C`` prints them.
 
@@ -118,8 +122,10 @@ def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes
     items = list(spheres) if isinstance(spheres, (list, tuple)) else [spheres]
     opts = _options.collect('compareMany', 'compare', dict(resolution=resolution, offset=offset, align=align,
                                                            planes=planes, supersample=supersample, exact=exact,
-                                                           samples=samples, seed=seed, maxWork=maxWork))
-    s = _source(target, voxelSize, origin, label)
+                                                           samples=samples, seed=seed, maxWork=maxWork,
+                                                           scale=scale))
+    scale = opts.get('scale')
+    s = _source(target, voxelSize, origin, label, scale)
     if isinstance(s, _Mesh) and (voxelSize is not None or origin is not None or label is not None):
         raise ValueError('compareMany: %s: voxelSize, origin and label apply to voxel volumes; this is a mesh '
                          '(resolution sets the scoring grid)' % s.name)

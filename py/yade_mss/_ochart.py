@@ -65,7 +65,7 @@ def cheapest(rows, dice):
 @_options.documented('ochart', skip=('counts', 'radii'))
 def clumpOchart(grain, output, counts=None, radii='0.05:0.6', points=6, radiusPoints=5, dice=None,
                 minCost=False, resolution=103, voxelSize=None, origin=None, label=None, maxProtrusion=None,
-                scoreResolution=100, maxWork=None):
+                scoreResolution=100, maxWork=None, scale=None):
     """The O-chart of a grain's clumps: for each sphere count n and radius bound rMin, the Dice mismatch D
     (eq. 27) on an independent grid (a mesh) or the volume's own voxels, the cost T = n / r_min relative to one
     sphere of the grain's volume, and O = T x D. Writes OUT.csv and the charts (OUT.png: D, T and O over the
@@ -96,7 +96,7 @@ def clumpOchart(grain, output, counts=None, radii='0.05:0.6', points=6, radiusPo
     if rhi > 1:
         raise ValueError('ochart: radii are fractions of the largest inscribed radius, at most 1, got %s:%s'
                          % (rlo, rhi))
-    s = _source(grain, voxelSize, origin, label)
+    s = _source(grain, voxelSize, origin, label, scale)
     mesh = isinstance(s, _Mesh)
     kw = {'resolution': resolution} if mesh else {'voxelSize': s.voxelSize, 'origin': s.origin}
     score = {'resolution': scoreResolution} if mesh else {'voxelSize': s.voxelSize, 'origin': s.origin}
@@ -229,7 +229,7 @@ def main(argv=None):
         rows, best = clumpOchart(a.grain, v['output'], v.get('counts'), v.get('radii', '0.05:0.6'), v.get('points', 6),
                                  v.get('radiusPoints', 5), v.get('dice'), v.get('minCost', False),
                                  v.get('resolution', _options.default('resolution', 'ochart')), v.get('voxelSize'),
-                                 v.get('origin'), v.get('label'), v.get('maxProtrusion'), maxWork=v.get('maxWork'))
+                                 v.get('origin'), v.get('label'), v.get('maxProtrusion'), maxWork=v.get('maxWork'), scale=v.get('scale'))
     except (ValueError, RuntimeError) as e:
         print('mss ochart: error: %s' % e, file=sys.stderr)
         return 1

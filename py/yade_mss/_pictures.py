@@ -34,10 +34,10 @@ def _pyplot():
     return plt
 
 
-def grainVoxels(grain, resolution=160, voxelSize=None, origin=None, label=None):
+def grainVoxels(grain, resolution=160, voxelSize=None, origin=None, label=None, scale=None):
     """The grain as voxels (bool array (nx, ny, nz)), voxel size and origin: a mesh voxelised with
     *resolution* voxels along its shortest edge, a volume as it is."""
-    s = _source(grain, voxelSize, origin, label)
+    s = _source(grain, voxelSize, origin, label, scale)
     if isinstance(s, _Mesh):
         data, dims, h, org = _mss.voxelizeMesh(*s.args(), int(resolution))
     else:
@@ -129,7 +129,7 @@ def _section(solid, h, origin, centers, radii, axis):
 
 
 def preview(grain, spheres, path, resolution=160, title=None, voxelSize=None, origin=None, label=None,
-            scoreResolution=100, maxWork=None):
+            scoreResolution=100, maxWork=None, scale=None):
     """Draws a clump against its grain: three orthographic views (spheres coloured by how far they protrude,
     the grain's silhouette over them) and a section through the centroid (red: grain the spheres miss; blue:
     spheres outside the grain), with n, D (independent grid) and the largest protrusion in the caption.
@@ -150,8 +150,8 @@ def preview(grain, spheres, path, resolution=160, title=None, voxelSize=None, or
     drawing = 1e-4 * len(sp)
     _work.check('preview', 'drawing %d spheres in five panels' % len(sp), drawing, maxWork, 'draw fewer spheres')
     row = compareMany(grain, [sp], resolution=scoreResolution, voxelSize=voxelSize, origin=origin, label=label,
-                      align='none', maxWork=maxWork)[0]
-    solid, h, org = grainVoxels(grain, resolution, voxelSize, origin, label)
+                      align='none', maxWork=maxWork, scale=scale)[0]
+    solid, h, org = grainVoxels(grain, resolution, voxelSize, origin, label, scale)
     if not solid.any():
         raise ValueError('preview: the grain has no solid voxel')
     size = float(np.max(np.array(solid.shape) * h))
@@ -215,7 +215,7 @@ def counts(lo, hi, points=12):
 
 
 def curve(grain, lo, hi, path, points=12, compare=(), resolution=103, scoreResolution=100, voxelSize=None,
-          origin=None, label=None, maxProtrusion=None, maxWork=None):
+          origin=None, label=None, maxProtrusion=None, maxWork=None, scale=None):
     """D (independent grid) and generation time against the sphere count, as a chart (PNG) and a CSV beside it
     (``OUT.csv``: generator, n, D, eta, protrusion, seconds). Sphere files of other generators (*compare*) are
     added as labelled points (and rows named after their files). The grain is read once for the whole sweep.
@@ -224,7 +224,7 @@ def curve(grain, lo, hi, path, points=12, compare=(), resolution=103, scoreResol
     :return: the rows written (list of dicts)
     """
     plt = _pyplot()
-    s = _source(grain, voxelSize, origin, label)
+    s = _source(grain, voxelSize, origin, label, scale)
     kw = {'resolution': resolution} if isinstance(s, _Mesh) else {'voxelSize': s.voxelSize, 'origin': s.origin}
     src = (s.vertices, s.triangles) if isinstance(s, _Mesh) else np.frombuffer(
         s.data, dtype=np.uint8).reshape(s.shape, order='F')
@@ -299,7 +299,7 @@ def main(argv=None):
     a = p.parse_args(argv)
     try:
         v = _options.parsed(a.command, a)
-        grain = dict(voxelSize=v.get('voxelSize'), origin=v.get('origin'), label=v.get('label'))
+        grain = dict(voxelSize=v.get('voxelSize'), origin=v.get('origin'), label=v.get('label'), scale=v.get('scale'))
         if a.command == 'preview':
             refuseOverInputs('preview', [('-o', v['output'])], [a.grain, a.spheres])
         else:

@@ -107,8 +107,21 @@ class _Voxels(object):
         return self.data, tuple(int(n) for n in self.shape), self.voxelSize, self.origin
 
 
-def _source(source, voxelSize=None, origin=None, label=None):
-    """A mesh or voxel source from a file name, an array, (vertices, triangles) or a dict."""
+def _source(source, voxelSize=None, origin=None, label=None, scale=None):
+    """A mesh or voxel source from a file name, an array, (vertices, triangles) or a dict; *scale* multiplies
+    its coordinates as read (a mesh's vertices, a volume's voxel size and origin)."""
+    s = _unscaled(source, voxelSize, origin, label)
+    if scale is None or float(scale) == 1.0:
+        return s
+    if isinstance(s, _Mesh):
+        s.vertices = s.vertices * float(scale)
+    else:
+        s.voxelSize *= float(scale)
+        s.origin = [float(scale) * x for x in s.origin]
+    return s
+
+
+def _unscaled(source, voxelSize=None, origin=None, label=None):
     if isinstance(source, (str, os.PathLike)):
         path = os.fspath(source)
         requireRegularFile('readMesh' if os.path.splitext(path)[1].lower() in _MESH_EXT else 'read', path)

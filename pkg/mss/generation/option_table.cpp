@@ -107,6 +107,10 @@ const std::vector<OptionSpec> kTable = {
      "refuse a mesh's grid whose working memory would exceed this; mss batch reads a labelled volume "
      "in slabs of a 128th of it",
      kGen},
+    {"scale", "--scale", true, T::Number, "1", 0, kInf, true, true, "", "", "S",
+     "a factor on the grain's coordinates as read (1e-3: a mesh in millimetres becomes metres; a voxel "
+     "volume: its voxel size and origin); the options in world units are in the scaled units",
+     kGrain},
     {"origin", "--origin", true, T::Point, "", 0, 0, false, false, "", "world units", "X,Y,Z",
      "a voxel volume: the world position of the centre of voxel (0, 0, 0) (default 0,0,0)", kGrain},
     {"label", "--label", true, T::Integer, "", 0, kInt64Max, false, false, "", "", "L",

@@ -312,6 +312,8 @@ void apply(Settings& st, const std::string& name, const OptionValue& v) {
         st.surface.maxEdge = asNumber(v);
     else if (name == "maxTriangles")
         st.surface.maxTriangles = static_cast<std::size_t>(asInt(v));
+    else if (name == "scale")
+        st.scale = asNumber(v);
     else if (name == "maxWork")
         g.maxWork = st.compare.maxWork = st.surface.maxWork = asNumber(v);
 }
