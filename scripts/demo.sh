@@ -2,7 +2,7 @@
 # Set-up, then the main job on a bundled grain: the human femur (X-ray CT) to a 70-sphere clump.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh main
 echo "== yade -n -x examples/quickstart.py: the femur (X-ray CT) to a 70-sphere YADE clump, dropped on a plane"
 yade -n -x examples/quickstart.py 2>&1 | grep -v -E "^(Welcome|TCP|XMLRPC|Running script|Using python)"
 mkdir -p out
