@@ -229,7 +229,8 @@ def main(argv=None):
         rows, best = clumpOchart(a.grain, v['output'], v.get('counts'), v.get('radii', '0.05:0.6'), v.get('points', 6),
                                  v.get('radiusPoints', 5), v.get('dice'), v.get('minCost', False),
                                  v.get('resolution', _options.default('resolution', 'ochart')), v.get('voxelSize'),
-                                 v.get('origin'), v.get('label'), v.get('maxProtrusion'), maxWork=v.get('maxWork'), scale=v.get('scale'))
+                                 v.get('origin'), v.get('label'), v.get('maxProtrusion'), maxWork=v.get('maxWork'),
+                                 scale=v.get('scale'))
     except (ValueError, RuntimeError) as e:
         print('mss ochart: error: %s' % e, file=sys.stderr)
         return 1

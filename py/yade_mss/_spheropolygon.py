@@ -150,9 +150,10 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
         raise ValueError('spheropolygon: minRadius bounds the radii per vertex: it needs vertexRadii=True')
     if minRadius is not None and not (float(minRadius) >= 0 and math.isfinite(float(minRadius))):
         raise ValueError('spheropolygon: minRadius must be >= 0 and finite, got %r' % (minRadius,))
+    maxWork = _options.check('spheropolygon', 'spheropolygon', 'maxWork',
+                             _options.default('maxWork', 'spheropolygon') if maxWork is None else maxWork)
     _checkFitWork(mask, vertices, 1 if radius is not None else len(radii or _DEFAULT_RADII) + 1,
-                  2 if init == 'auto' else 1, _options.check('spheropolygon', 'spheropolygon', 'maxWork', _options.default('maxWork', 'spheropolygon')
-                                 if maxWork is None else maxWork))
+                  2 if init == 'auto' else 1, maxWork)
     t0 = time.perf_counter()
     relocations = options.pop('relocations', 10)
     final = dict(options, vertexRadii=bool(vertexRadii), regionVertices=bool(regionVertices),

@@ -37,7 +37,8 @@ class Scale(unittest.TestCase):
             # the Python keyword is the same option
             r = yade_mss.generate(FEMUR, nSpheres=12, scale=1e-3)
             np.testing.assert_allclose(np.c_[r.centers, r.radii], m, rtol=1e-9, atol=1e-12)
-            self.assertAlmostEqual(r.targetMass.volume, 1e-9 * yade_mss.massProperties(FEMUR).volume, delta=1e-12 * r.targetMass.volume)
+            self.assertAlmostEqual(r.targetMass.volume, 1e-9 * yade_mss.massProperties(FEMUR).volume,
+                                   delta=1e-12 * r.targetMass.volume)
             # compare and info read the grain scaled as well
             self.assertIn('volume        0.000125', run('info', FEMUR, '--scale', '1e-3'))
             out = run('compare', FEMUR, os.path.join(d, 'm.csv'), '--scale', '1e-3')
