@@ -69,20 +69,20 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
     // measured on a 2-core machine: 0.7 ms a sphere for the first mesh (1000 spheres 0.73 s, 10,000 6.8 s),
     // and about 15 us a triangle of the subdivisions (300 random spheres: 5 million triangles in 65 s)
     constexpr double kSecondsPerSphere = 1e-3, kSecondsPerTriangle = 1.5e-5;
-    {
-        // before the first mesh, what it and its subdivisions should cost: about 90 triangles a sphere, whose
-        // volume is some 10% off, then fourfold less a subdivision (measured: 93 on the femur's 300 spheres)
-        const int expected = std::max(0, int(std::ceil(std::log(0.1 / options.tolerance) / std::log(4.0))));
-        const double triangles = 90.0 * double(spheres.size()) * std::pow(4.0, double(expected));
-        std::ostringstream what;
-        what.precision(3);
-        what << spheres.size() << " spheres, whose mesh should need about " << expected << " subdivisions, "
-             << triangles << " triangles";
-        checkWork("unionSurface",
-                  {what.str(), kSecondsPerSphere * double(spheres.size()) + kSecondsPerTriangle * triangles},
-                  options.maxWork, "give fewer spheres or loosen the option tolerance");
-    }
-    Progress progress("unionSurface", kSecondsPerSphere * double(spheres.size()));
+    // before the first mesh, what it and its subdivisions should cost: about 90 triangles a sphere, whose
+    // volume is some 10% off, then fourfold less a subdivision (measured: 93 on the femur's 300 spheres); the
+    // progress line counts against the whole of it
+    const int expected = std::max(0, int(std::ceil(std::log(0.1 / options.tolerance) / std::log(4.0))));
+    const double expectedTriangles = 90.0 * double(spheres.size()) * std::pow(4.0, double(expected));
+    std::ostringstream what;
+    what.precision(3);
+    what << spheres.size() << " spheres, whose mesh should need about " << expected << " subdivisions, "
+         << expectedTriangles << " triangles";
+    const Work expectedWork{what.str(), kSecondsPerSphere * double(spheres.size()) +
+                                            kSecondsPerTriangle * expectedTriangles};
+    checkWork("unionSurface", expectedWork, options.maxWork,
+              "give fewer spheres or loosen the option tolerance");
+    Progress progress("unionSurface", expectedWork.seconds);
     progress.update(0.0, "the first mesh");
     const Union uob(balls.begin(), balls.end());
     Polyhedron p;
@@ -106,17 +106,17 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
         if (options.maxEdge > 0.0 && longest > options.maxEdge)
             need = std::max(need, int(std::ceil(std::log2(longest / options.maxEdge))));
         const double triangles = double(p.size_of_facets()) * std::pow(4.0, double(need));
-        std::ostringstream what;
-        what.precision(3);
-        what << "the bounds (tolerance " << options.tolerance << ", maxEdge " << options.maxEdge
-             << ") need about " << need << " subdivisions of " << p.size_of_facets() << " triangles, "
-             << triangles << " triangles";
+        std::ostringstream bounds;
+        bounds.precision(3);
+        bounds << "the bounds (tolerance " << options.tolerance << ", maxEdge " << options.maxEdge
+               << ") need about " << need << " subdivisions of " << p.size_of_facets() << " triangles, "
+               << triangles << " triangles";
         if (triangles > double(options.maxTriangles))
-            throw std::invalid_argument("unionSurface: " + what.str() + ", more than maxTriangles (" +
+            throw std::invalid_argument("unionSurface: " + bounds.str() + ", more than maxTriangles (" +
                                         std::to_string(options.maxTriangles) +
                                         "): loosen them or raise the option maxTriangles");
-        checkWork("unionSurface", {what.str(), kSecondsPerTriangle * triangles * 4.0 / 3.0}, options.maxWork,
-                  "loosen the option tolerance or the option maxEdge");
+        checkWork("unionSurface", {bounds.str(), kSecondsPerTriangle * triangles * 4.0 / 3.0},
+                  options.maxWork, "loosen the option tolerance or the option maxEdge");
     }
     int subdivisions = 0;
     while (std::abs(exact - volume) > options.tolerance * exact ||
