@@ -32,7 +32,7 @@ def specimen(path, cells, seed=7):
     lines (a voxel beside one of a higher label is cleared: yade_mss._specimen.separated), written as int32
     .npy a slab at a time: the volume is never whole in memory."""
     from scipy.spatial import cKDTree
-    from yade_mss._specimen import separated
+    from yade_mss.grains import separated
     side = int(round((VOXELS * cells) ** (1 / 3)))
     rng = np.random.default_rng(seed)
     tree = cKDTree(rng.uniform(0, side, (cells, 3)))

@@ -10,7 +10,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from batch_scale import appendRows  # noqa: E402
 
 from yade_mss import spheropolygon  # noqa: E402
-from yade_mss._spheropolygon import cow, rasterizeNumpy  # noqa: E402
+from yade_mss.spheropolygons import cow, rasterizeNumpy  # noqa: E402
 
 c = cow()
 rows = []  # (run, error %, error pixels, iterations, seconds, spheroradius)

@@ -226,7 +226,7 @@ def write(path, text):
 
 
 def main(outdir):
-    from yade_mss import _options
+    from yade_mss.grains import optionTable as _options
     os.makedirs(outdir, exist_ok=True)
     write(os.path.join(outdir, 'cli_reference.rst'), cliReference(_options.TABLE, _options))
     write(os.path.join(outdir, 'fidelity.rst'), fidelity())

@@ -7,7 +7,7 @@ import glob
 import os
 
 from yade_mss import compareMany, generate
-from yade_mss._pictures import curve
+from yade_mss.pictures import curve
 
 data = os.environ.get('MSS_DATA', os.path.join('tests', 'data'))
 grains = {'femur': 'human_femur.stl', 'ellipsoid': 'ellipsoid_2_1_1.stl', 'cube': 'cube.stl'}

@@ -10,12 +10,10 @@ Quick start, in a YADE script::
 
 Units are those of the input file. Densities come from the material, as in :yref:`utils.sphere`.
 
-Modules: ``_results`` (results, sphere files), ``_sources`` (meshes, voxels, their mass properties),
-``_generate`` (generation, scoring), ``_loads`` (the sums that make YADE clumps exact, numpy only),
-``_clumps`` (YADE clumps), ``_records`` (their records), ``_restore`` (exact properties back),
-``_clumpfiles`` (clump sets to and from files), ``_templates`` (templates, packings),
-``_specimen`` (labelled volumes, synthetic specimens), ``_batch`` (mss batch), ``_assembly`` (specimens in YADE),
-``_pictures`` (mss preview, mss curve), ``_ochart`` (mss ochart: the clumps' cost), ``_spheropolygon`` (2-D: spheropolygons, the O-chart), ``_breakage`` (grains that break: mssSplit, MssBreakage).
+The package is in layers, each a sub-package importing only those below it (docs/guide/architecture.rst):
+``base`` (checks, files, the work limit), ``grains`` (sources, options, generation, results, scan contacts),
+``exports``, ``pictures`` and ``spheropolygons``, ``yade`` (the only layer that imports YADE), ``specimens``
+(batch, assembly, synthetic specimens) and ``cli``. The names below are the user's API.
 """
 
 import os as _os
@@ -41,20 +39,15 @@ if (_runtimeLoaded() and _os.environ.get('OMP_WAIT_POLICY', '').lower() != 'pass
     _os.environ['MSS_OMP_SPINNING'] = '1'
 _os.environ.setdefault('OMP_WAIT_POLICY', 'PASSIVE')
 
-from ._results import MassProperties, MssResult, readSpheres  # noqa: E402
-from ._sources import massProperties  # noqa: E402
-from ._generate import compareMany, generate, score  # noqa: E402
-from ._clumps import mssClump, porosity, totalMass  # noqa: E402
-from ._restore import restoreClumpProperties  # noqa: E402
-from ._clumpfiles import readClumps, writeClumps  # noqa: E402
-from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate  # noqa: E402
-from ._batch import batch  # noqa: E402
-from ._assembly import mssAssembly  # noqa: E402
-from ._specimen import findContacts, packedSpecimen, regions, syntheticSpecimen, voronoiBall  # noqa: E402
-from ._spheropolygon import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
-from ._ochart import clumpOchart  # noqa: E402
-from ._breakage import MssBreakage, breakageLog, breakagePotential, grainSizes, mssSplit, relativeBreakage  # noqa: E402
-from . import _mss  # noqa: F401 (the C++ module, for tests and advanced use)
+from .grains import (MassProperties, MssResult, compareMany, findContacts, generate, massProperties,  # noqa: E402
+                     readSpheres, regions, score)
+from .pictures import clumpOchart  # noqa: E402
+from .spheropolygons import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
+from .yade import (MssBreakage, MssTemplate, breakageLog, breakagePotential, grainSizes, mssClump,  # noqa: E402
+                   mssClumpCloud, mssReplaceByClumps, mssSplit, mssTemplate, porosity, readClumps, relativeBreakage,
+                   restoreClumpProperties, totalMass, writeClumps)
+from .specimens import batch, mssAssembly, packedSpecimen, syntheticSpecimen, voronoiBall  # noqa: E402
+from . import _mss  # noqa: E402,F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties',
            'mssClump', 'restoreClumpProperties', 'totalMass', 'porosity', 'writeClumps', 'readClumps',

@@ -17,7 +17,7 @@ from yade.wrapper import *  # noqa: F401,F403,E402
 import yade.minieigenHP as me  # noqa: E402
 
 from yade_mss import MssBreakage, breakageLog, mssClump, mssSplit, restoreClumpProperties  # noqa: E402
-from yade_mss._breakage import opposingPair, weibullStrength, contactsByClump  # noqa: E402
+from yade_mss.yade import opposingPair, weibullStrength, contactsByClump  # noqa: E402
 
 O = Omega()
 RHO = 2000.0
@@ -196,7 +196,7 @@ class Split(Base):
     def test_pieces_generated_side_by_side_are_those_made_one_after_another(self):
         # the pieces are generated on threads of their own (the binding lets go of the interpreter's lock);
         # threads=1 makes them one after another: the spheres must not depend on it, nor on which came first
-        from yade_mss import _breakage
+        from yade_mss.yade import _breakage
         plane = lambda cid: (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0))  # noqa: E731
         got = []
         for kw in ({}, {'threads': 1}, {}):
@@ -264,8 +264,8 @@ class Split(Base):
         3599 times the mass in all): a clump built about the origin and moved takes them exactly; the sphere at
         the centre of mass is still added (the loads stay moderate), and a set around its centre is kept."""
         from yade_mss import _mss
-        from yade_mss._breakage import _holdCentroid
-        from yade_mss._clumps import _Members, _Plan, _build
+        from yade_mss.yade._breakage import _holdCentroid
+        from yade_mss.yade._clumps import _Members, _Plan, _build
         e, at = 2e-3, np.array([300.0, -250.0, 280.0])
         V = at + e * np.array([[i, j, k] for k in (0, 1) for j in (0, 1) for i in (0, 1)], dtype=float)
         T = np.array([[0, 2, 1], [1, 2, 3], [4, 5, 6], [5, 7, 6], [0, 1, 4], [1, 5, 4], [2, 6, 3], [3, 6, 7],
@@ -370,7 +370,7 @@ class Split(Base):
         # the neighbours of a clump are found in one pass over the bodies, the geometry in numpy: against a
         # search body by body (numpy per body, as it was first written) in a sheared periodic cell with a clump
         # near its corner, loose spheres, a box and a wall
-        from yade_mss._breakage import _neighbours
+        from yade_mss.yade._breakage import _neighbours
         O.periodic = True
         O.cell.hSize = me.Matrix3(300, 40, 0, 0, 280, 30, 0, 0, 320)
         cid = self.femur()
@@ -407,7 +407,7 @@ class Split(Base):
     def test_spheres_shrunk_for_a_neighbour_respect_rmin(self):
         """_within: a sphere that would reach deeper into a neighbour than the parent did is shrunk; one shrunk
         below rMin (or a quarter of its radius) is dropped, since the smallest sphere sets the time step."""
-        from yade_mss._breakage import _within
+        from yade_mss.yade._breakage import _within
         nb = O.bodies.append(utils.sphere((0, 0, 0), 1.0, material=self.mat))
         c = np.array([[2.6, 0, 0], [0, 2.9, 0], [0, 0, 5.0]])  # gaps to the neighbour 1.6, 1.9, 4.0
         r = np.array([2.0, 2.0, 2.0])

@@ -182,8 +182,8 @@ class SideBySide(Base):
         # (a cache hit), turned (a miss) or scaled must each carry a record of their own members, as encodeMany
         # writes it from scratch (to rounding: the kept parts were computed at another place), and each restore
         # its own exact properties
-        from yade_mss import _records
-        from yade_mss._clumps import _basePlan
+        from yade_mss.yade import _records
+        from yade_mss.yade._clumps import _basePlan
         r = femur20()
         M, C, I = exactFemur()
         a = np.array([1.0, 2.0, 3.0]) / math.sqrt(14.0)

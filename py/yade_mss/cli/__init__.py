@@ -1,0 +1,38 @@
+"""The commands of ``mss`` that run in Python (batch, preview, curve, ochart, export, spheropolygon): each
+command's parser, over the layers' functions. ``python3 -m yade_mss COMMAND ...`` runs them; the C++ ``mss``
+hands these commands to it.
+"""
+
+import sys
+
+from ._batch import main as batch
+from ._export import main as export
+from ._ochart import main as ochart
+from ._pictures import main as pictures
+from ._spheropolygon import main as spheropolygon
+
+__all__ = ['run', 'main', 'batch', 'export', 'ochart', 'pictures', 'spheropolygon']
+
+
+def run(argv):
+    """Runs the command ``argv[0]`` with the rest as its arguments; returns the exit status."""
+    command = argv[0] if argv else ''
+    if command == 'batch':
+        return batch(argv[1:])
+    if command == 'export':
+        return export(argv[1:])
+    if command == 'ochart':
+        return ochart(argv[1:])
+    if command == 'spheropolygon':
+        return spheropolygon(argv[1:])
+    return pictures(argv)
+
+
+def main(argv=None):
+    """``python3 -m yade_mss``: :func:`run` on the command line's arguments; Ctrl-C is status 130."""
+    argv = sys.argv[1:] if argv is None else argv
+    try:
+        return run(argv)
+    except KeyboardInterrupt:  # Ctrl-C: whatever was being written is not published (atomic writes)
+        print('\nmss %s: interrupted (Ctrl-C)' % (argv[0] if argv else ''), file=sys.stderr)
+        return 130

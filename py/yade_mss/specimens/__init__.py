@@ -1,0 +1,11 @@
+"""Specimens: a CT scan (labelled or binary) or a folder of grains to a DEM assembly, locally or on Dask
+(:func:`batch`), with its report; the assembly in YADE (:func:`mssAssembly`, through the yade layer's
+functions); synthetic specimens made as real pipelines make them, for tests and tutorials.
+"""
+
+from ._assembly import Assembly, mssAssembly
+from ._batch import Batch, GrainTask, batch, checkLabelled, clusterSecurity, makeTasks, runGrain
+from ._synthetic import packedSpecimen, syntheticSpecimen, voronoiBall
+
+__all__ = ['Assembly', 'mssAssembly', 'Batch', 'GrainTask', 'batch', 'checkLabelled', 'clusterSecurity',
+           'makeTasks', 'runGrain', 'packedSpecimen', 'syntheticSpecimen', 'voronoiBall']

@@ -1,0 +1,771 @@
+"""From a CT specimen or a folder of grains to a DEM assembly: :func:`batch` (``mss batch``).
+
+Each grain is cropped to its bounding box plus the double zero hull (eq. 6), generated single-threaded, placed
+at its true position, and written atomically to OUTDIR/grains/ (``KEY.npz`` result, ``KEY.csv`` spheres, then
+``KEY.json``, the mark that it is done and with which options). A rerun with the same options skips what is
+done, so an interrupted run loses nothing already written. Grains run side by side in processes
+(``--workers``) or as tasks on a Dask cluster (``--scheduler``); only a grain's cropped sub-volume travels. The
+results do not depend on which way or worker ran what (generation is deterministic, one thread per grain).
+At the end: ``assembly.txt`` (every sphere, ``x y z r clumpId``, with each clump's exact mass properties on a
+``#mss clump`` line for ``readClumps``), ``grains.csv`` and ``report.html``.
+"""
+
+import hashlib
+import json
+import os
+import sys
+import time
+import zlib
+from collections.abc import Mapping
+
+import numpy as np
+
+from .. import _mss
+from ..base import atomicWrite, integer, refuseLinkedFolders, refuseOverInputs, requireRegularFile, split
+from ..exports import MAX_TEMPLATES, writeTemplates
+from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, MssResult, binaryValue, contactsByLabel, generateWith,
+                      optionTable, pieces, readVolume, regions, scanContacts, segmentBinary)
+from . import _manifest, _report
+from ._report import COLUMNS
+
+TOO_SMALL = 'exceeds the largest inscribed radius'  # the core's message when rMin leaves a grain no sphere
+
+
+class GrainTask(object):
+    """One grain to generate: a cropped sub-volume (with its world origin) or a file; small enough to send.
+    *digest*: of what it is made from (the crop's voxels, box and origin, or the file's bytes), so that a rerun
+    reuses a result only for the same input."""
+
+    def __init__(self, key, options, label=None, path=None, crop=None, voxelSize=None, origin=None, voxels=0,
+                 touchesBorder=False, contacts=None, neighbours=None):
+        self.key, self.options, self.label, self.path = key, options, label, path
+        self.contacts = contacts  # the points its spheres must reach (its neighbours in the volume), or None
+        # crop and neighbours: arrays, or functions that cut them from a (memory-mapped) volume when asked, so
+        # that a batch holds the voxels of the grains in flight only
+        self._crop, self._neighbours = crop, neighbours
+        self.voxelSize, self.origin = voxelSize, origin
+        self.voxels, self.touchesBorder = voxels, touchesBorder
+        self.digest = (_cropDigest(self.crop, voxelSize, origin, contacts, self.neighbours) if crop is not None
+                       else _fileDigest(path))
+
+    @property
+    def crop(self):
+        return self._crop() if callable(self._crop) else self._crop
+
+    @property
+    def neighbours(self):
+        return self._neighbours() if callable(self._neighbours) else self._neighbours
+
+    # A task travels (to a worker process, a Dask worker) with its voxels deflated, a boolean crop packed to a
+    # bit a voxel first: Dask warned of every task over a megabyte ("Large object ... detected in task graph");
+    # a grain's crop packs to about a hundredth. Other arrays (a grain's own volume file) keep their values.
+    def __getstate__(self):
+        state = dict(self.__dict__)
+        for name in ('_crop', '_neighbours'):
+            a = getattr(self, name[1:])
+            if a is None:
+                continue
+            a = np.ascontiguousarray(a)
+            raw = np.packbits(a, axis=None).tobytes() if a.dtype == bool else a.tobytes()
+            state[name] = (a.shape, a.dtype.str, zlib.compress(raw, 1))
+        return state
+
+    def __setstate__(self, state):
+        for name in ('_crop', '_neighbours'):
+            if state.get(name) is not None:
+                shape, dtype, packed = state[name]
+                raw = np.frombuffer(zlib.decompress(packed), dtype=np.uint8)
+                if np.dtype(dtype) == bool:
+                    state[name] = np.unpackbits(raw, count=int(np.prod(shape))).astype(bool).reshape(shape)
+                else:
+                    state[name] = raw.view(np.dtype(dtype)).reshape(shape).copy()
+        self.__dict__.update(state)
+
+
+def _cropDigest(crop, voxelSize, origin, contacts=None, neighbours=None):
+    a = np.ascontiguousarray(crop)
+    h = hashlib.sha256()
+    h.update(json.dumps({'shape': list(a.shape), 'dtype': a.dtype.str, 'voxelSize': voxelSize,
+                         'origin': [float(x) for x in origin], 'contacts': contacts or []}).encode())
+    h.update(a.tobytes())
+    if neighbours is not None:
+        h.update(np.ascontiguousarray(neighbours).tobytes())
+    return h.hexdigest()
+
+
+def _fileDigest(path):
+    requireRegularFile('batch', path)
+    h = hashlib.sha256()
+    with open(path, 'rb') as f:
+        for block in iter(lambda: f.read(1 << 20), b''):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _safe(text):
+    """A name for files and keys: letters, digits, '.', '-' and '_' only (any other character, or byte of a
+    name that is not UTF-8, becomes '_')."""
+    return ''.join(c if (c.isascii() and (c.isalnum() or c in '.-_')) else '_' for c in text) or '_'
+
+
+def fileKeys(files):
+    """One key per file, never shared: 'file_' and the file's name (extension included); names that would be
+    the same (the same name in two folders, or after making them safe) get a digest of their full path too."""
+    keys = ['file_' + _safe(os.path.basename(f)) for f in files]
+    seen = {}
+    for k in keys:
+        seen[k.lower()] = seen.get(k.lower(), 0) + 1
+    out = []
+    for f, k in zip(files, keys):
+        if seen[k.lower()] > 1:
+            k += '_' + hashlib.sha256(os.fsencode(os.path.abspath(f))).hexdigest()[:10]
+        out.append(k)
+    return out
+
+
+def runGrain(task):
+    """Generates one grain (one thread); never raises: a failure is a row with its message."""
+    row = _row(task)
+    t0 = time.perf_counter()
+    try:
+        opts = dict(task.options, threads=1)
+        crop = task.crop
+        if crop is not None:
+            r = generateWith(crop, dict(opts, voxelSize=task.voxelSize, origin=task.origin), task.contacts or [],
+                          task.neighbours)
+        else:
+            r = generateWith(task.path, opts)
+        r.grain = None  # the crop: held per grain it would grow with the volume; previews crop again
+        h = r.grid['voxelSize']
+        row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
+                   protrusion=r.metrics.get('protrusion', ''), r_min=r.metrics['smallestRadius'],
+                   r_min_voxels=r.metrics['smallestRadius'] / h, thickness_voxels=r.metrics['inscribedRadius'] / h,
+                   contacts_ct=len(task.contacts or []), contact_spheres=r.metrics.get('contactsAdded', 0),
+                   seconds=time.perf_counter() - t0)
+        return task.key, row, r
+    except ValueError as e:
+        if TOO_SMALL not in str(e):
+            return _failed(task, row, t0, e)
+        # reported as such, never shrunk under the bound: the assembly lacks it, the report says why
+        row.update(status='skipped', seconds=time.perf_counter() - t0, message='too small for the radius bound '
+                   '(rMin, rMinVoxels): %s' % e)
+        return task.key, row, None
+    except Exception as e:  # noqa: BLE001 (any grain's failure is recorded, the batch goes on)
+        return _failed(task, row, t0, e)
+
+
+def _failed(task, row, t0, e):
+    row.update(status='failed', seconds=time.perf_counter() - t0, message='%s: %s' % (type(e).__name__, e))
+    return task.key, row, None
+
+
+def _freeCores():
+    """The cores not busy with other processes now (the load over the last minute; at least one): on a loaded
+    machine one worker beat two."""
+    n = os.cpu_count() or 1
+    try:
+        busy = int(os.getloadavg()[0] + 0.5)
+    except OSError:
+        busy = 0
+    return max(1, n - busy)
+
+
+def _oneThread():
+    """A local worker's start: one OpenMP thread, and death with the batch (Linux's PR_SET_PDEATHSIG), so that a
+    killed batch leaves no worker computing."""
+    import signal
+    try:
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGTERM))  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        pass
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it stops the workers
+    # the batch's own SIGTERM handler (a KeyboardInterrupt, _stopOnTerm) came with the fork: the pool's shutdown
+    # terminates its workers, which printed that interrupt's traceback; a worker just ends
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    _mss.setOmpThreads(1)
+
+
+def _row(task):
+    """A grain's row before it is generated: what the task says of it, no figures yet."""
+    return dict(_blank(), label=task.label if task.label is not None else '', file=task.path or '',
+                voxels=task.voxels, touches_border=int(bool(task.touchesBorder)))
+
+
+def _blank():
+    return dict({c: '' for c in COLUMNS}, spheres=0, voxels=0, touches_border=0)
+
+
+_WORKER_DIED = ('a worker process died', 'every worker process died')
+
+
+def _failedRow(task, message):
+    """The row of a grain whose worker died: as :func:`runGrain` records a failure."""
+    return task.key, dict(_row(task), status='failed', message=message), None
+
+
+def runGrains(tasks):
+    """Several grains in one task (Dask)."""
+    return [runGrain(t) for t in tasks]
+
+
+def _optionsKey(gen, extra):
+    text = json.dumps({'generate': gen, 'input': extra}, sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _atomic(path, write):
+    atomicWrite(path, write, 'batch')
+
+
+def _write(path, data):
+    with open(path, 'wb' if isinstance(data, bytes) else 'w') as f:
+        f.write(data)
+
+
+def _inputs(inputs):
+    """Files from the arguments: files as given, directories by their supported files (sorted)."""
+    files = []
+    for item in inputs:
+        item = os.fspath(item)
+        if os.path.isdir(item):
+            files += sorted(os.path.join(item, f) for f in os.listdir(item)
+                            if os.path.splitext(f)[1].lower() in MESH_EXT + VOLUME_EXT)
+        elif os.path.exists(item):
+            files.append(item)
+        else:
+            raise ValueError('batch: %s: no such file or directory' % item)
+    if not files:
+        raise ValueError('batch: no mesh or volume file in %s' % ', '.join(map(str, inputs)))
+    return files
+
+
+def checkLabelled(vol, name, segment=False, memoryLimit=None):
+    """Refuses a binary scan (two values, in several pieces) given as a labelled volume: it would be one grain
+    of all its pieces. *segment*: the scan is meant to be binary; refused if it is not."""
+    value = binaryValue(vol, memoryLimit)
+    if segment:
+        if value is None:
+            raise ValueError('batch: %s: segment applies to a binary scan (0 and one other value); this volume holds '
+                             'labels: give it without --segment' % name)
+        return
+    if value is not None:
+        n = pieces(vol)
+        if n > 1:
+            raise ValueError('batch: %s holds two values (0 and %d) in %d separate pieces: a binary scan, not '
+                             'labelled grains (as labels it would be one grain of all %d). Give --segment '
+                             '(segment=True) to cut it into grains here (distance transform, h-maxima markers, '
+                             'marker watershed; the labels are written to OUT/labels.npy), or label it first '
+                             '(scipy.ndimage.label for grains apart, skimage.segmentation.watershed for touching '
+                             'ones)' % (name, value, n, n))
+
+
+def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, excludeBorder=False, labels=None):
+    """The grains of the inputs: a labelled volume (one file, or an array) gives one task per label, read once;
+    several files give one task each. Grains under *minVoxels* or (with *excludeBorder*) cut by
+    the border come back as skipped rows instead.
+
+    :return: (tasks, skipped rows {key: row}, options key, the volume's contacts or None)
+    """
+    array = inputs if isinstance(inputs, np.ndarray) else None
+    files = ['(array)'] if array is not None else _inputs(inputs)
+    h = 1.0 if voxelSize is None else float(voxelSize)
+    if not (h > 0 and np.isfinite(h)):
+        raise ValueError('batch: voxel size must be > 0, got %r' % (voxelSize,))
+    org = np.zeros(3) if origin is None else np.asarray(origin, dtype=float).reshape(3)
+    key = _optionsKey(options, {'voxelSize': h, 'origin': org.tolist(), 'minVoxels': minVoxels,
+                                'excludeBorder': bool(excludeBorder)})
+    # scale multiplies a volume's coordinates as read (its voxel edge and origin: here, once for all its
+    # grains) and a mesh's vertices (in generate); a mesh's voxelSize is its generation grid, in world units
+    meshGrid = h
+    scale = float(options.get('scale') or 1.0)
+    h, org = h * scale, org * scale
+    voxelOptions = {o: v for o, v in options.items() if o != 'scale'}
+    tasks, skipped = [], {}
+    volumes = [f for f in files if os.path.splitext(f)[1].lower() in VOLUME_EXT]
+    if array is not None or (len(files) == 1 and volumes):
+        vol = readVolume(files[0]) if array is None else array
+        checkLabelled(vol, files[0], memoryLimit=options.get('memoryLimit'))
+        limit = options.get('memoryLimit')  # the volume is read by slabs under it: a CT larger than it is fine
+        gap = options.get('contactGap', 1.0)
+        found = scanContacts(vol, h, org, limit, gap) if options.get('contacts', True) else None
+        points = contactsByLabel(found or [])
+        for reg in regions(vol, labels, limit):
+            k = 'label_%d' % reg.label
+            base = dict(_blank(), label=reg.label, voxels=reg.voxels, touches_border=int(reg.touchesBorder))
+            if reg.voxels < minVoxels:
+                skipped[k] = dict(base, status='skipped', message='%d voxels, under --min-voxels %d'
+                                  % (reg.voxels, minVoxels))
+            elif excludeBorder and reg.touchesBorder:
+                skipped[k] = dict(base, status='skipped', message='cut by the volume\'s border (--exclude-border)')
+            else:
+                start = np.array([s.start for s in reg.box]) - 2  # the crop's voxel (0, 0, 0), as reg.crop says
+                crop = (lambda reg=reg: reg.crop(vol)[0])
+                near = (lambda reg=reg: reg.neighbours(vol)) if found is not None else None
+                tasks.append(GrainTask(k, voxelOptions, label=reg.label, path=files[0] if array is None else None,
+                                       crop=crop, voxelSize=h, contacts=None if found is None else
+                                       points.get(reg.label, []), neighbours=near,
+                                       origin=(org + h * start).tolist(), voxels=reg.voxels,
+                                       touchesBorder=reg.touchesBorder))
+        return tasks, skipped, key, found
+    if labels:
+        raise ValueError('batch: --labels applies to one labelled volume')
+    for f, k in zip(files, fileKeys(files)):
+        try:
+            if os.path.splitext(f)[1].lower() in VOLUME_EXT:  # a grain's volume: all its voxels are the grain
+                vol = readVolume(f)
+                opts = {o: v for o, v in voxelOptions.items() if o != 'resolution'}
+                tasks.append(GrainTask(k, opts, path=f, crop=np.asarray(vol), voxelSize=h,
+                                       origin=org.tolist(), voxels=int(np.count_nonzero(vol))))
+            elif voxelSize is not None and 'resolution' not in options:  # a mesh's grid at that voxel edge
+                tasks.append(GrainTask(k, dict(options, voxelSize=meshGrid), path=f))
+            else:
+                tasks.append(GrainTask(k, options, path=f))
+        except (OSError, ValueError) as e:  # a bad file is recorded, the batch goes on
+            skipped[k] = dict(_blank(), file=f, status='failed', message='%s: %s' % (type(e).__name__, e))
+    return tasks, skipped, key, None
+
+
+class Batch(object):
+    """What a batch did: rows (one per grain, in key order) and the results of the grains that are ok.
+
+    :ivar seconds: this run's wall time
+    :ivar generated: grains generated in this run
+    :ivar reused: grains whose results an earlier run of the same input and options had written
+    :ivar upToDate: True where the output folder already held this very batch, finished: nothing was done
+    :ivar timeStep: the assembly's critical time step (the least a grain allows), or None without a grain
+    :ivar setBy: the keys of the grains that set it (within 10% of the least)
+    """
+
+    def __init__(self):
+        self.rows, self.results, self.seconds, self.generated, self.reused = {}, {}, 0.0, 0, 0
+        self.timeStep, self.setBy, self.upToDate, self._scan, self._scanFile = None, [], False, None, None
+
+    @property
+    def failed(self):
+        return [k for k, r in self.rows.items() if r['status'] == 'failed']
+
+    @property
+    def scanContacts(self):
+        """The scan's contacts (:func:`findContacts`' dicts), or None (a folder of grains, contacts off); read
+        from the output folder's contacts.csv when the batch was up to date."""
+        if self._scan is None and self._scanFile is not None:
+            import csv
+            with open(self._scanFile, newline='') as f:
+                self._scan = [dict(a=int(r['a']), b=int(r['b']), faces=int(r['faces']), gap=float(r['gap']),
+                                   point=(float(r['x']), float(r['y']), float(r['z'])),
+                                   normal=(float(r['nx']), float(r['ny']), float(r['nz'])))
+                              for r in csv.DictReader(f)]
+        return self._scan
+
+    @scanContacts.setter
+    def scanContacts(self, value):
+        self._scan = value
+
+
+class _StoredResults(Mapping):
+    """The results of a finished batch's grains, each read from OUTDIR/grains/KEY.npz when first asked for."""
+
+    def __init__(self, outdir, keys):
+        self._outdir, self._keys, self._loaded = outdir, list(keys), {}
+
+    def __getitem__(self, key):
+        if key not in self._loaded:
+            if key not in self._keys:
+                raise KeyError(key)
+            self._loaded[key] = MssResult.load(os.path.join(self._outdir, 'grains', key + '.npz'))
+        return self._loaded[key]
+
+    def __iter__(self):
+        return iter(self._keys)
+
+    def __len__(self):
+        return len(self._keys)
+
+
+_STATE = ('timeStep', 'setBy', 'contacts', 'ranked', 'kinds', 'flagAt', 'previewed')
+
+
+def _state(b):
+    """What a finished batch gives back, for its manifest."""
+    out = {name: getattr(b, name, None) for name in _STATE}
+    out['rows'] = b.rows
+    out['scan'] = b.scanContacts is not None
+    return out
+
+
+def _upToDate(outdir, state, seconds):
+    """The Batch of a finished run in *outdir*, from its manifest's *state*: nothing generated, nothing read but
+    the manifest (results and contacts when asked for)."""
+    b = Batch()
+    b.rows = dict(state['rows'])
+    b.results = _StoredResults(outdir, [k for k, r in b.rows.items() if r['status'] == 'ok'])
+    for name in _STATE:
+        setattr(b, name, state.get(name))
+    if state.get('scan'):
+        b._scanFile = os.path.join(outdir, 'contacts.csv')
+    b.reused, b.upToDate, b.seconds = len(b.results), True, seconds
+    return b
+
+
+def _runKey(inputs, options, extra):
+    """The manifest's key of a batch: its inputs' identity on disk and every option."""
+    if isinstance(inputs, np.ndarray):
+        ident = _manifest.inputIdentity(array=inputs)
+    else:
+        ident = _manifest.inputIdentity(files=_inputs(inputs))
+    return json.loads(json.dumps({'inputs': ident, 'generate': options, 'batch': extra}, sort_keys=True,
+                                 default=str))
+
+
+def _done(outdir, key, optionsKey, digest):
+    """The row and result of a grain already done from the same input (*digest*) with these options, or None."""
+    path = os.path.join(outdir, 'grains', key + '.json')
+    try:
+        with open(path) as f:
+            meta = json.load(f)
+        if meta.get('options') != optionsKey or meta.get('input') != digest or meta['row']['status'] == 'failed':
+            return None
+        r = None
+        if meta['row']['status'] == 'ok':
+            # the result must be the one this grain wrote: a file swapped or edited since is made again
+            path = os.path.join(outdir, 'grains', key + '.npz')
+            if _fileDigest(path) != meta.get('result'):
+                return None
+            r = MssResult.load(path)
+        return meta['row'], r
+    except (OSError, ValueError, KeyError):
+        return None
+
+
+def _store(outdir, key, row, result, optionsKey, digest=None):
+    g = os.path.join(outdir, 'grains')
+    png = getattr(result, 'png', None)
+    if png is not None:
+        _atomic(os.path.join(g, key + '.png'), lambda p: _write(p, png))
+        del result.png
+    made = None
+    if result is not None:
+        sums = []
+
+        def save(p):
+            result.save(p, compress=False)
+            sums.append(_fileDigest(p))
+        _atomic(os.path.join(g, key + '.npz'), save)
+        made = sums[0]
+        _atomic(os.path.join(g, key + '.csv'), result.save)
+    _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({'options': optionsKey, 'input': digest,
+                                                                            'result': made, 'row': row})))
+
+
+def clusterSecurity(security=None, caFile=None, cert=None, key=None):
+    """Dask's TLS settings for a scheduler: a ``distributed.Security`` as given, or one from the CA, certificate
+    and key files, or None (then Dask's configuration decides, ``distributed.comm.tls.*``)."""
+    if security is not None:
+        if caFile or cert or key:
+            raise ValueError('batch: give security or the TLS files, not both')
+        return security
+    if not (caFile or cert or key):
+        return None
+    if not (caFile and cert and key):
+        raise ValueError('batch: TLS needs the CA file, the certificate and the key (--tls-ca-file, --tls-cert, '
+                         '--tls-key)')
+    for f in (caFile, cert, key):
+        if not os.path.isfile(f):
+            raise ValueError('batch: %s: no such file (TLS)' % f)
+    from distributed.security import Security
+    return Security(tls_ca_file=caFile, tls_client_cert=cert, tls_client_key=key, require_encryption=True)
+
+
+def _executor(workers, scheduler, security=None, connectTimeout=5.0):
+    """(submit-all function yielding results as they finish, closer)."""
+    if scheduler:
+        try:
+            from distributed import Client, as_completed
+        except ImportError:
+            raise RuntimeError('batch: --scheduler needs Dask (Debian: python3-distributed)')
+        if security is not None and not str(scheduler).startswith('tls://'):
+            raise ValueError('batch: with TLS the scheduler address is tls://HOST:PORT, got %s' % scheduler)
+        try:
+            client = Client(scheduler, timeout=connectTimeout, security=security)
+        except (OSError, TimeoutError) as e:  # asyncio's and Dask's time-outs are both
+            raise RuntimeError('batch: the Dask scheduler at %s did not answer within %g s (--connect-timeout, '
+                               'connectTimeout): is it running and reachable? (%s: %s)'
+                               % (scheduler, connectTimeout, type(e).__name__, e))
+
+        def run(tasks):
+            # a few grains per task: Dask's per-task cost (~ms) stays small against the grains' own; still
+            # several tasks per worker, so that a lost worker costs little and the load stays even
+            slots = max(1, sum(client.nthreads().values()))
+            size = max(1, min(16, len(tasks) // (8 * slots)))
+            chunks = [tasks[i:i + size] for i in range(0, len(tasks), size)]
+            futures = client.map(runGrains, chunks, pure=False, retries=3)
+            for fut in as_completed(futures):
+                for result in fut.result():
+                    yield result
+        return run, client.close
+    if workers == 1:
+        return (lambda tasks: (runGrain(t) for t in tasks)), (lambda: None)
+    pool = _LocalPool(workers)
+    return pool.run, pool.close
+
+
+def _workerLoop(conn):
+    """A local worker: grains in, rows and results out, over its own pipe, until it gets None."""
+    _oneThread()
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):
+            return
+        if task is None:
+            return
+        conn.send(runGrain(task))
+
+
+class _LocalPool(object):
+    """Worker processes, each with a pipe of its own (not concurrent.futures' shared result queue: a worker
+    killed while it wrote there left a part of a message that blocked every reader, and the batch hung). A
+    worker that dies fails the grain it had; the others go on; the batch always ends. Forked: a user's script
+    needs no __main__ guard (spawn would import it again in every child); each child runs on one OpenMP thread
+    (GNU OpenMP hangs in a forked child that asks for the parent's thread pool)."""
+
+    def __init__(self, n):
+        import multiprocessing
+        ctx = multiprocessing.get_context('fork')
+        self.workers = []
+        for _ in range(n):
+            mine, theirs = ctx.Pipe(duplex=True)
+            proc = ctx.Process(target=_workerLoop, args=(theirs,), daemon=True)
+            proc.start()
+            theirs.close()  # only the child holds its end: its death is EOF here
+            self.workers.append([proc, mine, None])  # process, pipe, the task it has
+
+    def run(self, tasks):
+        from multiprocessing.connection import wait
+        todo = list(reversed(tasks))
+        live = list(self.workers)
+
+        def give(w):
+            if todo:
+                w[2] = todo.pop()
+                try:
+                    w[1].send(w[2])
+                except (OSError, ValueError):
+                    pass  # dead already: wait() sees its sentinel
+        for w in live:
+            give(w)
+        while any(w[2] is not None for w in live):
+            ready = wait([w[1] for w in live if w[2] is not None] + [w[0].sentinel for w in live if w[2] is not None])
+            for w in list(live):
+                if w[2] is None or not (w[1] in ready or w[0].sentinel in ready):
+                    continue
+                try:
+                    result = w[1].recv() if w[1].poll() else None
+                except (EOFError, OSError):
+                    result = None
+                if result is None and w[0].is_alive() and w[1] not in ready:
+                    continue
+                if result is None:  # killed (or out of memory) before its grain was done
+                    yield _failedRow(w[2], 'a worker process died (killed, or out of memory) before this grain '
+                                     'was done; run the batch again to retry it')
+                    w[2] = None
+                    live.remove(w)
+                    if not live:  # nobody left: the rest fail too, the batch ends
+                        while todo:
+                            yield _failedRow(todo.pop(), 'every worker process died; run the batch again')
+                    continue
+                w[2] = None
+                yield result
+                give(w)
+
+    def close(self):
+        """At once: a grain being computed is lost, every finished one is already written."""
+        for proc, conn, task in self.workers:
+            if proc.is_alive():
+                proc.terminate()
+        for proc, conn, task in self.workers:
+            proc.join(timeout=5)
+            conn.close()
+
+
+@optionTable.documented('batch')
+def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
+          voxelSize=None, origin=None, progress=True, previews=False, security=None, density=1000.0, young=1e9,
+          format=None, segment=False, segmentH=1.0, connectTimeout=5.0, **options):
+    """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
+    assembly, as ``mss batch`` does (the options are the same, spelled for Python).
+
+    :param inputs: a labelled volume (.npy or .tif file, or an integer array; 0 is background), or mesh and
+        volume files and folders of them, one grain each
+    :param outdir: the output folder (a rerun resumes in it); None: nothing is written
+    :param labels: only these labels of a labelled volume, a list of integers
+    :param bool progress: a progress bar on a terminal, a line per grain otherwise
+    :param security: a ``distributed.Security`` for a TLS scheduler (``tls://``); anyone who can reach a
+        scheduler without it runs code as its workers (Dask moves pickles)
+    OPTIONS
+    :param options: :func:`generate`'s keywords (nSpheres, dice, eta, rMin, resolution for meshes, clip, ...)
+    :return: :class:`Batch`
+    """
+    gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
+                                                                             'threads')])
+    if workers is None:  # inside YADE one process: spawning children of the yade launcher does not work
+        workers = 1 if 'yade' in sys.modules else _freeCores()
+    workers = integer('batch', 'workers', workers, 1, 1024)
+    density, young, connectTimeout = (optionTable.check('batch', 'batch', n, v) for n, v in (
+        ('density', density), ('young', young), ('connectTimeout', connectTimeout)))
+    if format is not None:
+        format = optionTable.check('batch', 'batch', 'format', format)
+        if outdir is None:
+            raise ValueError('batch: format %r writes templates into the output folder: give outdir' % format)
+    t0 = time.perf_counter()
+    runKey = None
+    if outdir is not None and not isinstance(outdir, (str, bytes, os.PathLike)):
+        raise TypeError('batch: outdir must be a folder path, got %s' % type(outdir).__name__)
+    if outdir is not None:
+        _refuseOverInputs(inputs, outdir)
+        runKey = _runKey(inputs, gen, {'voxelSize': voxelSize, 'origin': origin, 'minVoxels': minVoxels,
+                                       'excludeBorder': excludeBorder, 'labels': labels, 'previews': previews,
+                                       'density': density, 'young': young, 'format': format, 'segment': segment,
+                                       'segmentH': segmentH})
+        state = _manifest.finished(outdir, runKey)
+        if state is not None:
+            out = _upToDate(outdir, state, time.perf_counter() - t0)
+            if progress:
+                print('batch: %s is up to date (its inputs, options and files are those of its finished run): '
+                      'nothing to do\n%s' % (outdir, _report.summary(out, len(out.rows), density, young)),
+                      flush=True)
+            return out
+        _manifest.forget(outdir)
+    segmented = None
+    if segment or segmentH != 1.0:
+        segmentH = optionTable.check('batch', 'batch', 'segmentH', segmentH)
+        if not segment:
+            raise ValueError('batch: segmentH applies with segment (a binary scan to cut into grains)')
+        inputs, segmented = _segmented(inputs, outdir, segmentH, gen.get('memoryLimit'))
+    tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+    if segmented is not None:
+        key = _optionsKey(key, {'segment': segmentH})
+    if format == 'liggghts':
+        if len(tasks) > MAX_TEMPLATES:  # said before the grains are generated, not after
+            raise ValueError('batch: %d grains: LIGGGHTS templates are numbered by 32-bit seeds, at most %d'
+                             % (len(tasks), MAX_TEMPLATES))
+    out = Batch()
+    out.segmented = segmented
+    if outdir is not None:
+        os.makedirs(os.path.join(outdir, 'grains'), exist_ok=True)
+        for k, row in skipped.items():
+            _store(outdir, k, row, None, key)
+    out.rows.update(skipped)
+    todo = []
+    for t in tasks:
+        prior = _done(outdir, t.key, key, t.digest) if outdir is not None else None
+        if prior is None:
+            todo.append(t)
+        else:
+            out.rows[t.key], r = prior
+            if r is not None:
+                out.results[t.key] = r
+    total, already = len(tasks) + len(skipped), len(tasks) - len(todo)
+    bar = None
+    if progress and sys.stderr.isatty():
+        from tqdm import tqdm
+        bar = tqdm(total=len(todo), unit='grain', desc='mss batch')
+    elif progress:
+        print('batch: %d grains, %d done before, %d skipped, %d to generate' % (total, already, len(skipped), len(todo)),
+              flush=True)
+    # no idle processes for few grains
+    run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
+    n = 0
+    digests = {t.key: t.digest for t in todo}
+    try:
+        for k, row, r in run(todo):
+            # a grain whose worker died is not the grain's failure: nothing is written for it (the pool's stop,
+            # an interrupted batch's workers ending before the batch, must not look like a finished grain)
+            if outdir is not None and not row['message'].startswith(_WORKER_DIED):
+                _store(outdir, k, row, r, key, digests[k])
+            out.rows[k] = row
+            if r is not None:
+                out.results[k] = r
+            n += 1
+            if bar is not None:
+                bar.update(1)
+            elif progress:
+                print('[%*d/%d] %-12s %-7s %3s spheres  D %-8s %s' % (len(str(len(todo))), n, len(todo), k,
+                      row['status'], row['spheres'], '%.4f' % row['dice'] if row['dice'] != '' else '-',
+                      row['message'][:80]), flush=True)
+    finally:
+        close()
+        if bar is not None:
+            bar.close()
+    out.generated, out.reused = n, already
+    out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
+    out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
+    h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
+    _report.keptContacts(out, found, h)
+    _report.annotate(out, gen, density, young)
+    if outdir is not None:
+        if previews:
+            _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
+        out.seconds = time.perf_counter() - t0
+        _report.writeOutputs(outdir, out, density, young)
+        if format is not None:
+            writeTemplates(outdir, out, format, density)
+    out.seconds = time.perf_counter() - t0
+    if outdir is not None and not out.failed:
+        _manifest.write(outdir, runKey, _state(out), _atomic)
+    if progress:
+        print(_report.summary(out, total, density, young), flush=True)
+    return out
+
+
+OUTPUTS = ('labels.npy', 'grains.csv', 'assembly.txt', 'assembly.vtk', 'contacts.csv', 'report.html',
+           'report_distributions.png', 'report_segmentation.png', _manifest.NAME, 'placements.csv')
+
+
+def _refuseOverInputs(inputs, outdir):
+    """Before any work: no output folder (or folder in it) that is a link, no output that is an input, no input
+    among the grains' files."""
+    outdir = os.fspath(outdir)
+    refuseLinkedFolders('batch', [outdir] + [os.path.join(outdir, d) for d in ('grains', 'templates')])
+    if isinstance(inputs, np.ndarray):
+        return
+    files = [os.fspath(f) for f in inputs if os.path.isfile(f)]
+    for d in inputs:
+        if os.path.isdir(d):
+            files += [os.path.join(d, f) for f in os.listdir(d)]
+    refuseOverInputs('batch', [('OUT/' + n, os.path.join(outdir, n)) for n in OUTPUTS], files)
+    grains = os.path.realpath(os.path.join(outdir, 'grains'))
+    for f in files:
+        if os.path.dirname(os.path.realpath(f)) == grains:
+            raise ValueError('batch: the input %s lies in the output folder\'s grains/, which the batch writes: move '
+                             'it out or name another output folder' % f)
+
+
+def _segmented(inputs, outdir, h, memoryLimit=None):
+    """A binary scan (one volume file or array) cut into grains (:func:`segmentBinary`), its labels written to
+    OUTDIR/labels.npy: (the label array, what the report shows of it: {'file', 'grains', 'h', 'binary' and
+    'labels': the middle section across z})."""
+    if isinstance(inputs, np.ndarray):
+        vol, name = inputs, '(array)'
+    else:
+        files = _inputs(inputs)
+        if len(files) != 1 or os.path.splitext(files[0])[1].lower() not in VOLUME_EXT:
+            raise ValueError('batch: segment applies to one volume file (a binary scan), got %s'
+                             % ', '.join(files[:3]))
+        vol, name = readVolume(files[0]), files[0]
+    checkLabelled(vol, name, segment=True, memoryLimit=memoryLimit)
+    labels = segmentBinary(vol, h)
+    path = None
+    if outdir is not None:
+        os.makedirs(outdir, exist_ok=True)
+        path = os.path.join(outdir, 'labels.npy')
+        _atomic(path, lambda p: np.save(p, labels))
+    z = labels.shape[2] // 2
+    return labels, {'file': path, 'grains': int(labels.max()), 'h': h, 'binary': np.asarray(vol[:, :, z]) != 0,
+                    'labels': labels[:, :, z].copy(), 'z': z}
+
+
+def _order(key):
+    kind, _, rest = key.partition('_')
+    return (kind, int(rest) if rest.isdigit() else 0, rest)

@@ -1,0 +1,457 @@
+"""What a batch wrote and what it says: each grain's problems (the reasons it deserves a look), the assembly's
+critical time step and the grains that set it, and the files: ``grains.csv``, ``assembly.txt`` (for
+``readClumps`` and ``ymport.textClumps``), ``assembly.vtk`` (ParaView) and ``report.html``, worst grain first."""
+
+import csv
+import html
+import math
+import os
+import urllib.parse
+
+import numpy as np
+
+from ..base import atomicWrite
+from ..grains import NEARBY_GAP
+from ..pictures import preview
+
+COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
+           'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_assembly',
+           'contact_spheres', 'seconds', 'touches_border', 'message']
+DICE_FLAG = 0.1  # D above this (or above a --dice target) flags a grain
+THIN_VOXELS = 2.5  # a largest inscribed radius under this (grains at most 4 voxels thick): thin, hard to fill
+STEP_MARGIN = 1.1  # grains whose time step is within 10% of the least "set" the assembly's
+MAX_PREVIEWS = 12
+# the order of the report: what needs a look first
+_SEVERITY = {'failed': 0, 'flagged': 1, 'too small': 2, 'border': 3, 'ok': 4, 'skipped': 5}
+
+
+def _number(v):
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return None
+
+
+KEPT_GAP = 0.5  # voxels: a scan's contact is kept when the two clumps' spheres come this close
+
+
+def _gap(r1, r2):
+    """The least gap between two sphere sets (negative: they overlap by that much)."""
+    d = np.linalg.norm(r1.centers[:, None, :] - r2.centers[None, :, :], axis=-1)
+    return float((d - r1.radii[:, None] - r2.radii[None, :]).min())
+
+
+def _assemblyPairs(results, tolerance):
+    """The pairs of keys whose clumps come within *tolerance* (world units) of each other, with their gaps: the
+    clumps' bounding balls narrow the pairs first (a k-d tree), the spheres decide."""
+    from scipy.spatial import cKDTree
+    keys = list(results)
+    if len(keys) < 2:
+        return {}
+    centre = np.array([0.5 * (results[k].centers.min(axis=0) + results[k].centers.max(axis=0)) for k in keys])
+    reach = np.array([float((np.linalg.norm(results[k].centers - c, axis=1) + results[k].radii).max())
+                      for k, c in zip(keys, centre)])
+    out = {}
+    for i, j in cKDTree(centre).query_pairs(2 * reach.max() + tolerance):
+        if np.linalg.norm(centre[i] - centre[j]) > reach[i] + reach[j] + tolerance:
+            continue
+        g = _gap(results[keys[i]], results[keys[j]])
+        if g <= tolerance:
+            out[(keys[i], keys[j])] = g
+    return out
+
+
+def keptContacts(b, found, h):
+    """Each row's ``contacts_ct`` (the scan's contacts of the grain: grains within the contact gap of it),
+    ``contacts_kept`` (those whose two clumps come within KEPT_GAP voxels) and ``contacts_assembly`` (the clumps
+    within the same contact gap of its clump, scan contacts or not), and the batch's ``contacts``: pairs in the
+    scan, between two generated grains, kept, in the assembly; the coordination numbers (both counted with the
+    same tolerance); the largest overlap of a kept pair (voxels); where the scan shows no pair, the gaps between
+    the grains near each other (``nearby``). Nothing without contacts (a folder of grains, or contacts off)."""
+    b.contacts, b.scanContacts = None, found
+    if found is None:
+        return
+    tolerance = float(getattr(found, 'gap', 0.0))
+    byLabel = {b.rows[k]['label']: k for k in b.results}
+    ct, kept, near = {}, {}, {}
+    both, keptPairs, overlap = 0, 0, 0.0
+    for c in found:
+        for lab in (c['a'], c['b']):
+            ct[lab] = ct.get(lab, 0) + 1
+        ka, kb = byLabel.get(c['a']), byLabel.get(c['b'])
+        if ka is None or kb is None:
+            continue
+        both += 1
+        g = _gap(b.results[ka], b.results[kb]) / h
+        if g <= KEPT_GAP:
+            keptPairs += 1
+            overlap = max(overlap, -g)
+            for lab in (c['a'], c['b']):
+                kept[lab] = kept.get(lab, 0) + 1
+    assembly = _assemblyPairs(b.results, tolerance * h)
+    for ka, kb in assembly:
+        for k in (ka, kb):
+            near[k] = near.get(k, 0) + 1
+    for k, row in b.rows.items():
+        lab = row['label']
+        if lab != '':
+            row['contacts_ct'] = ct.get(lab, 0)
+            row['contacts_kept'] = kept.get(lab, 0) if k in b.results else ''
+            row['contacts_assembly'] = near.get(k, 0) if k in b.results else ''
+    n = max(1, len(b.results))
+    b.contacts = {'pairs': len(found), 'between': both, 'kept': keptPairs, 'overlap': overlap, 'gap': tolerance,
+                  'assembly': len(assembly), 'coordinationScan': 2.0 * both / n,
+                  'coordinationAssembly': 2.0 * len(assembly) / n, 'nearby': getattr(found, 'nearby', None)}
+
+
+def gapsText(c):
+    """Why a scan shows no contacts: the tolerance, and the gaps between the grains near each other."""
+    text = 'No two grains of the scan come within %g voxel%s of each other (the contact gap, --contact-gap).' % (
+        c['gap'], '' if c['gap'] == 1 else 's')
+    near = c.get('nearby')
+    if near is None:
+        return text
+    if not near:
+        return text + ' None comes within %g voxels either: the grains lie apart.' % NEARBY_GAP
+    edges = [x for x in (1, 1.5, 2, 2.5, 3) if x > c['gap']]
+    parts, lo = [], c['gap']
+    for e in edges:
+        k = sum(1 for g in near if lo < g <= e + 1e-9)
+        if k:
+            parts.append('%d within (%g, %g]' % (k, lo, e))
+        lo = e
+    return text + (' %d pair%s of grains lie within %g voxels: %s (least gap %.3g voxels); a larger '
+                   '--contact-gap would count them.' % (len(near), '' if len(near) == 1 else 's', NEARBY_GAP,
+                                                       ', '.join(parts), min(near)))
+
+
+def annotate(b, options, density, young):
+    """Fills each row's ``time_step`` and ``problems``, and the batch's ``timeStep``, ``setBy`` and ``ranked`` (keys,
+    worst first)."""
+    scale = math.sqrt(density / young)  # PWaveTimeStep of a sphere: r sqrt(rho / E)
+    steps = {}
+    for k, row in b.rows.items():
+        r = _number(row.get('r_min'))
+        if row['status'] == 'ok' and r is None and k in b.results:  # a row of an earlier layout
+            r = float(b.results[k].radii.min())
+            row['r_min'] = r
+        row['time_step'] = r * scale if row['status'] == 'ok' and r is not None else ''
+        if row['time_step'] != '':
+            steps[k] = row['time_step']
+    b.timeStep = min(steps.values()) if steps else None
+    b.setBy = sorted((k for k, t in steps.items() if t <= STEP_MARGIN * b.timeStep), key=lambda k: steps[k])
+    target = options.get('dice') or 0.0
+    flagAt = b.flagAt = target if target > 0 else DICE_FLAG
+    asked = options.get('nSpheres')
+    kinds = {}
+    for k, row in b.rows.items():
+        reasons, kind = [], row['status']
+        if kind == 'failed':
+            reasons.append('failed')
+        elif kind == 'skipped':
+            if 'too small' in row.get('message', ''):
+                reasons.append('too small for the radius bound')
+                kind = 'too small'
+        else:
+            d, thick = _number(row['dice']), _number(row.get('thickness_voxels'))
+            if d is not None and d > flagAt:
+                reasons.append('D %.3g above %s%.3g' % (d, 'the target ' if target > 0 else '', flagAt))
+            if thick is not None and thick < THIN_VOXELS:
+                reasons.append('thin (largest inscribed radius %.2g voxels)' % thick)
+            # fewer spheres than asked is a problem only where D is poor too (a ball needs one)
+            if asked and int(row['spheres']) < asked and d is not None and d > flagAt / 2:
+                reasons.append('%s of the %d spheres asked' % (row['spheres'], asked))
+            lost = _number(row.get('contacts_ct')), _number(row.get('contacts_kept'))
+            if lost[0] is not None and lost[1] is not None and lost[1] < lost[0]:
+                reasons.append('%d of its %d contacts in the scan lost' % (lost[0] - lost[1], lost[0]))
+            if k in b.setBy:
+                reasons.append('sets the time step (smallest radius %.3g voxels)' % _number(row['r_min_voxels'])
+                               if _number(row.get('r_min_voxels')) is not None else 'sets the time step')
+            kind = 'flagged' if reasons else 'ok'
+            if int(row.get('touches_border') or 0):
+                reasons.append('cut by the border')
+                kind = 'border' if kind == 'ok' else kind
+        row['problems'] = '; '.join(reasons)
+        kinds[k] = kind
+    b.ranked = sorted(b.rows, key=lambda k: (_SEVERITY[kinds[k]], -(_number(b.rows[k]['dice']) or 0.0)))
+    b.kinds = kinds
+
+
+def worthALook(b):
+    """The keys to draw: flagged grains worst first (at most MAX_PREVIEWS), or the three of highest D if none."""
+    ok = [k for k in b.ranked if k in b.results]
+    flagged = [k for k in ok if b.kinds[k] == 'flagged']
+    return (flagged or ok[:3])[:MAX_PREVIEWS]
+
+
+def drawPreviews(outdir, b, tasks):
+    """Pictures (as ``mss preview``) of the grains worth a look, into grains/KEY.png; ``b.previewed`` lists them.
+    Drawn here, once the batch knows which: every grain's picture cost several times its generation."""
+    b.previewed = []
+    for k in worthALook(b):
+        t = tasks.get(k)
+        if t is None:
+            continue
+        grain = t.crop if t.crop is not None else t.path
+        kw = {'voxelSize': t.voxelSize, 'origin': t.origin} if t.crop is not None else {}
+        atomicWrite(os.path.join(outdir, 'grains', k + '.png'),
+                    lambda p: preview(grain, b.results[k], p, title=k, **kw), 'batch')
+        b.previewed.append(k)
+
+
+def grains(n):
+    """'1 grain', '2 grains'."""
+    return '%d grain%s' % (n, '' if n == 1 else 's')
+
+
+def summary(b, total, density, young):
+    """The line ``mss batch`` ends with."""
+    rows = b.rows.values()
+    ok = sum(1 for r in rows if r['status'] == 'ok')
+    text = ('batch: %d ok, %d skipped, %d failed of %s in %.2f s (%s generated in this run, %.1f grains/s%s)'
+            % (ok, sum(1 for r in rows if r['status'] == 'skipped'), len(b.failed), grains(total), b.seconds,
+               grains(b.generated), b.generated / b.seconds if b.seconds > 0 else 0.0,
+               '; %s reused from an earlier run' % grains(b.reused) if getattr(b, 'reused', 0) else ''))
+    if b.timeStep is not None:
+        text += '\nbatch: time step %.3g s (density %g, young %g), set by %s' % (
+            b.timeStep, density, young, ', '.join(b.setBy[:5]) + (' and %d more' % (len(b.setBy) - 5)
+                                                                if len(b.setBy) > 5 else ''))
+    if getattr(b, 'contacts', None):
+        c = b.contacts
+        if c['pairs'] == 0:
+            text += '\nbatch: contacts: ' + gapsText(c)
+        else:
+            text += ('\nbatch: contacts: %d pairs of grains within %g voxel%s in the scan, %d between generated '
+                     'grains, '
+                     '%d of them kept (clumps within %.1f voxel); %d pairs within %g voxel%s in the assembly; '
+                     'coordination %.2f in the scan, %.2f in the assembly'
+                     % (c['pairs'], c['gap'], _s(c['gap']), c['between'], c['kept'], KEPT_GAP, c['assembly'],
+                        c['gap'], _s(c['gap']), c['coordinationScan'], c['coordinationAssembly']))
+    if b.ranked and b.rows[b.ranked[0]]['problems']:
+        k = b.ranked[0]
+        text += '\nbatch: worst: %s (%s)' % (k, b.rows[k]['problems'])
+    return text
+
+
+def _s(n):
+    """The plural's s: '1 voxel', '2 voxels'."""
+    return '' if n == 1 else 's'
+
+
+def writeOutputs(outdir, b, density, young):
+    """grains.csv (label order), assembly.txt, assembly.vtk and report.html, each atomically."""
+    rows = list(b.rows.values())
+
+    def table(p):  # a file name's bytes that are not UTF-8 are written as their escapes, never lost
+        with open(p, 'w', newline='', encoding='utf-8', errors='backslashreplace') as f:
+            w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction='ignore')
+            w.writeheader()
+            w.writerows(rows)
+    _atomic(os.path.join(outdir, 'grains.csv'), table)
+    ids = {k: (b.rows[k]['label'] if b.rows[k]['label'] != '' else i) for i, k in enumerate(b.results, 1)}
+
+    def assembly(p):
+        with open(p, 'w') as f:
+            f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
+                    '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
+                    'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
+            for k, r in b.results.items():
+                cid, m = int(ids[k]), r.targetMass
+                I = m.inertia
+                f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
+                        % ((cid, m.volume) + tuple(float(x) for x in m.centroid)
+                           + (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])))
+                for c, rad in zip(r.centers, r.radii):
+                    f.write('%r %r %r %r %d\n' % (float(c[0]), float(c[1]), float(c[2]), float(rad), cid))
+    _atomic(os.path.join(outdir, 'assembly.txt'), assembly)
+    _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
+    if getattr(b, 'scanContacts', None) is not None:
+        def contacts(p):
+            with open(p, 'w', newline='') as f:
+                w = csv.writer(f)
+                w.writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
+                for c in b.scanContacts:
+                    w.writerow([c['a'], c['b'], c['faces'], '%r' % c.get('gap', 0.0)]
+                               + ['%r' % x for x in tuple(c['point']) + tuple(c['normal'])])
+        _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
+    _report(outdir, b, density, young)
+
+
+def writeVtk(path, b, ids):
+    """The assembly for ParaView: legacy VTK polydata, one vertex per sphere with its radius (a Glyph filter's
+    scale), its clump id, its grain's D and its smallest radius in voxels (what sets the time step)."""
+    centers = [r.centers for r in b.results.values()]
+    n = sum(len(c) for c in centers)
+    per = {'radius': [], 'clump_id': [], 'dice': [], 'grain_r_min_voxels': []}
+    for k, r in b.results.items():
+        row = b.rows[k]
+        per['radius'].append(r.radii)
+        per['clump_id'].append(np.full(len(r), int(ids[k])))
+        per['dice'].append(np.full(len(r), _number(row['dice']) or 0.0))
+        per['grain_r_min_voxels'].append(np.full(len(r), _number(row.get('r_min_voxels')) or 0.0))
+    with open(path, 'w') as f:
+        f.write('# vtk DataFile Version 3.0\nyade-mss assembly: spheres (radius, clump_id, dice)\nASCII\n'
+                'DATASET POLYDATA\nPOINTS %d double\n' % n)
+        for c in centers:
+            np.savetxt(f, c, fmt='%.17g')
+        f.write('VERTICES %d %d\n' % (n, 2 * n))
+        np.savetxt(f, np.column_stack([np.ones(n, dtype=int), np.arange(n)]), fmt='%d')
+        # a FIELD: every array is read (a reader takes only the first of several SCALARS by default)
+        f.write('POINT_DATA %d\nFIELD spheres %d\n' % (n, len(per)))
+        for name, parts in per.items():
+            kind = 'int' if name == 'clump_id' else 'double'
+            f.write('%s 1 %d %s\n' % (name, n, kind))
+            values = np.concatenate(parts) if parts else np.zeros(0)
+            np.savetxt(f, values, fmt='%d' if kind == 'int' else '%.17g')
+
+
+def _atomic(path, write):
+    atomicWrite(path, write, 'batch')
+
+
+def _write(path, data):
+    with open(path, 'wb' if isinstance(data, bytes) else 'w') as f:
+        f.write(data)
+
+
+def _charts(outdir, b):
+    """Three histograms that show something: D (the flag line drawn), spheres per grain (integer bins; one
+    value is said, not drawn as one bar) and the smallest radius in voxels (what sets the time step)."""
+    ok = [b.rows[k] for k in b.results]
+    if not ok:
+        return ''
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(13, 3.8), dpi=100)
+    d = [float(r['dice']) for r in ok]
+    a1.hist(d, bins=min(30, max(5, len(d) // 2)), color='#4c72b0')
+    a1.axvline(b.flagAt, color='#c44e52', lw=1, label='flagged above')
+    a1.legend(fontsize=8)
+    a1.set_xlabel('Dice mismatch D (eq. 27, on the grain\'s own grid)')
+    a1.set_ylabel('grains')
+    n = [int(r['spheres']) for r in ok]
+    if min(n) == max(n):
+        a2.text(0.5, 0.5, 'every grain: %d spheres' % n[0], ha='center', va='center', transform=a2.transAxes)
+        a2.set_xticks([])
+        a2.set_yticks([])
+    else:
+        step = max(1, (max(n) - min(n) + 1) // 30)
+        a2.hist(n, bins=np.arange(min(n), max(n) + step + 1, step) - 0.5, color='#55a868')
+        a2.set_ylabel('grains')
+    a2.set_xlabel('spheres per grain')
+    rv = [_number(r.get('r_min_voxels')) for r in ok]
+    rv = [x for x in rv if x is not None]
+    if rv:
+        a3.hist(rv, bins=min(30, max(5, len(rv) // 2)), color='#8172b2')
+        a3.set_ylabel('grains')
+    a3.set_xlabel('smallest radius per grain (voxels)')
+    fig.suptitle('%s generated' % grains(len(ok)))
+    fig.tight_layout()
+    _atomic(os.path.join(outdir, 'report_distributions.png'), fig.savefig)
+    plt.close(fig)
+    return ('<img src="report_distributions.png" alt="histograms of D, of the sphere counts and of the smallest '
+            'radii">')
+
+
+def _segmentationPicture(outdir, seg):
+    """The section of a segmented binary scan: the scan and its grains side by side (report_segmentation.png)."""
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+    labels = seg['labels']
+    rng = np.random.default_rng(0)
+    colours = np.vstack([[1, 1, 1], rng.uniform(0.15, 0.95, (max(1, int(labels.max())), 3))])
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 5), dpi=100)
+    a1.imshow(seg['binary'].T, origin='lower', cmap='gray_r', interpolation='nearest')
+    a1.set_title('the binary scan, section z = %d' % seg['z'])
+    a2.imshow(labels.T, origin='lower', cmap=ListedColormap(colours), vmin=0, vmax=len(colours) - 1,
+              interpolation='nearest')
+    a2.set_title('its grains (%s in the volume; a colour each)' % grains(seg['grains']))
+    for a in (a1, a2):
+        a.set_xlabel('x (voxels)')
+        a.set_ylabel('y (voxels)')
+    fig.tight_layout()
+    _atomic(os.path.join(outdir, 'report_segmentation.png'), fig.savefig)
+    plt.close(fig)
+    return ('<br><img src="report_segmentation.png" alt="a section of the binary scan and of its grains">')
+
+
+_SHOWN = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min_voxels',
+          'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_assembly', 'seconds', 'message']
+
+
+def _report(outdir, b, density, young):
+    rows = list(b.rows.values())
+    counts = {s: sum(1 for r in rows if r['status'] == s) for s in ('ok', 'skipped', 'failed')}
+    notes = []
+    cut = sum(1 for r in rows if int(r.get('touches_border') or 0))
+    if cut:
+        notes.append('%d of %s are cut by the volume\'s border: their clumps end where the scan does '
+                     '(--exclude-border skips them).' % (cut, grains(len(rows))))
+    if counts['failed']:
+        notes.append('%s failed: see %s below.' % (grains(counts['failed']), 'its message' if counts['failed'] == 1
+                                                    else 'their messages'))
+    small = sum(1 for k in b.rows if b.kinds.get(k) == 'too small')
+    if small:
+        notes.append('%s too small for the radius bound (rMin, rMinVoxels): not in the assembly.'
+                     % grains(small))
+    if b.timeStep is not None:
+        notes.append('The assembly\'s critical time step is %.3g s (PWaveTimeStep: the smallest radius times '
+                     'sqrt(density / young), density %g, young %g), set by %s.'
+                     % (b.timeStep, density, young, ', '.join(_html(k) for k in b.setBy[:10])))
+    if getattr(b, 'contacts', None):
+        c = b.contacts
+        if c['pairs'] == 0:
+            notes.append(gapsText(c))
+        else:
+            notes.append('Contacts, counted with one tolerance (grains within %g voxel%s: --contact-gap): %d pairs '
+                         'of grains in the scan, %d of them between generated grains, %d of those kept in the '
+                         'assembly (clumps within %.1f voxel; largest overlap %.2f voxels); %d pairs of clumps in '
+                         'the assembly. Coordination number %.2f in the scan, %.2f in the assembly.'
+                         % (c['gap'], _s(c['gap']), c['pairs'], c['between'], c['kept'], KEPT_GAP, c['overlap'],
+                            c['assembly'], c['coordinationScan'], c['coordinationAssembly']))
+    seg = getattr(b, 'segmented', None)
+    if seg is not None:
+        notes.append('The scan was binary: it was segmented here into %s (its distance transform, a marker at each '
+                     'maximum standing %g voxels above its saddles, a marker watershed). The labels are in '
+                     '<a href="labels.npy">labels.npy</a>: inspect or correct them, then run the batch on them. '
+                     'Below, the section z = %d.%s' % (grains(seg['grains']), seg['h'], seg['z'],
+                                                        _segmentationPicture(outdir, seg)))
+    generated = sum(_number(r['seconds']) or 0.0 for r in rows)
+    previewed = set(getattr(b, 'previewed', []))
+
+    def thumb(k):
+        if k not in previewed:
+            return '<td></td>'
+        url = html.escape('grains/' + urllib.parse.quote(k + '.png'), quote=True)
+        return '<td><a href="%s"><img src="%s" width="360" alt="%s"></a></td>' % (url, url, _html(k))
+
+    def cls(k):
+        return {'failed': 'bad', 'flagged': 'warn', 'too small': 'warn'}.get(b.kinds.get(k), '')
+    cells = ''.join('<tr class="%s"><td>%d</td>%s%s</tr>' % (cls(k), i, ''.join(
+        '<td>%s</td>' % _html(b.rows[k].get(c, '')) for c in _SHOWN), thumb(k)) for i, k in enumerate(b.ranked, 1))
+    page = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>'
+            'td,th{padding:2px 8px;font:12px sans-serif}tr:nth-child(even){background:#eee}'
+            'tr.bad td{background:#f4c7c3}tr.warn td{background:#fce8b2}p.note{background:#fce8b2;padding:4px}'
+            '</style></head><body><h1>mss batch</h1>'
+            '<p>%s: %d ok, %d skipped, %d failed. This run: %.2f s, %s generated%s; generation time of all grains '
+            '%.2f s. Files: '
+            '<a href="assembly.txt">assembly.txt</a>, <a href="assembly.vtk">assembly.vtk</a> (ParaView), '
+            '<a href="grains.csv">grains.csv</a>.</p>%s%s<h2>Grains, worst first</h2><table><tr><th>#</th>%s'
+            '<th>preview</th></tr>%s</table></body></html>'
+            % (grains(len(rows)), counts['ok'], counts['skipped'], counts['failed'], b.seconds, grains(b.generated),
+               ', %s reused from an earlier run with the same input and options' % grains(b.reused)
+               if getattr(b, 'reused', 0) else '', generated,
+               ''.join('<p class="note">%s</p>' % n for n in notes), _charts(outdir, b),
+               ''.join('<th>%s</th>' % c for c in _SHOWN), cells))
+    _atomic(os.path.join(outdir, 'report.html'), lambda p: _write(p, page))
+
+
+def _html(v):
+    """Text for the report: escaped for content and attributes alike (quotes too); bytes of a file name that
+    are not UTF-8 shown as their escapes."""
+    if isinstance(v, float):
+        v = '%.4g' % v
+    return html.escape(str(v).encode('utf-8', 'backslashreplace').decode('utf-8'), quote=True)

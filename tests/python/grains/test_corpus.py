@@ -1,0 +1,49 @@
+"""The bad-input corpus (tests/corpus) through the Python API: ValueError or RuntimeError with the same message
+as the command line, never a crash."""
+import os
+import unittest
+
+import yade_mss
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CORPUS = os.path.join(HERE, '..', '..', 'corpus')
+
+
+def cases():
+    with open(os.path.join(CORPUS, 'cases.tsv')) as f:
+        for line in f:
+            if not line.strip() or line.startswith('#'):
+                continue
+            name, args, fragment = line.rstrip('\n').split('\t')
+            words = args.split()
+            if fragment.startswith('ok:'):
+                continue
+            if words[0] == 'generate' and words[1].startswith('{C}'):
+                yield name, os.path.join(CORPUS, 'files', words[1][4:]), fragment.strip()
+
+
+class Corpus(unittest.TestCase):
+    def test_every_bad_file(self):
+        n = 0
+        for name, path, fragment in cases():
+            with self.subTest(name):
+                with self.assertRaises((ValueError, RuntimeError)) as ctx:
+                    yade_mss.generate(path, nSpheres=3, resolution=20)
+                self.assertIn(fragment, str(ctx.exception))
+                n += 1
+        self.assertGreaterEqual(n, 20)
+
+    def test_extreme_but_valid_sizes(self):
+        import numpy as np
+        from yade_mss import _mss
+        v, t = _mss.readMesh(os.path.join(HERE, '..', '..', 'data', 'sphere_r1.stl'))
+        for scale in (1e-30, 1e30):
+            r = yade_mss.generate((np.array(v).reshape(-1, 3) * scale, np.array(t).reshape(-1, 3)), nSpheres=1,
+                                  resolution=30)
+            self.assertAlmostEqual(r.radii[0] / scale, 1.0, delta=0.05)
+        full = yade_mss.generate(os.path.join(CORPUS, 'files', 'full.npy'), nSpheres=1)  # solid up to its border
+        self.assertEqual(len(full), 1)
+
+
+if __name__ == '__main__':
+    unittest.main()

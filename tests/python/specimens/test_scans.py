@@ -1,0 +1,213 @@
+"""Real segmentations in: contacts across watershed lines (a packing segmented as real pipelines do, a touching
+Voronoi specimen with lines), binary scans refused or segmented, a rerun of a finished batch that does nothing,
+honest counts where a specimen shows no contacts. Small sizes; bench/batch_scale.py runs the large ones. Run with
+/usr/bin/python3."""
+import json
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+from yade_mss import batch, findContacts, generate, packedSpecimen, voronoiBall
+from yade_mss.specimens._report import gapsText
+from yade_mss.grains import segmentBinary, separated
+
+
+def bruteGaps(L):
+    """{(a, b): the least gap between the voxel cubes of labels a < b}, by every pair of their voxels (the
+    oracle: no stencil, no boundary)."""
+    labels = [int(x) for x in np.unique(L) if x != 0]
+    where = {a: np.argwhere(L == a) for a in labels}
+    out = {}
+    for n, a in enumerate(labels):
+        for b in labels[n + 1:]:
+            pa, pb = where[a], where[b]
+            if (np.maximum(pa.min(0), pb.min(0)) - np.minimum(pa.max(0), pb.max(0)) > 3).any():
+                continue  # boxes more than 3 voxels apart on some axis
+            d = np.abs(pa[:, None, :] - pb[None, :, :])
+            g = np.sqrt((np.maximum(d - 1, 0) ** 2).sum(axis=-1)).min()
+            out[(a, b)] = float(g)
+    return out
+
+
+class WatershedLines(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.L = packedSpecimen((48, 48, 48), grains=40, size=(4, 7), seed=5)
+        cls.gaps = bruteGaps(cls.L)
+
+    def test_lines_hide_every_shared_face(self):
+        self.assertGreater(int(self.L.max()), 20)
+        self.assertEqual(findContacts(self.L, gap=0), [])  # the usual count sees nothing
+
+    def test_pairs_within_the_tolerance_are_exactly_the_oracles(self):
+        for tol in (1.0, 1.5, 2.0):
+            want = {k: g for k, g in self.gaps.items() if g <= tol + 1e-9}
+            got = {(c['a'], c['b']): c['gap'] for c in findContacts(self.L, gap=tol)}
+            self.assertEqual(set(got), set(want), tol)
+            for k in want:
+                self.assertAlmostEqual(got[k], want[k], places=12)
+        self.assertGreater(sum(1 for g in self.gaps.values() if g <= 1.0), 30)
+
+    def test_every_scan_contact_is_kept_within_half_a_voxel(self):
+        b = batch(self.L, None, workers=1, progress=False, nSpheres=6)
+        c = b.contacts
+        self.assertEqual(c['gap'], 1.0)
+        self.assertEqual(c['pairs'], sum(1 for g in self.gaps.values() if g <= 1.0))
+        self.assertEqual(len(b.results), int(self.L.max()))  # every grain, the watershed's smallest fragments too
+        self.assertGreater(c['between'], 30)
+        self.assertEqual(c['between'], c['pairs'])
+        self.assertEqual(c['kept'], c['pairs'])  # every pair of the scan within half a voxel in the assembly
+        # no bump: every grain within its bound but for the contact balls' reach (half a voxel and a twentieth)
+        for k, r in b.results.items():
+            self.assertLessEqual(r.metrics['protrusion'], 1.0 + 1e-9, k)
+        # counted with the same tolerance in the assembly: the kept pairs at least
+        self.assertGreaterEqual(c['assembly'], c['kept'])
+
+    def test_a_label_alone_is_the_same_as_in_the_batch(self):
+        b = batch(self.L, None, workers=1, progress=False, nSpheres=6, labels=[3, 7])
+        for label in (3, 7):
+            alone = generate(self.L, label=label, nSpheres=6)
+            inBatch = b.results['label_%d' % label]
+            np.testing.assert_array_equal(alone.centers, inBatch.centers)
+            np.testing.assert_array_equal(alone.radii, inBatch.radii)
+
+    def test_a_gap_of_zero_is_the_count_of_shared_faces(self):
+        b = batch(self.L, None, workers=1, progress=False, nSpheres=4, minVoxels=20, contactGap=0)
+        self.assertEqual(b.contacts['pairs'], 0)
+        self.assertIn('No two grains of the scan come within 0 voxels', gapsText(b.contacts))
+        self.assertIsNotNone(b.contacts['nearby'])
+        self.assertGreater(len(b.contacts['nearby']), 30)  # the gaps of the neighbours, to say why
+        self.assertAlmostEqual(min(b.contacts['nearby']), min(self.gaps.values()))
+
+
+class VoronoiWithLines(unittest.TestCase):
+    def test_every_contact_of_a_touching_specimen_with_lines_is_kept(self):
+        touching = voronoiBall(radius=16, cells=10, seed=2)
+        L = voronoiBall(radius=16, cells=10, seed=2, lines=True)
+        self.assertEqual(findContacts(L, gap=0), [])
+        faces = {(c['a'], c['b']) for c in findContacts(touching, gap=0)}
+        lines = {(c['a'], c['b']) for c in findContacts(L, gap=1)}
+        self.assertTrue(faces <= lines)  # every face shared before the lines is a contact across them
+        b = batch(L, None, workers=1, progress=False, nSpheres=8)
+        self.assertEqual(b.contacts['kept'], b.contacts['pairs'])
+        self.assertGreaterEqual(b.contacts['pairs'], len(faces))
+        for k, r in b.results.items():
+            self.assertEqual(r.metrics['contactsMissed'], 0, k)
+
+    def test_bad_specimen_arguments_name_themselves(self):
+        with self.assertRaisesRegex(TypeError, 'size must be'):
+            packedSpecimen((20, 20, 20), 3, size=(2, 3, 4))
+        with self.assertRaisesRegex(ValueError, 'gap'):
+            findContacts(np.zeros((4, 4, 4), dtype=np.int32), gap=9)
+        with self.assertRaisesRegex(ValueError, 'segmentH'):
+            segmentBinary(np.ones((4, 4, 4), dtype=bool), h=-1)
+
+    def test_separated_clears_one_side_of_each_shared_face(self):
+        L = np.zeros((6, 3, 3), dtype=np.int32)
+        L[:3], L[3:] = 1, 2
+        S = separated(L)
+        self.assertTrue((S[2] == 0).all() and (S[:2] == 1).all() and (S[3:] == 2).all())
+
+
+class BinaryScans(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        cls.L = packedSpecimen((40, 40, 40), grains=25, size=(4, 6), seed=9)
+        cls.binary = (cls.L != 0).astype(np.uint8) * 255  # a thresholded scan: 0 and 255
+
+    def test_a_binary_scan_is_refused_naming_the_fix(self):
+        for scan in (self.binary, self.binary != 0):
+            with self.assertRaises(ValueError) as e:
+                batch(scan, None, workers=1, progress=False, nSpheres=4)
+            text = str(e.exception)
+            self.assertIn('binary scan', text)
+            self.assertIn('--segment', text)
+            self.assertIn('separate pieces', text)
+
+    def test_one_grain_of_one_value_is_still_a_grain(self):
+        one = np.zeros((20, 20, 20), dtype=np.uint8)
+        one[5:15, 5:15, 5:12] = 1
+        b = batch(one, None, workers=1, progress=False, nSpheres=4)
+        self.assertEqual(len(b.results), 1)
+
+    def test_segment_cuts_it_into_grains_and_writes_the_labels(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'scan.npy')
+            np.save(path, self.binary)
+            out = os.path.join(d, 'out')
+            b = batch([path], out, workers=1, progress=False, nSpheres=4, segment=True, minVoxels=10)
+            labels = np.load(os.path.join(out, 'labels.npy'))
+            self.assertEqual(labels.shape, self.binary.shape)
+            self.assertTrue(((labels != 0) == (self.binary != 0)).all())  # every solid voxel in a grain
+            self.assertGreater(int(labels.max()), 10)
+            self.assertGreater(len(b.results), 10)
+            with open(os.path.join(out, 'report.html')) as f:
+                page = f.read()
+            self.assertIn('segmented here into', page)
+            self.assertTrue(os.path.getsize(os.path.join(out, 'report_segmentation.png')) > 1000)
+            with self.assertRaises(ValueError) as e:  # labels are not a binary scan
+                batch(self.L, None, workers=1, progress=False, nSpheres=4, segment=True)
+            self.assertIn('holds labels', str(e.exception))
+            with self.assertRaises(ValueError):  # segmentH alone means nothing
+                batch(self.L, None, workers=1, progress=False, nSpheres=4, segmentH=2.0)
+
+    def test_segmentation_separates_two_touching_balls(self):
+        g = np.indices((40, 24, 24)).transpose(1, 2, 3, 0)
+        solid = (((g - (12, 12, 12)) ** 2).sum(-1) <= 81) | (((g - (27, 12, 12)) ** 2).sum(-1) <= 81)
+        labels = segmentBinary(solid, 1.0)
+        self.assertEqual(int(labels.max()), 2)
+        self.assertNotEqual(labels[12, 12, 12], labels[27, 12, 12])
+
+
+class Reruns(unittest.TestCase):
+    def test_a_finished_batch_run_again_does_nothing_and_a_change_is_seen(self):
+        L = packedSpecimen((40, 40, 40), grains=20, size=(4, 6), seed=4)
+        with tempfile.TemporaryDirectory() as d:
+            path, out = os.path.join(d, 'labels.npy'), os.path.join(d, 'out')
+            np.save(path, L)
+            first = batch([path], out, workers=1, progress=False, nSpheres=5, minVoxels=10)
+            self.assertFalse(first.upToDate)
+            files = {}
+            for top, _, names in os.walk(out):
+                for n in names:
+                    p = os.path.join(top, n)
+                    files[p] = os.stat(p).st_mtime_ns
+            again = batch([path], out, workers=1, progress=False, nSpheres=5, minVoxels=10)
+            self.assertTrue(again.upToDate)
+            self.assertEqual(again.generated, 0)
+            self.assertEqual(set(again.rows), set(first.rows))
+            self.assertEqual(again.contacts['kept'], first.contacts['kept'])
+            for p, t in files.items():  # nothing rewritten
+                self.assertEqual(os.stat(p).st_mtime_ns, t, p)
+            k = next(iter(first.results))
+            np.testing.assert_array_equal(again.results[k].radii, first.results[k].radii)  # read when asked
+            self.assertEqual(len(again.scanContacts), len(first.scanContacts))
+            # another option: not up to date, the grains made again
+            other = batch([path], out, workers=1, progress=False, nSpheres=4, minVoxels=10)
+            self.assertFalse(other.upToDate)
+            self.assertGreater(other.generated, 0)
+            # the input touched: looked at again, each grain reused by the digest of its voxels
+            batch([path], out, workers=1, progress=False, nSpheres=4, minVoxels=10)
+            os.utime(path)
+            touched = batch([path], out, workers=1, progress=False, nSpheres=4, minVoxels=10)
+            self.assertFalse(touched.upToDate)
+            self.assertEqual(touched.generated, 0)
+            # a grain's result swapped in the folder: made again, not reused
+            g = os.path.join(out, 'grains')
+            keys = sorted(f[:-4] for f in os.listdir(g) if f.endswith('.npz'))
+            with open(os.path.join(g, keys[0] + '.npz'), 'rb') as f:
+                other0 = f.read()
+            with open(os.path.join(g, keys[1] + '.npz'), 'wb') as f:
+                f.write(other0)
+            swapped = batch([path], out, workers=1, progress=False, nSpheres=4, minVoxels=10)
+            self.assertEqual(swapped.generated, 1)
+            np.testing.assert_array_equal(swapped.results[keys[1]].radii, other.results[keys[1]].radii)
+            with open(os.path.join(out, 'batch.json')) as f:
+                meta = json.load(f)
+            self.assertEqual(meta['version'], 1)
+
+
+if __name__ == '__main__':
+    unittest.main()
