@@ -48,5 +48,7 @@ expect api/cpp.html "settingsFrom"
 expect api/cpp.html "unionSurface"
 expect guide/surface.html "317,440"
 expect results.html "femur 70"
+expect guide/architecture.html "check_imports.py"
+expect guide/export.html "_static/custom.css"   # code wraps, never clipped
 [ $fail -eq 0 ] || exit 1
 echo "docs: $BUILD/docs/html/index.html"

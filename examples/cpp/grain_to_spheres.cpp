@@ -1,19 +1,25 @@
 // A DEM code's particle from a mesh: its spheres (members of a rigid clump) and the mass, centre of mass and
 // principal moments of the grain itself, which the clump should carry (not the union of its spheres).
-// usage: grain_to_spheres MESH N_SPHERES DENSITY
+// usage: grain_to_spheres MESH N_SPHERES DENSITY [SCALE]
+// SCALE multiplies the mesh's coordinates as read (1e-3: a mesh in millimetres, SI results); DENSITY in
+// kg/m^3.
 #include <mss.hpp>
 
 #include <cstdio>
 #include <exception>
+#include <stdexcept>
 #include <string>
 
 int main(int argc, char** argv) {
-    if (argc != 4) {
-        std::fprintf(stderr, "usage: %s MESH N_SPHERES DENSITY\n", argv[0]);
+    if (argc != 4 && argc != 5) {
+        std::fprintf(stderr, "usage: %s MESH N_SPHERES DENSITY [SCALE]\n", argv[0]);
         return 2;
     }
     try {
-        const mss::TriangleMesh mesh = mss::readMesh(argv[1]);
+        mss::TriangleMesh mesh = mss::readMesh(argv[1]);
+        const double scale = argc == 5 ? std::stod(argv[4]) : 1.0;
+        if (!(scale > 0)) throw std::invalid_argument("scale must be > 0, got " + std::string(argv[4]));
+        for (mss::Vec3& v : mesh.vertices) v *= scale;
         mss::GenerateOptions options;
         options.nSpheres = std::stoi(argv[2]);
         mss::Resolution resolution;

@@ -19,7 +19,7 @@ import unittest
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..'))
 LINKED = ('tests', 'examples', 'docs', 'scripts', 'bench')  # the folders a page may read
-WIDTH = 100  # the widest code line the manual shows without clipping
+WIDTH = 100  # the widest code line a user copies (the manual's pages show about 100 columns)
 LEAD = 12  # a page's first code block starts within this many lines of its title
 MIN_BLOCKS = 10
 YADE_WORDS = re.compile(r'\bO\.|\bFrictMat\b|\bfrom yade\b|\bimport yade\b|\butils\.|\bmssClump|\bmssTemplate'
@@ -164,7 +164,13 @@ def environment():
     env['PYTHONPATH'] = os.pathsep.join(os.path.abspath(p) for p in env.get('PYTHONPATH', '').split(os.pathsep) if p)
     binary = os.environ.get('MSS_BINARY', os.path.join(ROOT, 'build', 'mss'))
     env['PATH'] = os.path.dirname(os.path.abspath(binary)) + os.pathsep + env.get('PATH', '')
-    return env
+    # the C++ library page builds against an installation: this build's, in a folder of the test's own (an
+    # earlier one installed on the machine could be stale)
+    build = os.path.dirname(os.path.abspath(binary))
+    prefix = tempfile.mkdtemp(prefix='mss_manual_prefix_')
+    subprocess.run(['cmake', '--install', build, '--prefix', prefix], check=True, capture_output=True)
+    env['PKG_CONFIG_PATH'] = os.path.join(prefix, 'lib', 'pkgconfig')
+    return env, prefix
 
 
 class Manual(unittest.TestCase):
@@ -178,13 +184,16 @@ class Manual(unittest.TestCase):
                 self.assertLessEqual(found[0][1], LEAD, '%s: the first code is on line %d, not leading the page'
                                      % (name, found[0][1]))
             for kind, line, body in found:
-                for k, text in enumerate(body):
+                # what a user copies must fit; a command's output wraps (docs/_static/custom.css)
+                copied = body if kind != 'console' else [l for l in body if l.startswith('$ ') or l.startswith(' ')]
+                for k, text in enumerate(copied):
                     self.assertLessEqual(len(text), WIDTH, '%s:%d: a code line of %d characters (the manual shows '
                                          '%d)' % (name, line + k, len(text), WIDTH))
 
     def test_every_block_runs_as_shown(self):
         only = [os.path.abspath(p) for p in sys.argv[1:]] if __name__ == '__main__' else []
-        env, total, failures = environment(), 0, []
+        (env, prefix), total, failures = environment(), 0, []
+        self.addCleanup(shutil.rmtree, prefix, True)
         for path in pages():
             if only and path not in only:
                 continue
