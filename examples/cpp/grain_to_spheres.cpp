@@ -1,8 +1,8 @@
 // A DEM code's particle from a mesh: its spheres (members of a rigid clump) and the mass, centre of mass and
 // principal moments of the grain itself, which the clump should carry (not the union of its spheres).
 // usage: grain_to_spheres MESH N_SPHERES DENSITY [SCALE]
-// SCALE multiplies the mesh's coordinates as read (1e-3: a mesh in millimetres, SI results); DENSITY in
-// kg/m^3.
+// SCALE multiplies the mesh's coordinates as read (1e-3: a mesh in millimetres, results in metres); DENSITY
+// is per cubed unit of the scaled mesh (kg/m^3 in SI).
 #include <mss.hpp>
 
 #include <cstdio>
