@@ -385,6 +385,8 @@ int cmdGenerate(const Args& a) {
         const PendingFile pending(out);
         mss::writeSpheres(r.spheres, pending.path);
         std::vector<std::string> args{"preview", in, pending.path, "-o", a.text("preview")};
+        // titled by the file it will be, not by the pending file's name
+        args.insert(args.end(), {"--title", out.substr(out.find_last_of('/') + 1)});
         for (const char* k : {"voxelSize", "origin", "label"})
             if (a.has(k) && isVoxelFile(in)) args.insert(args.end(), {flagOf(k), a.text(k)});
         if (a.has("scale")) args.insert(args.end(), {flagOf("scale"), a.text("scale")});

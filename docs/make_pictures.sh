@@ -9,12 +9,13 @@ MSS=./build/mss
 FEMUR=tests/data/human_femur.stl
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-$MSS generate $FEMUR --spheres 40 --resolution 103 -o "$tmp/femur_40.txt" --preview docs/femur40_preview.png
+# SI units: the mesh is in millimetres (--scale 1e-3); the curve stays in them, as CLUMP's files are
+$MSS generate $FEMUR --spheres 40 --resolution 103 --scale 1e-3 -o "$tmp/femur_40.txt" --preview docs/femur40_preview.png
 $MSS curve $FEMUR --counts 5:100 -o docs/femur_curve.png \
   --compare tests/data/clump/FA_femur_N70_min.txt tests/data/clump/FM_femur_n70_dmin2_rmin1_rstep0.1_seed5.txt
-$MSS ochart $FEMUR --counts 4:64 --dice 0.05 --min-cost -o "$tmp/femur_ochart.png"
+$MSS ochart $FEMUR --counts 4:64 --dice 0.05 --min-cost --scale 1e-3 -o "$tmp/femur_ochart.png"
 cp "$tmp/femur_ochart.png" docs/femur_ochart.png
 # the surface of the femur's 70 spheres (mss surface), shaded
-$MSS generate $FEMUR --spheres 70 -o "$tmp/femur_70.csv" > /dev/null
+$MSS generate $FEMUR --spheres 70 --scale 1e-3 -o "$tmp/femur_70.csv" > /dev/null
 $MSS surface "$tmp/femur_70.csv" --tolerance 0.005 -o "$tmp/femur_70_surface.ply" > /dev/null
 PYTHONPATH=build/py /usr/bin/python3 docs/draw_surface.py "$tmp/femur_70_surface.ply" docs/femur70_surface.png

@@ -1,5 +1,6 @@
 // The union's exact volume (closed forms, the grid integration) and its surface mesh (closed, on the
 // boundary, within the tolerance of that volume), and the mesh writers read back by the project's readers.
+#include "mss/core/mesh_query.hpp"
 #include "mss/generate.hpp"
 #include "mss/io.hpp"
 #include "mss/mass.hpp"
@@ -138,6 +139,31 @@ TEST(UnionSurface, FemurSeventyClosedAndWithinTheTolerance) {
     std::printf(
         "femur 70: %zu triangles, volume %.6g of the union's %.6g (%.3g), vertices off by %.3g of its size\n",
         m.triangles.size(), i.signedVolume, exact, i.signedVolume / exact - 1.0, worst / size);
+}
+
+// Regression: the union was meshed in the spheres' own frame, so the mesh depended on their units (the
+// femur's spheres in metres: another triangulation, with 5 self-intersecting pairs in its STL where
+// millimetres had none).
+TEST(UnionSurface, TheSameSurfaceInAnyUnit) {
+    const SphereSet mm = femur70();
+    SphereSet m = mm;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+        m.centers[i] *= 1e-3;
+        m.radii[i] *= 1e-3;
+    }
+    SurfaceReport a, b;
+    const TriangleMesh inMm = unionSurface(mm, {}, &a), inM = unionSurface(m, {}, &b);
+    ASSERT_EQ(inMm.triangles.size(), inM.triangles.size());
+    EXPECT_EQ(inMm.triangles, inM.triangles);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < inMm.vertices.size(); ++i)
+        worst = std::max(worst, (1e-3 * inMm.vertices[i] - inM.vertices[i]).norm());
+    EXPECT_LT(worst, 1e-12); // metres: a femur of 0.12 m, so 1e-11 of its size
+    EXPECT_EQ(a.subdivisions, b.subdivisions);
+    EXPECT_NEAR(b.longestEdge, 1e-3 * a.longestEdge, 1e-15);
+    // the slivers along the circles where two spheres meet can cross by rounding, in any unit: few
+    EXPECT_LE(countSelfIntersections(inM), 2u);
+    EXPECT_LE(countSelfIntersections(inMm), 2u);
 }
 
 TEST(UnionSurface, ComponentsEdgesAndBadOptions) {

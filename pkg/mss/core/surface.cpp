@@ -60,12 +60,25 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
     if (!(options.maxWork > 0.0))
         throw std::invalid_argument("unionSurface: maxWork must be > 0, got " +
                                     std::to_string(options.maxWork));
+    // CGAL meshes the union in a frame of its own, the same whatever the units: centred on the spheres' box
+    // and scaled so that its longest edge is 100. In the spheres' own frame the mesh depended on their units:
+    // the femur's 70 spheres in metres gave another triangulation than in millimetres, with 5 self-
+    // intersections where the millimetres had none.
+    Vec3 lo = spheres.centers[0], hi = lo;
+    for (std::size_t i = 0; i < spheres.size(); ++i) {
+        lo = lo.cwiseMin(spheres.centers[i] - Vec3::Constant(spheres.radii[i]));
+        hi = hi.cwiseMax(spheres.centers[i] + Vec3::Constant(spheres.radii[i]));
+    }
+    const Vec3 centre = 0.5 * (lo + hi);
+    const double scale = 100.0 / (hi - lo).maxCoeff();
     std::vector<Union::Weighted_point> balls;
     balls.reserve(spheres.size());
     for (std::size_t i = 0; i < spheres.size(); ++i) {
-        const Vec3& c = spheres.centers[i];
-        balls.emplace_back(Union::Bare_point(c.x(), c.y(), c.z()), spheres.radii[i] * spheres.radii[i]);
+        const Vec3 c = scale * (spheres.centers[i] - centre);
+        const double r = scale * spheres.radii[i];
+        balls.emplace_back(Union::Bare_point(c.x(), c.y(), c.z()), r * r);
     }
+    const double volumeScale = 1.0 / (scale * scale * scale);
     // measured on a 2-core machine: 0.7 ms a sphere for the first mesh (1000 spheres 0.73 s, 10,000 6.8 s),
     // and about 15 us a triangle of the subdivisions (300 random spheres: 5 million triangles in 65 s)
     constexpr double kSecondsPerSphere = 1e-3, kSecondsPerTriangle = 1.5e-5;
@@ -92,9 +105,10 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
             "unionSurface: the first mesh of the union has " + std::to_string(p.size_of_facets()) +
             " triangles, more than maxTriangles (" + std::to_string(options.maxTriangles) + ")");
     const double exact = sphereUnionVolume(spheres);
+    const double maxEdge = options.maxEdge * scale; // in CGAL's frame
     // Subdivision moves the new vertices onto the boundary, so the mesh's volume tends to the union's (its
     // error falls about fourfold a subdivision); the exact volume says when to stop.
-    double volume = meshVolume(p);
+    double volume = meshVolume(p) * volumeScale;
     {
         // each subdivision makes four triangles of one, falls the volume's error about fourfold and halves
         // the edges: what the bounds need is known before the first
@@ -103,8 +117,8 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
                        ? int(std::ceil(std::log(error / options.tolerance) / std::log(4.0)))
                        : 0;
         const double longest = longestEdge(p);
-        if (options.maxEdge > 0.0 && longest > options.maxEdge)
-            need = std::max(need, int(std::ceil(std::log2(longest / options.maxEdge))));
+        if (maxEdge > 0.0 && longest > maxEdge)
+            need = std::max(need, int(std::ceil(std::log2(longest / maxEdge))));
         const double triangles = double(p.size_of_facets()) * std::pow(4.0, double(need));
         std::ostringstream bounds;
         bounds.precision(3);
@@ -120,7 +134,7 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
     }
     int subdivisions = 0;
     while (std::abs(exact - volume) > options.tolerance * exact ||
-           (options.maxEdge > 0.0 && longestEdge(p) > options.maxEdge)) {
+           (maxEdge > 0.0 && longestEdge(p) > maxEdge)) {
         if (4 * p.size_of_facets() > options.maxTriangles) {
             std::ostringstream m;
             m << "unionSurface: the bounds (tolerance " << options.tolerance << ", maxEdge "
@@ -131,14 +145,15 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
         progress.update(-1.0, "subdivision " + std::to_string(subdivisions + 1));
         CGAL::subdivide_union_of_balls_mesh_3(uob, p);
         ++subdivisions;
-        volume = meshVolume(p);
+        volume = meshVolume(p) * volumeScale;
     }
     TriangleMesh mesh;
     std::map<Polyhedron::Vertex_const_handle, int> index;
     for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v) {
         index[v] = int(mesh.vertices.size());
         const auto& q = v->point();
-        mesh.vertices.emplace_back(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+        mesh.vertices.push_back(
+            centre + Vec3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())) / scale);
     }
     double smallest = 180.0;
     for (auto f = p.facets_begin(); f != p.facets_end(); ++f) {
@@ -160,7 +175,7 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
         report->subdivisions = subdivisions;
         report->volume = volume;
         report->unionVolume = exact;
-        report->longestEdge = longestEdge(p);
+        report->longestEdge = longestEdge(p) / scale;
         report->smallestAngle = smallest;
     }
     return mesh;

@@ -16,6 +16,7 @@ def main(argv=None):
     pv = sub.add_parser('preview', help='a clump against its grain: three views and a section, as PNG')
     pv.add_argument('grain')
     pv.add_argument('spheres')
+    pv.add_argument('--title', default=None, help=argparse.SUPPRESS)  # mss generate --preview: the output's name
     optionTable.addArguments(pv, 'preview')
     cv = sub.add_parser('curve', help='D and time against the sphere count, as PNG and CSV')
     cv.add_argument('grain')
@@ -33,7 +34,7 @@ def main(argv=None):
         if a.command == 'preview':
             resolution = v.get('resolution', optionTable.default('resolution', 'preview'))
             row = preview(a.grain, a.spheres, v['output'], resolution,
-                          title=os.path.basename(a.spheres), maxWork=v.get('maxWork'), **grain)
+                          title=a.title or os.path.basename(a.spheres), maxWork=v.get('maxWork'), **grain)
             print('wrote       %s  (n %d, D %.4f, largest protrusion %.4g)' % (v['output'], row['spheres'],
                                                                             row['dice'], row['protrusion']))
         else:
