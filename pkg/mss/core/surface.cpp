@@ -46,6 +46,65 @@ double longestEdge(const Polyhedron& p) {
     return std::sqrt(e);
 }
 
+/// The frame CGAL meshes in, the same whatever the spheres' units: centred on their box and scaled so that
+/// its longest edge is 100. In the spheres' own frame the mesh depended on their units: the femur's 70
+/// spheres in metres gave another triangulation than in millimetres, with 5 self-intersecting pairs in its
+/// STL where the millimetres had none.
+struct Frame {
+    Vec3 centre;
+    double scale = 1.0;
+
+    explicit Frame(const SphereSet& spheres) {
+        Vec3 lo = spheres.centers[0], hi = lo;
+        for (std::size_t i = 0; i < spheres.size(); ++i) {
+            lo = lo.cwiseMin(spheres.centers[i] - Vec3::Constant(spheres.radii[i]));
+            hi = hi.cwiseMax(spheres.centers[i] + Vec3::Constant(spheres.radii[i]));
+        }
+        centre = 0.5 * (lo + hi);
+        scale = 100.0 / (hi - lo).maxCoeff();
+    }
+
+    std::vector<Union::Weighted_point> balls(const SphereSet& spheres) const {
+        std::vector<Union::Weighted_point> out;
+        out.reserve(spheres.size());
+        for (std::size_t i = 0; i < spheres.size(); ++i) {
+            const Vec3 c = scale * (spheres.centers[i] - centre);
+            const double r = scale * spheres.radii[i];
+            out.emplace_back(Union::Bare_point(c.x(), c.y(), c.z()), r * r);
+        }
+        return out;
+    }
+};
+
+/// CGAL's mesh back in the spheres' frame, as an indexed mesh; @p smallest gets its smallest angle (degrees).
+TriangleMesh toMesh(const Polyhedron& p, const Frame& frame, double& smallest) {
+    TriangleMesh mesh;
+    std::map<Polyhedron::Vertex_const_handle, int> index;
+    for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v) {
+        index[v] = int(mesh.vertices.size());
+        const auto& q = v->point();
+        const Vec3 x(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+        mesh.vertices.push_back(frame.centre + x / frame.scale);
+    }
+    smallest = 180.0;
+    for (auto f = p.facets_begin(); f != p.facets_end(); ++f) {
+        const auto h = f->halfedge();
+        if (h->next()->next()->next() != h)
+            throw std::logic_error("unionSurface: CGAL's mesh has a facet that is not a triangle");
+        const std::array<int, 3> t = {index[h->vertex()], index[h->next()->vertex()],
+                                      index[h->next()->next()->vertex()]};
+        mesh.triangles.push_back(t);
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 a = mesh.vertices[std::size_t(t[std::size_t(k)])];
+            const Vec3 u = mesh.vertices[std::size_t(t[std::size_t((k + 1) % 3)])] - a;
+            const Vec3 w = mesh.vertices[std::size_t(t[std::size_t((k + 2) % 3)])] - a;
+            smallest =
+                std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / 3.14159265358979323846);
+        }
+    }
+    return mesh;
+}
+
 } // namespace
 
 TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& options, SurfaceReport* report) {
@@ -60,25 +119,9 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
     if (!(options.maxWork > 0.0))
         throw std::invalid_argument("unionSurface: maxWork must be > 0, got " +
                                     std::to_string(options.maxWork));
-    // CGAL meshes the union in a frame of its own, the same whatever the units: centred on the spheres' box
-    // and scaled so that its longest edge is 100. In the spheres' own frame the mesh depended on their units:
-    // the femur's 70 spheres in metres gave another triangulation than in millimetres, with 5 self-
-    // intersections where the millimetres had none.
-    Vec3 lo = spheres.centers[0], hi = lo;
-    for (std::size_t i = 0; i < spheres.size(); ++i) {
-        lo = lo.cwiseMin(spheres.centers[i] - Vec3::Constant(spheres.radii[i]));
-        hi = hi.cwiseMax(spheres.centers[i] + Vec3::Constant(spheres.radii[i]));
-    }
-    const Vec3 centre = 0.5 * (lo + hi);
-    const double scale = 100.0 / (hi - lo).maxCoeff();
-    std::vector<Union::Weighted_point> balls;
-    balls.reserve(spheres.size());
-    for (std::size_t i = 0; i < spheres.size(); ++i) {
-        const Vec3 c = scale * (spheres.centers[i] - centre);
-        const double r = scale * spheres.radii[i];
-        balls.emplace_back(Union::Bare_point(c.x(), c.y(), c.z()), r * r);
-    }
-    const double volumeScale = 1.0 / (scale * scale * scale);
+    const Frame frame(spheres);
+    const double scale = frame.scale, volumeScale = 1.0 / (scale * scale * scale);
+    const std::vector<Union::Weighted_point> balls = frame.balls(spheres);
     // measured on a 2-core machine: 0.7 ms a sphere for the first mesh (1000 spheres 0.73 s, 10,000 6.8 s),
     // and about 15 us a triangle of the subdivisions (300 random spheres: 5 million triangles in 65 s)
     constexpr double kSecondsPerSphere = 1e-3, kSecondsPerTriangle = 1.5e-5;
@@ -147,30 +190,8 @@ TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& option
         ++subdivisions;
         volume = meshVolume(p) * volumeScale;
     }
-    TriangleMesh mesh;
-    std::map<Polyhedron::Vertex_const_handle, int> index;
-    for (auto v = p.vertices_begin(); v != p.vertices_end(); ++v) {
-        index[v] = int(mesh.vertices.size());
-        const auto& q = v->point();
-        mesh.vertices.push_back(
-            centre + Vec3(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z())) / scale);
-    }
     double smallest = 180.0;
-    for (auto f = p.facets_begin(); f != p.facets_end(); ++f) {
-        const auto h = f->halfedge();
-        if (h->next()->next()->next() != h)
-            throw std::logic_error("unionSurface: CGAL's mesh has a facet that is not a triangle");
-        const std::array<int, 3> t = {index[h->vertex()], index[h->next()->vertex()],
-                                      index[h->next()->next()->vertex()]};
-        mesh.triangles.push_back(t);
-        for (int k = 0; k < 3; ++k) {
-            const Vec3 a = mesh.vertices[std::size_t(t[std::size_t(k)])];
-            const Vec3 u = mesh.vertices[std::size_t(t[std::size_t((k + 1) % 3)])] - a;
-            const Vec3 w = mesh.vertices[std::size_t(t[std::size_t((k + 2) % 3)])] - a;
-            smallest =
-                std::min(smallest, std::atan2(u.cross(w).norm(), u.dot(w)) * 180.0 / 3.14159265358979323846);
-        }
-    }
+    TriangleMesh mesh = toMesh(p, frame, smallest);
     if (report) {
         report->subdivisions = subdivisions;
         report->volume = volume;
