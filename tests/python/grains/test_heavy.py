@@ -121,9 +121,9 @@ class Python(unittest.TestCase):
     def test_a_broadcast_volume_is_sized_by_its_shape(self):
         v = np.broadcast_to(np.ones(1, np.uint8), (3000, 3000, 3000))
         t0 = time.perf_counter()
-        with self.assertRaisesRegex(ValueError, '3000x3000x3000'):
+        with self.assertRaisesRegex(ValueError, '3000x3000x3000'):  # before: 9 s, then a MemoryError
             yade_mss.generate(v, nSpheres=5)
-        self.assertLess(time.perf_counter() - t0, 1.0)
+        self.assertLess(time.perf_counter() - t0, BAR)  # refused before any copy (a bar loose enough for load)
 
     def test_sweeps_are_estimated_after_their_first_point(self):
         with tempfile.TemporaryDirectory() as d:
