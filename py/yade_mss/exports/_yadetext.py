@@ -3,6 +3,7 @@ line a clump with its exact mass properties (:func:`yade_mss.readClumps` restore
 
 import numpy as np
 
+from ..base import requireRegularFile
 from ._common import number, safe, templateFrame, whereGenerated
 from ._registry import Format, register
 
@@ -32,12 +33,19 @@ def yadeClumps(result, density, frame='principal'):
     return '\n'.join(lines) + '\n'
 
 
+MAX_CLUMP_FILE_BYTES = 4 << 30  # readClumps reads the file whole: beyond this it is refused, not read
+
+
 def parseClumps(path):
     """{clumpId: [spheres (x, y, z, r)]} in file order, and {clumpId: header numbers}."""
     groups, headers = {}, {}
+    requireRegularFile('readClumps', path)  # a FIFO would block, a device never end
     try:
         with open(path, 'rb') as f:
-            raw = f.read()
+            raw = f.read(MAX_CLUMP_FILE_BYTES + 1)
+        if len(raw) > MAX_CLUMP_FILE_BYTES:
+            raise ValueError('readClumps: %s: over %d bytes (a clumps file of 10^7 spheres takes about 1 GB)'
+                             % (path, MAX_CLUMP_FILE_BYTES))
     except OSError as e:
         raise ValueError('readClumps: %s: cannot open file (%s)' % (path, e.strerror))
     for n, line in enumerate(raw.decode('utf-8', 'backslashreplace').splitlines(), 1):

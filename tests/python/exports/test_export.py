@@ -411,6 +411,24 @@ class OtherCodes(unittest.TestCase):
         np.testing.assert_allclose(g['inertia'], m.inertia, rtol=1e-15, atol=1e-15 * np.abs(m.inertia).max())
         self.assertGreater(np.linalg.norm(r.unionMass(100).centroid - m.centroid), 1e-3 * size)
 
+    def test_a_clumps_file_is_read_within_bounds(self):
+        """readClumps' parser refuses a FIFO by name (it would block) and a file over its bound before reading
+        it whole (it read any size)."""
+        from unittest import mock
+        from yade_mss.exports import _yadetext, parseClumps
+        with tempfile.TemporaryDirectory() as d:
+            fifo = os.path.join(d, 'clumps.txt')
+            os.mkfifo(fifo)
+            with self.assertRaisesRegex(ValueError, 'readClumps: .*clumps.txt: not a regular file \\(a FIFO\\)'):
+                parseClumps(fifo)
+            big = os.path.join(d, 'big.txt')
+            with open(big, 'w') as f:
+                f.write('0 0 0 1 0\n' * 100)
+            with mock.patch.object(_yadetext, 'MAX_CLUMP_FILE_BYTES', 500):
+                with self.assertRaisesRegex(ValueError, 'readClumps: .*big.txt: over 500 bytes'):
+                    parseClumps(big)
+            self.assertEqual(len(parseClumps(big)[0][0]), 100)
+
     def test_yade_clumps_round_trip(self):
         """The yade format is the clumps file of writeClumps: readClumps' own parser takes it (the real YADE
         reading is tests/yade/test_export_yade.py)."""
