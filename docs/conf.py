@@ -15,7 +15,7 @@ if xml:  # the C++ API from the public headers (doxygen's XML, through breathe)
 exclude_patterns = ['_build']
 html_theme = 'alabaster'
 html_theme_options = {'description': 'multi-sphere clumps for DEM', 'fixed_sidebar': True,
-                      'page_width': '1280px', 'sidebar_width': '230px', 'body_max_width': '1040px'}  # 100 columns of code
+                      'page_width': '1240px', 'sidebar_width': '220px', 'body_max_width': '1000px'}  # 100 columns of code
 html_static_path = ['_static']
 autodoc_member_order = 'bysource'
 autodoc_default_options = {'members': True, 'undoc-members': False}
