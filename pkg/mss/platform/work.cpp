@@ -18,6 +18,9 @@ namespace {
 
 std::atomic<bool> gStop{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "requestStop must be async-signal-safe");
+// the poll (Python's: it takes the GIL) at most every 20 ms, however often the checkpoints come
+std::atomic<long long> gLastPoll{0};
+constexpr long long kPollEveryNs = 20'000'000;
 
 std::mutex gHooks; // the poll and the sink are set by front ends, rarely; read at checkpoints
 std::function<bool()> gPoll;
@@ -71,6 +74,11 @@ void clearStop() noexcept {
 
 bool stopRequested() {
     if (gStop.load(std::memory_order_relaxed)) return true;
+    const long long t = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                            std::chrono::steady_clock::now().time_since_epoch())
+                            .count();
+    long long last = gLastPoll.load(std::memory_order_relaxed);
+    if (t - last < kPollEveryNs || !gLastPoll.compare_exchange_strong(last, t)) return false;
     std::function<bool()> poll;
     {
         const std::lock_guard<std::mutex> lock(gHooks);

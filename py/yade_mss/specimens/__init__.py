@@ -4,7 +4,8 @@ functions); synthetic specimens made as real pipelines make them, for tests and 
 """
 
 from ._assembly import Assembly, mssAssembly
-from ._batch import Batch, GrainTask, batch, checkLabelled, clusterSecurity, makeTasks, runGrain
+from ._batch import Batch, GrainTask, batch, checkLabelled, makeTasks, runGrain
+from ._pools import clusterSecurity
 from ._synthetic import packedSpecimen, syntheticSpecimen, voronoiBall
 
 __all__ = ['Assembly', 'mssAssembly', 'Batch', 'GrainTask', 'batch', 'checkLabelled', 'clusterSecurity',

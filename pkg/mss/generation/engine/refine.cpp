@@ -1,4 +1,5 @@
 #include "mss/generation/engine/refine.hpp"
+#include "mss/work.hpp"
 
 #include <algorithm>
 #include <array>
@@ -148,6 +149,9 @@ void refine(Selection& s, const std::vector<Orbit>* touched, int sweeps, bool co
         bool improved = false;
         std::vector<char> movedNow(chosen.size(), 0);
         for (std::size_t oi = 0; oi < chosen.size(); ++oi) {
+            // a sweep over tens of thousands of spheres takes seconds: Ctrl-C is heard within one (checked
+            // before the orbit is taken out, so a stop leaves the coverage whole)
+            if (oi % 64 == 0) tick("refining");
             Orbit& o = chosen[oi];
             if ((sweep == 0 || last) && !eligible[oi]) continue; // far from what changed
             if (sweep > 0 && !last) {

@@ -1,0 +1,172 @@
+"""Where a batch's grains run: in this process, in local worker processes (one OpenMP thread each, a pipe
+each, dying with the batch), or as tasks on a Dask cluster. Results do not depend on which ran what: generation
+is deterministic, one thread per grain. The grain's own work comes in as functions (``runOne``, ``runMany``)
+and so does the row of a grain whose worker died (``failed``), so that this module knows nothing of grains.
+"""
+
+import os
+import signal
+
+from .. import _mss
+
+WORKER_DIED = ('a worker process died', 'every worker process died')  # how a dead worker's rows begin
+
+
+def freeCores():
+    """The cores not busy with other processes now (the load over the last minute; at least one): on a loaded
+    machine one worker beat two."""
+    n = os.cpu_count() or 1
+    try:
+        busy = int(os.getloadavg()[0] + 0.5)
+    except OSError:
+        busy = 0
+    return max(1, n - busy)
+
+
+def _oneThread():
+    """A local worker's start: one OpenMP thread, and death with the batch (Linux's PR_SET_PDEATHSIG), so that a
+    killed batch leaves no worker computing."""
+    try:
+        import ctypes
+        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGTERM))  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        pass
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it stops the workers
+    # the batch's own SIGTERM handler (a KeyboardInterrupt, the command line's) came with the fork: the pool's shutdown
+    # terminates its workers, which printed that interrupt's traceback; a worker just ends
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    _mss.setOmpThreads(1)
+
+
+def clusterSecurity(security=None, caFile=None, cert=None, key=None):
+    """Dask's TLS settings for a scheduler: a ``distributed.Security`` as given, or one from the CA, certificate
+    and key files, or None (then Dask's configuration decides, ``distributed.comm.tls.*``)."""
+    if security is not None:
+        if caFile or cert or key:
+            raise ValueError('batch: give security or the TLS files, not both')
+        return security
+    if not (caFile or cert or key):
+        return None
+    if not (caFile and cert and key):
+        raise ValueError('batch: TLS needs the CA file, the certificate and the key (--tls-ca-file, --tls-cert, '
+                         '--tls-key)')
+    for f in (caFile, cert, key):
+        if not os.path.isfile(f):
+            raise ValueError('batch: %s: no such file (TLS)' % f)
+    from distributed.security import Security
+    return Security(tls_ca_file=caFile, tls_client_cert=cert, tls_client_key=key, require_encryption=True)
+
+
+def executor(workers, scheduler, runOne, runMany, failed, security=None, connectTimeout=5.0):
+    """(submit-all function yielding results as they finish, closer): *runOne* (a task) runs a grain,
+    *runMany* (a list of tasks) several, as Dask's tasks; *failed* (task, message) is the row of a grain whose
+    worker died."""
+    if scheduler:
+        try:
+            from distributed import Client, as_completed
+        except ImportError:
+            raise RuntimeError('batch: --scheduler needs Dask (Debian: python3-distributed)')
+        if security is not None and not str(scheduler).startswith('tls://'):
+            raise ValueError('batch: with TLS the scheduler address is tls://HOST:PORT, got %s' % scheduler)
+        try:
+            client = Client(scheduler, timeout=connectTimeout, security=security)
+        except (OSError, TimeoutError) as e:  # asyncio's and Dask's time-outs are both
+            raise RuntimeError('batch: the Dask scheduler at %s did not answer within %g s (--connect-timeout, '
+                               'connectTimeout): is it running and reachable? (%s: %s)'
+                               % (scheduler, connectTimeout, type(e).__name__, e))
+
+        def run(tasks):
+            # a few grains per task: Dask's per-task cost (~ms) stays small against the grains' own; still
+            # several tasks per worker, so that a lost worker costs little and the load stays even
+            slots = max(1, sum(client.nthreads().values()))
+            size = max(1, min(16, len(tasks) // (8 * slots)))
+            chunks = [tasks[i:i + size] for i in range(0, len(tasks), size)]
+            futures = client.map(runMany, chunks, pure=False, retries=3)
+            for fut in as_completed(futures):
+                for result in fut.result():
+                    yield result
+        return run, client.close
+    if workers == 1:
+        return (lambda tasks: (runOne(t) for t in tasks)), (lambda: None)
+    pool = _LocalPool(workers, runOne, failed)
+    return pool.run, pool.close
+
+
+def _workerLoop(conn, runOne):
+    """A local worker: grains in, rows and results out, over its own pipe, until it gets None."""
+    _oneThread()
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):
+            return
+        if task is None:
+            return
+        conn.send(runOne(task))
+
+
+class _LocalPool(object):
+    """Worker processes, each with a pipe of its own (not concurrent.futures' shared result queue: a worker
+    killed while it wrote there left a part of a message that blocked every reader, and the batch hung). A
+    worker that dies fails the grain it had; the others go on; the batch always ends. Forked: a user's script
+    needs no __main__ guard (spawn would import it again in every child); each child runs on one OpenMP thread
+    (GNU OpenMP hangs in a forked child that asks for the parent's thread pool)."""
+
+    def __init__(self, n, runOne, failed):
+        self.failed = failed
+        import multiprocessing
+        ctx = multiprocessing.get_context('fork')
+        self.workers = []
+        for _ in range(n):
+            mine, theirs = ctx.Pipe(duplex=True)
+            proc = ctx.Process(target=_workerLoop, args=(theirs, runOne), daemon=True)
+            proc.start()
+            theirs.close()  # only the child holds its end: its death is EOF here
+            self.workers.append([proc, mine, None])  # process, pipe, the task it has
+
+    def run(self, tasks):
+        from multiprocessing.connection import wait
+        todo = list(reversed(tasks))
+        live = list(self.workers)
+
+        def give(w):
+            if todo:
+                w[2] = todo.pop()
+                try:
+                    w[1].send(w[2])
+                except (OSError, ValueError):
+                    pass  # dead already: wait() sees its sentinel
+        for w in live:
+            give(w)
+        while any(w[2] is not None for w in live):
+            ready = wait([w[1] for w in live if w[2] is not None] + [w[0].sentinel for w in live if w[2] is not None])
+            for w in list(live):
+                if w[2] is None or not (w[1] in ready or w[0].sentinel in ready):
+                    continue
+                try:
+                    result = w[1].recv() if w[1].poll() else None
+                except (EOFError, OSError):
+                    result = None
+                if result is None and w[0].is_alive() and w[1] not in ready:
+                    continue
+                if result is None:  # killed (or out of memory) before its grain was done
+                    yield self.failed(w[2], WORKER_DIED[0] + ' (killed, or out of memory) before this grain '
+                                      'was done; run the batch again to retry it')
+                    w[2] = None
+                    live.remove(w)
+                    if not live:  # nobody left: the rest fail too, the batch ends
+                        while todo:
+                            yield self.failed(todo.pop(), WORKER_DIED[1] + '; run the batch again')
+                    continue
+                w[2] = None
+                yield result
+                give(w)
+
+    def close(self):
+        """At once: a grain being computed is lost, every finished one is already written."""
+        for proc, conn, task in self.workers:
+            if proc.is_alive():
+                proc.terminate()
+        for proc, conn, task in self.workers:
+            proc.join(timeout=5)
+            conn.close()
