@@ -157,8 +157,8 @@ def check(root):
                 if private:
                     bad.append('%s:%d: the private name %s of the %s sub-package used from %s'
                                % (where, line, '.'.join(private), to, sub or 'the package'))
-                if rank(target) > rank(mod) and not inFunction:
-                    bad.append('%s:%d: %s imports %s, a layer above it' % (where, line, sub or mod, to))
+                if rank(target) >= rank(mod) and not inFunction:  # above it, or beside it (sideways)
+                    bad.append('%s:%d: %s imports %s, a layer not below it' % (where, line, sub or mod, to))
     # a package's __init__ loads its modules: edges from the package to each module it imports are in graph
     found = cycle(graph)
     if found:

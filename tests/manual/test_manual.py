@@ -1,7 +1,7 @@
 """The manual runs as shown: every Python block and every shell step (the ``$`` lines of a console block) of the
 README and of each guide and tutorial page, in page order, from a copy of the repository's root (its folders
 linked, so that what a page writes lands in a scratch folder) on the bundled data. Python blocks run as one
-script a stretch of consecutive blocks (later blocks use what earlier ones made), in real YADE where they use
+script from one shell step to the next (later blocks use what earlier ones made), in real YADE where they use
 it, else in Debian's python3. The output a console block shows must be what the command prints, line for line
 (numbers aside). Each guide and tutorial page must lead with its code, and no code line may be wider than the
 manual shows.
@@ -140,12 +140,13 @@ class Page(object):
             if kind == 'python':
                 stretch.append((line, body))
                 continue
+            if kind != 'console':
+                continue  # a picture, a literal text, an included example: the Python around it runs as one
             if stretch:
                 self.python(stretch)
                 stretch = []
-            if kind == 'console':
-                for cmd, shown in commands(body):
-                    self.shell(cmd, shown, line)
+            for cmd, shown in commands(body):
+                self.shell(cmd, shown, line)
         if stretch:
             self.python(stretch)
 

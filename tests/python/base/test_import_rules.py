@@ -26,7 +26,8 @@ FILES = {
                      '    from ..exports import four  # why\n'
                      '    return a, h, clump\n'),
     'grains/_h.py': 'from ._g import generate\nfrom .. import generate as top\nh = 1\n',
-    'exports/__init__.py': 'import yade.wrapper\none = two = three = four = 1\n',
+    'exports/__init__.py': 'import yade.wrapper\nfrom ..pictures import p\none = two = three = four = 1\n',
+    'pictures/__init__.py': 'p = 1\n',
     'yade/__init__.py': 'from yade import utils\nclump = 1\n',
 }
 
@@ -42,10 +43,11 @@ class Rules(unittest.TestCase):
             bad, late, uses = rules.check(root)
         text = '\n'.join(bad)
         self.assertIn('the private name _a of the base sub-package used from grains', text)
-        self.assertIn('grains imports yade, a layer above it', text)
+        self.assertIn('grains imports yade, a layer not below it', text)
         self.assertIn('imports matplotlib (the grains layer draws nothing)', text)
         self.assertIn("imports the package's __init__ (generate)", text)
         self.assertIn('exports/__init__.py:1: imports YADE', text)
+        self.assertIn('exports imports pictures, a layer not below it', text)  # beside it: sideways
         self.assertNotIn('yade/__init__.py:1: imports YADE', text)  # the yade layer may
         self.assertEqual(text.count('without its reason beside it'), 2)
         self.assertIn('4 imports of the package inside functions (bar 3)', text)
