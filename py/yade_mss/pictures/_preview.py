@@ -183,16 +183,18 @@ def preview(grain, spheres, path, resolution=160, title=None, voxelSize=None, or
     fig.supxlabel('views: the grain grey (its outline black), the spheres coloured by how far they protrude, '
                   'shown where they stand out of it by over half a voxel; section through the centroid: red = grain '
                   'the spheres miss, blue = spheres outside the grain, grey = both', fontsize=9)
-    save(fig, path, plt)
+    save(fig, path, plt, title=name)
     return row
 
 
-def save(fig, path, plt):
+def save(fig, path, plt, title=None):
+    """Writes *fig* to the PNG *path* (atomically) and closes it; *title* also goes into the PNG's metadata
+    (its Title text), where a program finds what the picture shows."""
     path = os.fspath(path)
     if not path.lower().endswith('.png'):
         plt.close(fig)
         raise ValueError('%s: pictures are written as .png' % path)
     try:
-        atomicWrite(path, fig.savefig, 'picture')
+        atomicWrite(path, lambda tmp: fig.savefig(tmp, metadata={'Title': title} if title else None), 'picture')
     finally:
         plt.close(fig)

@@ -82,6 +82,10 @@ class Curve(unittest.TestCase):
             subprocess.run([mss, 'generate', ELL, '--spheres', '10', '--resolution', '40', '-o', spheres,
                             '--preview', pic], check=True, capture_output=True)
             self.assertGreaterEqual(png(pic).shape[1], 800)
+            # named after the file it became (it showed the pending file's name, .mss-pending-XXXXXX.txt)
+            from PIL import Image
+            with Image.open(pic) as im:
+                self.assertEqual(im.text.get('Title'), 's.txt')
             bad = subprocess.run([mss, 'preview', ELL, spheres], capture_output=True, text=True)
             self.assertNotEqual(bad.returncode, 0)  # -o is required
             self.assertIn('-o', bad.stderr)
