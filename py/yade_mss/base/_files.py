@@ -31,14 +31,17 @@ def atomicWrite(path, write, where):
     try:
         fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(path)[:64], suffix=os.path.splitext(path)[1],
                                    dir=folder)
-        os.fchmod(fd, 0o666 & ~umask())  # as an ordinary new file, not mkstemp's 0600
-        os.close(fd)
     except OSError as e:
         raise RuntimeError('%s: %s: cannot write (%s)' % (where, path, e))
-    try:
+    try:  # from here on a Ctrl-C or an error leaves no temporary file behind
+        os.fchmod(fd, 0o666 & ~umask())  # as an ordinary new file, not mkstemp's 0600
+        os.close(fd)
+        fd = None
         write(tmp)
         os.replace(tmp, path)
     except BaseException as e:
+        if fd is not None:
+            os.close(fd)
         if os.path.lexists(tmp):
             os.remove(tmp)
         if isinstance(e, OSError):
