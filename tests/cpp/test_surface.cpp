@@ -167,6 +167,7 @@ TEST(UnionSurface, TheSameSurfaceInAnyUnit) {
 }
 
 TEST(UnionSurface, ComponentsEdgesAndBadOptions) {
+    expectError([] { unionSurface(SphereSet{}); }, "no spheres"); // it read the first of none: a crash
     SphereSet s;
     s.add(Vec3(0, 0, 0), 1.0);
     s.add(Vec3(0.8, 0, 0), 0.6);

@@ -109,6 +109,7 @@ TriangleMesh toMesh(const Polyhedron& p, const Frame& frame, double& smallest) {
 
 TriangleMesh unionSurface(const SphereSet& spheres, const SurfaceOptions& options, SurfaceReport* report) {
     validateSpheres(spheres, "unionSurface");
+    if (spheres.size() == 0) throw std::invalid_argument("unionSurface: no spheres: the union is empty");
     if (!(options.tolerance > 0.0 && options.tolerance < 0.5))
         throw std::invalid_argument("unionSurface: tolerance must be in (0, 0.5), got " +
                                     std::to_string(options.tolerance));

@@ -35,8 +35,8 @@ def writeTemplates(outdir, b, fmt, density):
     writeFolder(os.path.join(outdir, 'templates'), files)
 
     def table(p):
-        with open(p, 'w', newline='') as f:
-            w = csv.writer(f)
+        with open(p, 'w', newline='') as out:
+            w = csv.writer(out)
             w.writerow(['grain', 'label', 'template', 'type', 'x', 'y', 'z', 'qw', 'qx', 'qy', 'qz', 'mass'])
             w.writerows(rows)
     atomicWrite(os.path.join(outdir, 'placements.csv'), table, 'batch')
@@ -71,6 +71,6 @@ def exportTemplate(result, path, format=None, density=None, frame=None, template
         return
 
     def write(p):
-        with open(p, 'w') as f:
-            f.write(text)
+        with open(p, 'w') as out:
+            out.write(text)
     atomicWrite(path, write, 'export')

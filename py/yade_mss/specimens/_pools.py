@@ -32,8 +32,8 @@ def _oneThread():
     except (OSError, AttributeError):
         pass
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the batch's to handle: it stops the workers
-    # the batch's own SIGTERM handler (a KeyboardInterrupt, the command line's) came with the fork: the pool's shutdown
-    # terminates its workers, which printed that interrupt's traceback; a worker just ends
+    # the batch's own SIGTERM handler (a KeyboardInterrupt, the command line's) came with the fork: the pool's
+    # shutdown terminates its workers, which printed that interrupt's traceback; a worker just ends
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     _mss.setOmpThreads(1)
 
