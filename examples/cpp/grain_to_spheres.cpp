@@ -5,6 +5,7 @@
 // is per cubed unit of the scaled mesh (kg/m^3 in SI).
 #include <mss.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <stdexcept>
@@ -17,8 +18,17 @@ int main(int argc, char** argv) {
     }
     try {
         mss::TriangleMesh mesh = mss::readMesh(argv[1]);
-        const double scale = argc == 5 ? std::stod(argv[4]) : 1.0;
-        if (!(scale > 0)) throw std::invalid_argument("scale must be > 0, got " + std::string(argv[4]));
+        double scale = 1.0;
+        if (argc == 5) {
+            std::size_t used = 0;
+            try {
+                scale = std::stod(argv[4], &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != std::string(argv[4]).size() || !(scale > 0) || !std::isfinite(scale))
+                throw std::invalid_argument("SCALE must be a number > 0, got '" + std::string(argv[4]) + "'");
+        }
         for (mss::Vec3& v : mesh.vertices) v *= scale;
         mss::GenerateOptions options;
         options.nSpheres = std::stoi(argv[2]);
