@@ -830,10 +830,12 @@ int main(int argc, char** argv) {
         "batch", "a labelled CT volume or a folder of grains to a DEM assembly: mss batch INPUT... -o DIR");
     app.add_subcommand("spheropolygon",
                        "2-D particle images to spheropolygons: mss spheropolygon IMAGE -o OUT.json");
+    app.add_subcommand("triaxial", "a triaxial test of the grains' clumps in YADE, at one or several sphere "
+                                   "counts: mss triaxial GRAIN|DIR -o DIR --spheres 5,10,20");
     const std::string first = argc > 1 ? argv[1] : "";
     // these run in python3 (matplotlib, Dask): their options and help are there
     if (first == "preview" || first == "curve" || first == "ochart" || first == "batch" ||
-        first == "spheropolygon" || first == "export") {
+        first == "spheropolygon" || first == "export" || first == "triaxial") {
         try {
             return runPython(std::vector<std::string>(argv + 1, argv + argc));
         } catch (const std::exception& e) {
@@ -843,9 +845,8 @@ int main(int argc, char** argv) {
     }
     if (!first.empty() && first[0] != '-' && !runsHere(first)) {
         std::cerr << "mss: unknown command '" << argv[1]
-                  << "' (generate, compare, info, surface, preview, curve, ochart, export, batch or "
-                     "spheropolygon; mss "
-                     "--help)\n";
+                  << "' (generate, compare, info, surface, preview, curve, ochart, export, batch, "
+                     "spheropolygon or triaxial; mss --help)\n";
         return 2;
     }
     try {

@@ -273,7 +273,8 @@ unsigned commandBit(const std::string& name) {
         {"info", mss::command::Info},         {"batch", mss::command::Batch},
         {"preview", mss::command::Preview},   {"curve", mss::command::Curve},
         {"ochart", mss::command::Ochart},     {"spheropolygon", mss::command::Spheropolygon},
-        {"export", mss::command::Export},     {"surface", mss::command::Surface}};
+        {"export", mss::command::Export},     {"surface", mss::command::Surface},
+        {"triaxial", mss::command::Triaxial}};
     for (const auto& [word, bit] : kCommands)
         if (name == word) return bit;
     throw std::invalid_argument("options: no command '" + name + "'");
@@ -329,7 +330,8 @@ py::list optionTable() {
         {mss::command::Info, "info"},         {mss::command::Batch, "batch"},
         {mss::command::Preview, "preview"},   {mss::command::Curve, "curve"},
         {mss::command::Ochart, "ochart"},     {mss::command::Spheropolygon, "spheropolygon"},
-        {mss::command::Export, "export"},     {mss::command::Surface, "surface"}};
+        {mss::command::Export, "export"},     {mss::command::Surface, "surface"},
+        {mss::command::Triaxial, "triaxial"}};
     py::list out;
     for (const mss::OptionSpec& s : mss::optionTable()) {
         py::dict d;

@@ -20,8 +20,8 @@ import sys
 PACKAGE = 'yade_mss'
 # rank of each sub-package: a module may import its own sub-package or one of a lower rank
 LAYERS = {'base': 0, 'grains': 1, 'exports': 2, 'pictures': 2, 'spheropolygons': 2, 'yade': 3, 'specimens': 4,
-          'cli': 5}
-TOP = 6  # the package's __init__ and __main__
+          'studies': 5, 'cli': 6}
+TOP = 7  # the package's __init__ and __main__
 MAX_LATE = 3
 NO_YADE = set(LAYERS) - {'yade'}
 NO_MATPLOTLIB = {'base', 'grains'}

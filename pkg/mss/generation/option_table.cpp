@@ -17,9 +17,10 @@ constexpr double kMaxMemoryGiB = 1048576.0;
 
 using T = OptionType;
 namespace c = command;
-constexpr unsigned kGrain =
-    c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve | c::Ochart | c::Export;
-constexpr unsigned kGen = c::Generate | c::Batch | c::Export; // a generation's own options
+constexpr unsigned kGrain = c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve | c::Ochart |
+                           c::Export | c::Triaxial;
+constexpr unsigned kGenerating = c::Generate | c::Batch | c::Export; // the commands whose work is generation
+constexpr unsigned kGen = kGenerating | c::Triaxial;                 // a generation's own options
 
 // name, flag, python, type, default, low, high, lowOpen, highOpen, choices, unit, metavar, help, commands
 const std::vector<OptionSpec> kTable = {
@@ -68,10 +69,10 @@ const std::vector<OptionSpec> kTable = {
     {"maxWork", "--max-work", true, T::Number, "600", 0, kInf, true, true, "", "seconds", "S",
      "refuse a request whose estimated work (seconds on a 2-core machine) exceeds this, before it starts, "
      "naming the estimate; a long run shows its progress and stops on Ctrl-C",
-     kGen | c::Compare | c::Surface | c::Preview | c::Curve | c::Ochart | c::Spheropolygon},
+     kGenerating | c::Compare | c::Surface | c::Preview | c::Curve | c::Ochart | c::Spheropolygon},
     // termination (paper section 3.5): generation stops at the first met
     {"nSpheres", "--spheres", true, T::Integer, "", 1, 65535, false, false, "", "", "N",
-     "at most this many spheres (problem (i) of the paper, eq. 2)", kGen},
+     "at most this many spheres (problem (i) of the paper, eq. 2)", kGenerating},
     {"eta", "--eta", true, T::Number, "", 0, 1, false, true, "", "", "X",
      "stop once the relative mismatch (eq. 7) is at most this (problem (ii), eq. 4); 0: no such target",
      kGen},
@@ -133,16 +134,16 @@ const std::vector<OptionSpec> kTable = {
     {"contacts", "--no-contacts", true, T::Flag, "true", 0, 0, false, false, "", "", "",
      "a labelled volume: keep the grain's contacts with its neighbours (each one's spheres reach a point of "
      "the faces they share, so that grains touching in the scan touch in the assembly)",
-     kGen},
+     kGenerating},
     {"contactGap", "--contact-gap", true, T::Number, "1", 0, 8, false, false, "", "voxels", "V",
      "a labelled volume: two grains are in contact where their voxels come within this many voxels (1 covers "
      "the separating lines of a watershed and the labels of a binary scan; each grain's spheres then reach "
      "the middle of the gap); 0: shared faces only",
-     kGen},
+     kGenerating},
     {"neighbourProtrusion", "--neighbour-protrusion", true, T::Number, "1", 0, 1, false, false, "", "", "F",
      "a labelled volume's grain: the share of the protrusion bound its spheres may reach into a neighbouring "
      "grain (0.5: two neighbours' clumps overlap by at most the bound, at a cost in D; 1: as elsewhere)",
-     kGen},
+     kGenerating},
     {"threads", "--threads", true, T::Integer, "0", 0, 1024, false, false, "", "", "T",
      "OpenMP threads, 0: OpenMP's default; the result does not depend on it", c::Generate | c::Export},
     // the bound on protrusion (paper section 3.5)
@@ -283,6 +284,63 @@ const std::vector<OptionSpec> kTable = {
      c::Spheropolygon},
     {"labels", "--labels", false, T::Text, "", 0, 0, false, false, "", "", "L1,L2,...",
      "only these labels of a labelled volume", c::Batch},
+    // a triaxial test of the grains (mss triaxial; Python yade_mss.studies): SI units
+    {"output", "-o,--output", false, T::Text, "", 0, 0, false, false, "", "", "DIR",
+     "the output folder: triaxial.csv, summary.csv and .json, the pictures, report.html, runs/ (a rerun "
+     "resumes in it)",
+     c::Triaxial},
+    {"nSpheres", "--spheres", true, T::Integer, "10", 1, 65535, false, false, "", "", "N",
+     "at most this many spheres a grain (eq. 2); several, N,N,... (Python: a list), test the same specimen "
+     "at each count",
+     c::Triaxial},
+    {"grain", "--grain", true, T::Text, "", 0, 0, false, false, "", "", "GRAIN",
+     "an input that is a sphere file (another generator's): the grain it stands for, for the exact mass",
+     c::Triaxial},
+    {"grains", "--grains", true, T::Integer, "200", 2, 100000, false, false, "", "", "N",
+     "clumps in the periodic cell", c::Triaxial},
+    {"confining", "--confining", true, T::Number, "100e3", 0, kInf, true, true, "", "Pa", "P",
+     "the confining pressure: the compaction's goal, then the lateral stress (drained)", c::Triaxial},
+    {"state", "--state", true, T::Choice, "dense", 0, 0, false, false, "dense|loose", "", "S",
+     "the state compaction makes: dense (compacted without friction) or loose (with it)", c::Triaxial},
+    {"strain", "--strain", true, T::Number, "0.2", 0, 0.9, true, true, "", "", "E",
+     "the axial strain (compression positive) at which shearing stops", c::Triaxial},
+    {"undrained", "--undrained", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "shear at constant volume (default: drained, constant lateral stress)", c::Triaxial},
+    {"seed", "--seed", true, T::Integer, "1", 0, kInt64Max, false, false, "", "", "S",
+     "the specimen's places, orientations and grains (the same for every sphere count)", c::Triaxial},
+    {"density", "--density", true, T::Number, "2650", 0, kInf, true, true, "", "mass / world unit^3", "RHO",
+     "the grains' density (SI: kg/m^3)", c::Triaxial},
+    {"young", "--young", true, T::Number, "1e8", 0, kInf, true, true, "", "mass / (world unit s^2)", "E",
+     "the spheres' Young's modulus (SI: Pa; YADE's FrictMat: a contact's stiffness is about young times its "
+     "radius)",
+     c::Triaxial},
+    {"poisson", "--poisson", true, T::Number, "0.3", -1, 0.5, false, false, "", "", "NU",
+     "YADE's FrictMat poisson: a contact's shear over normal stiffness", c::Triaxial},
+    {"frictionAngle", "--friction", true, T::Number, "0.5", 0, 1.5707963267948966, false, false, "", "radians",
+     "PHI", "the contacts' friction angle while sheared (YADE's FrictMat frictionAngle)", c::Triaxial},
+    {"inertialNumber", "--inertial-number", true, T::Number, "5e-4", 0, 0.1, true, false, "", "", "I",
+     "the inertial number I = rate d sqrt(density / p) at the confining pressure: sets the strain rate "
+     "(quasi-static: I under 1e-3)",
+     c::Triaxial},
+    {"damping", "--damping", true, T::Number, "0.2", 0, 0.99, false, false, "", "", "D",
+     "YADE's NewtonIntegrator local damping", c::Triaxial},
+    {"records", "--records", true, T::Integer, "200", 10, 100000, false, false, "", "", "N",
+     "records over the axial strain", c::Triaxial},
+    {"compactionSteps", "--compaction-steps", true, T::Integer, "", 100, kIntMax, false, false, "", "", "N",
+     "give up a compaction that has not reached the confining pressure in this many steps, saying so "
+     "(default 200,000 + 50 a grain)",
+     c::Triaxial},
+    {"workers", "--workers", true, T::Integer, "", 1, 1024, false, false, "", "", "N",
+     "sphere counts run side by side (default: the cores other processes leave free, at least 1)",
+     c::Triaxial},
+    {"scheduler", "--scheduler", true, T::Text, "", 0, 0, false, false, "", "", "URL",
+     "tcp:// or tls://HOST:PORT of a Dask scheduler: each sphere count a task on its workers (YADE and "
+     "yade_mss installed there)",
+     c::Triaxial},
+    {"maxWork", "--max-work", true, T::Number, "7200", 0, kInf, true, true, "", "seconds", "S",
+     "refuse a study whose estimated wall time (seconds on a 2-core machine, the counts side by side) "
+     "exceeds this, before it starts, naming the estimate",
+     c::Triaxial},
 };
 
 } // namespace

@@ -47,6 +47,8 @@ std::string commandName(unsigned cmd) {
         return "surface";
     case c::Spheropolygon:
         return "spheropolygon";
+    case c::Triaxial:
+        return "triaxial";
     default:
         return "options";
     }

@@ -1,4 +1,5 @@
-"""The commands of ``mss`` that run in Python (batch, preview, curve, ochart, export, spheropolygon): each
+"""The commands of ``mss`` that run in Python (batch, preview, curve, ochart, export, spheropolygon,
+triaxial): each
 command's parser, over the layers' functions. ``python3 -m yade_mss COMMAND ...`` runs them; the C++ ``mss``
 hands these commands to it.
 """
@@ -10,8 +11,9 @@ from ._export import main as export
 from ._ochart import main as ochart
 from ._pictures import main as pictures
 from ._spheropolygon import main as spheropolygon
+from ._triaxial import main as triaxial
 
-__all__ = ['run', 'main', 'batch', 'export', 'ochart', 'pictures', 'spheropolygon']
+__all__ = ['run', 'main', 'batch', 'export', 'ochart', 'pictures', 'spheropolygon', 'triaxial']
 
 
 def run(argv):
@@ -25,6 +27,8 @@ def run(argv):
         return ochart(argv[1:])
     if command == 'spheropolygon':
         return spheropolygon(argv[1:])
+    if command == 'triaxial':
+        return triaxial(argv[1:])
     return pictures(argv)
 
 

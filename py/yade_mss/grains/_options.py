@@ -174,6 +174,11 @@ def addArguments(parser, command, skip=()):
     parser.set_defaults(**{r['name']: None for r in rows(command) if r['flag']})
 
 
+def parseOne(name, command, text):
+    """One value of option *name* of *command* from its text, as the command line parses it."""
+    return _mss.parseOption(name, command, text.strip())
+
+
 def parsed(command, namespace):
     """The values the command line gave to *command*'s table rows, parsed as ``mss generate`` parses them
     (the same C++ parser): name -> value."""

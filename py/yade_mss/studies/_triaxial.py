@@ -1,0 +1,413 @@
+"""The triaxial test of clumps in YADE: a periodic cell of grains at random orientations, isotropic compaction to
+the confining pressure, then shearing along z at a strain rate set by the inertial number, drained (constant
+lateral stress) or undrained (constant volume). Compression positive in everything it returns.
+
+Assumptions, stated once: a periodic cell (no walls: no boundary effects, no membrane); the linear law of
+``Law2_ScGeom_FrictPhys_CundallStrack`` between member spheres (YADE's default for ``FrictMat``); no gravity;
+YADE's local (non-viscous) damping in ``NewtonIntegrator``; a dense state made by compacting without friction
+and a loose one with it (the usual DEM way to span void ratios). The strain rate comes from the inertial
+number I = rate d sqrt(rho / p) (GDR MiDi 2004) so that every sphere count shears equally slowly; the time step
+is YADE's ``PWaveTimeStep`` (the smallest member sets it), so what a sphere count costs shows in the steps.
+"""
+
+import json
+import math
+import os
+import time
+
+import numpy as np
+
+from ..base import atomicWrite, flag, integer, number, randomRotation
+from ..yade import MssTemplate, yadeModules
+from ._analysis import COLUMNS, derived
+
+STATES = ('dense', 'loose')
+# Compaction is done when the mean stress is within this of the goal and the unbalanced force under the bound.
+COMPACTION_STRESS_TOL = 0.01
+COMPACTION_UNBALANCED = 0.01
+
+
+class TriaxialResult(object):
+    """What :func:`triaxial` returns.
+
+    :ivar records: the shearing records, a dict a row with :data:`COLUMNS` (compression positive)
+    :ivar compaction: dict: steps, p_Pa, void_ratio, void_ratio_union, unbalanced, seconds
+    :ivar derived: dict of :func:`derived` (phi_peak_deg, phi_cs_deg, psi_max_deg, E50_Pa, e0, ...)
+    :ivar cost: dict: steps (all), shear_steps, dt_s (the time step), step_s (wall time a step), wall_s,
+        spheres (every member), clumps
+    :ivar options: the options it ran with
+    """
+
+    def __init__(self, records, compaction, cost, options):
+        self.records = records
+        self.compaction = compaction
+        self.cost = cost
+        self.options = options
+        self.derived = derived(records)
+
+    def summary(self):
+        """One row of summary.csv: n, the derived figures, the compaction and the cost."""
+        row = dict(n=self.options.get('n'))
+        row.update(self.derived)
+        row.update(compaction_steps=self.compaction['steps'], steps=self.cost['steps'], dt_s=self.cost['dt_s'],
+                   step_s=self.cost['step_s'], wall_s=self.cost['wall_s'], spheres=self.cost['spheres'],
+                   clumps=self.cost['clumps'])
+        return row
+
+    def __repr__(self):
+        d = self.derived
+        return '<TriaxialResult n=%s phi_peak %.1f deg, phi_cs %.1f deg, e0 %.3f, %d steps>' % (
+            self.options.get('n'), d['phi_peak_deg'], d['phi_cs_deg'], d['e0'], self.cost['steps'])
+
+
+def _checked(templates, weights, o):
+    f = 'triaxial'
+    templates = list(templates) if isinstance(templates, (list, tuple)) else [templates]
+    if not templates or not all(isinstance(t, MssTemplate) for t in templates):
+        raise TypeError('%s: templates must be MssTemplate objects (mssTemplate makes them), got %r' % (f, templates))
+    if weights is None:
+        weights = [1.0] * len(templates)
+    if isinstance(weights, (str, bytes)) or len(weights) != len(templates):
+        raise ValueError('%s: weights must be a number a template (%d), got %r' % (f, len(templates), weights))
+    w = np.array([number(f, 'weights', x, 0.0) for x in weights])
+    if w.sum() <= 0:
+        raise ValueError('%s: weights must not all be 0' % f)
+    o['grains'] = integer(f, 'grains', o['grains'], 2, 100000)
+    o['seed'] = integer(f, 'seed', o['seed'], 0)
+    o['records'] = integer(f, 'records', o['records'], 10, 100000)
+    for k in ('confining', 'strain', 'density', 'young', 'inertialNumber'):
+        o[k] = number(f, k, o[k])
+        if not o[k] > 0:
+            raise ValueError('%s: %s must be > 0, got %r' % (f, k, o[k]))
+    if o['strain'] >= 0.9:
+        raise ValueError('%s: strain must be under 0.9 (an axial strain, compression positive), got %r'
+                         % (f, o['strain']))
+    o['poisson'] = number(f, 'poisson', o['poisson'], -1.0, 0.5)
+    o['frictionAngle'] = number(f, 'frictionAngle', o['frictionAngle'], 0.0, math.pi / 2)
+    o['damping'] = number(f, 'damping', o['damping'], 0.0, 0.99)
+    o['undrained'] = flag(f, 'undrained', o['undrained'])
+    if o['state'] not in STATES:
+        raise ValueError("%s: state must be 'dense' or 'loose', got %r" % (f, o['state']))
+    if o['compactionSteps'] is not None:
+        o['compactionSteps'] = integer(f, 'compactionSteps', o['compactionSteps'], 100)
+    if o['spacing'] is not None:
+        o['spacing'] = number(f, 'spacing', o['spacing'])
+        if not o['spacing'] > 0:
+            raise ValueError('%s: spacing must be > 0, got %r' % (f, o['spacing']))
+    return templates, w / w.sum()
+
+
+def clearance(template):
+    """The radius about the grain's centre of mass that holds every sphere of *template* (scaled): grains whose
+    centres of mass are twice the largest of these apart never overlap, whatever their orientations."""
+    r = template.result
+    c = r.targetMass.centroid if r.targetMass is not None else template.unionCentroid
+    return template.scale * r.boundingRadius(c)
+
+
+def placements(n, spacing, weights, seed):
+    """Where the grains go and how they turn: a cubic lattice of *spacing* in a periodic cell, n of its sites
+    at random, a uniformly random rotation and a template drawn by *weights* each. The draws depend on the seed
+    and n only, so the same specimen (places, orientations, which grain) comes out for any sphere count.
+
+    :return: (cell edge, centres (n, 3), rotations (n, 3, 3), template indices (n,))
+    """
+    rng = np.random.default_rng(seed)
+    k = int(math.ceil(n ** (1.0 / 3.0) - 1e-9))
+    sites = np.array([(i, j, m) for i in range(k) for j in range(k) for m in range(k)], dtype=float)
+    chosen = sites[rng.permutation(len(sites))[:n]]
+    rotations = np.array([randomRotation(rng) for _ in range(n)])
+    which = rng.choice(len(weights), size=n, p=weights)
+    return k * spacing, (chosen + 0.5) * spacing, rotations, which
+
+
+class _Scene(object):
+    """The specimen in YADE and what the records need of it."""
+
+    def __init__(self, templates, weights, o):
+        w, O, me = yadeModules()
+        if len(O.bodies):
+            raise ValueError('triaxial: the scene holds %d bodies; the test builds its own specimen (O.reset() '
+                             'first)' % len(O.bodies))
+        spacing = o['spacing'] or 2.0 * max(clearance(t) for t in templates) * 1.001
+        L, centres, rotations, which = placements(o['grains'], spacing, weights, o['seed'])
+        O.periodic = True
+        O.cell.setBox(L, L, L)
+        friction = 0.0 if o['state'] == 'dense' else o['frictionAngle']
+        self.material = O.materials.append(w.FrictMat(young=o['young'], poisson=o['poisson'], density=o['density'],
+                                                      frictionAngle=friction, label='mssTriaxialGrains'))
+        self.clumps, union = [], 0.0
+        for c, R, k in zip(centres, rotations, which):
+            t = templates[k]
+            r = t.result
+            target = r.targetMass.centroid if r.targetMass is not None else t.unionCentroid
+            centre = c - t.scale * R.dot(target - t.unionCentroid)
+            self.clumps.append(t.place(centre, R, material=self.material)[0])
+            union += r.unionVolume() * t.scale ** 3
+        self.solid = sum(O.bodies[c].state.mass for c in self.clumps) / o['density']
+        self.union = union
+        self.diameter = float(np.mean([2 * templates[k].equivalentRadius for k in which]))
+        self.spheres = sum(len(templates[k].result) for k in which)
+
+
+def _engines(o, rate):
+    w = yadeModules()[0]  # YADE's utils holds its classes too
+    p0 = o['confining']
+    return [w.ForceResetter(), w.InsertionSortCollider([w.Bo1_Sphere_Aabb()]),
+            w.InteractionLoop([w.Ig2_Sphere_Sphere_ScGeom()], [w.Ip2_FrictMat_FrictMat_FrictPhys()],
+                              [w.Law2_ScGeom_FrictPhys_CundallStrack()]),
+            w.PeriTriaxController(goal=(-p0, -p0, -p0), stressMask=7, dynCell=True, maxStrainRate=(rate,) * 3,
+                                  maxUnbalanced=COMPACTION_UNBALANCED, relStressTol=COMPACTION_STRESS_TOL,
+                                  label='mssTriaxialControl'),
+            w.NewtonIntegrator(damping=o['damping'])]
+
+
+def _controller(O):
+    for e in O.engines:
+        if type(e).__name__ == 'PeriTriaxController':
+            return e
+    return None
+
+
+def _stress(utils):
+    """The stress tensor, compression positive (YADE's getStress: Love-Weber over the cell, tension positive)."""
+    s = utils.getStress()
+    return -np.array([[s[i, j] for j in range(3)] for i in range(3)])
+
+
+def _coordination(O, clumpOf):
+    """Contacts a grain: distinct pairs of clumps in contact, twice over the clumps."""
+    pairs = set()
+    for i in O.interactions:
+        if i.isReal:
+            a, b = clumpOf.get(i.id1, i.id1), clumpOf.get(i.id2, i.id2)
+            if a != b:
+                pairs.add((min(a, b), max(a, b)))
+    return 2.0 * len(pairs) / max(1, len(set(clumpOf.values())))
+
+
+class _Run(object):
+    """One test's state: what a checkpoint holds beside the scene (O.save)."""
+
+    def __init__(self, o):
+        self.o = o
+        self.phase = 'compaction'
+        self.records = []
+        self.compaction = None
+        self.shearStart = None  # step, cell edges and volume at the start of shearing
+        self.started = time.time()
+        self.wall = 0.0  # seconds of earlier sessions (a resumed run)
+        self.rate = None
+        self.geometry = None  # solid, union, diameter, spheres, clumps, clumpOf
+
+    def state(self):
+        return dict(phase=self.phase, records=self.records, compaction=self.compaction, shearStart=self.shearStart,
+                    wall=self.wall + time.time() - self.started, rate=self.rate, geometry=self.geometry,
+                    options=self.o)
+
+
+def _save(run, folder, O):
+    """The scene and the run's state, each written whole (a stop mid-write leaves the previous pair)."""
+    if folder is None:
+        return
+    scene = os.path.join(folder, 'checkpoint.yade.gz')
+    atomicWrite(scene, lambda tmp: O.save(tmp), 'triaxial')
+    text = json.dumps(run.state())
+    atomicWrite(os.path.join(folder, 'checkpoint.json'), lambda tmp: open(tmp, 'w').write(text), 'triaxial')
+
+
+def _resume(run, folder, O):
+    """Loads the checkpoint of *folder* into *run* when it is of the same options; True when it did."""
+    if folder is None:
+        return False
+    scene, state = os.path.join(folder, 'checkpoint.yade.gz'), os.path.join(folder, 'checkpoint.json')
+    if not (os.path.isfile(scene) and os.path.isfile(state)) or os.path.getsize(state) > (256 << 20):
+        return False
+    try:
+        with open(state) as f:
+            s = json.load(f)
+    except ValueError:
+        return False
+    if s.get('options') != run.o:
+        return False
+    O.load(scene)
+    run.phase, run.records, run.compaction = s['phase'], s['records'], s['compaction']
+    run.shearStart, run.wall, run.rate, run.geometry = s['shearStart'], s['wall'], s['rate'], s['geometry']
+    run.geometry['clumpOf'] = {int(k): v for k, v in run.geometry['clumpOf'].items()}
+    return True
+
+
+def _record(run, O, utils):
+    o, g, s0 = run.o, run.geometry, run.shearStart
+    sigma = _stress(utils)
+    principal = np.sort(np.linalg.eigvalsh(0.5 * (sigma + sigma.T)))[::-1]
+    edges = [O.cell.hSize[i, i] for i in range(3)]
+    volume = O.cell.volume
+    p = float(np.trace(sigma) / 3.0)
+    lateral = 0.5 * (sigma[0, 0] + sigma[1, 1])
+    q = float(sigma[2, 2] - lateral)
+    rate = run.rate
+    row = dict(n=o.get('n'), phase='shear', step=O.iter - s0['step'], time_s=O.time - s0['time'],
+               axial_strain=1.0 - edges[2] / s0['edges'][2], volumetric_strain=1.0 - volume / s0['volume'],
+               sigma1_Pa=float(principal[0]), sigma2_Pa=float(principal[1]), sigma3_Pa=float(principal[2]),
+               sigma_axial_Pa=float(sigma[2, 2]), sigma_lateral_Pa=float(lateral), p_Pa=p, q_Pa=q,
+               q_over_p=q / p if p > 0 else float('nan'), void_ratio=volume / g['solid'] - 1.0,
+               void_ratio_union=volume / g['union'] - 1.0, coordination=_coordination(O, g['clumpOf']),
+               unbalanced=float(utils.unbalancedForce()),
+               inertial_number=rate * g['diameter'] * math.sqrt(o['density'] / p) if p > 0 else float('inf'))
+    assert tuple(row) == COLUMNS
+    run.records.append(row)
+    return row
+
+
+def _compact(run, O, utils, progress, folder, budget):
+    """Isotropic compaction to the confining pressure; raises RuntimeError, saying what to change, when it
+    does not get there within *budget* steps."""
+    o = run.o
+    p0 = o['confining']
+    chunk = 200
+    last = time.time()
+    while True:
+        sigma = _stress(utils)
+        p = float(np.trace(sigma) / 3.0)
+        unb = float(utils.unbalancedForce())
+        if abs(p / p0 - 1.0) <= COMPACTION_STRESS_TOL and unb <= COMPACTION_UNBALANCED and O.iter > chunk:
+            break
+        if O.iter >= budget:
+            raise RuntimeError(
+                'triaxial: the compaction did not reach the confining pressure in %d steps (p %.4g Pa of %.4g, '
+                'unbalanced force %.3g; done means within %g%% and under %g): give it more steps '
+                '(compactionSteps / --compaction-steps), fewer grains, or a larger damping'
+                % (budget, p, p0, unb, 100 * COMPACTION_STRESS_TOL, COMPACTION_UNBALANCED))
+        O.run(chunk, True)
+        if progress is not None:
+            progress('compaction', min(0.99, max(0.0, p / p0)), 'p %.3g kPa, unbalanced %.2g' % (p / 1e3, unb))
+        if folder is not None and time.time() - last > 60:
+            _save(run, folder, O)
+            last = time.time()
+    g = run.geometry
+    run.compaction = dict(steps=O.iter, p_Pa=p, void_ratio=O.cell.volume / g['solid'] - 1.0,
+                          void_ratio_union=O.cell.volume / g['union'] - 1.0, unbalanced=unb)
+
+
+def _startShear(run, O):
+    """Friction on (a dense state was compacted without it), then strain from here, at the chosen rate."""
+    o = run.o
+    mat = O.materials[run.geometry['material']]
+    mat.frictionAngle = o['frictionAngle']
+    tan = math.tan(o['frictionAngle'])
+    for i in O.interactions:
+        if i.isReal:
+            i.phys.tangensOfFrictionAngle = tan
+    O.cell.trsf = _identity()
+    run.shearStart = dict(step=O.iter, time=O.time, edges=[O.cell.hSize[i, i] for i in range(3)],
+                          volume=O.cell.volume)
+    c = _controller(O)
+    rate = run.rate
+    if o['undrained']:  # constant volume: velGrad of zero trace
+        O.engines = [e for e in O.engines if e is not c]
+        O.cell.velGrad = _diagonal(0.5 * rate, 0.5 * rate, -rate)
+    else:  # constant lateral stress, strain rate along z
+        c.stressMask = 3
+        c.goal = (-o['confining'], -o['confining'], -1.0)  # the strain goal is never reached: the loop stops
+        c.maxStrainRate = (10 * rate, 10 * rate, rate)
+        c.maxUnbalanced = 1e9  # no doneHook: the test decides when it is done
+    run.phase = 'shear'
+
+
+def _identity():
+    return yadeModules()[2].Matrix3.Identity
+
+
+def _diagonal(a, b, c):
+    return yadeModules()[2].Matrix3(a, 0, 0, 0, b, 0, 0, 0, c)
+
+
+def _shear(run, O, utils, progress, folder):
+    o = run.o
+    every = max(1, int(round(o['strain'] / o['records'] / (run.rate * O.dt))))
+    last = time.time()
+    if not run.records:
+        _record(run, O, utils)
+    while run.records[-1]['axial_strain'] < o['strain']:
+        O.run(every, True)
+        row = _record(run, O, utils)
+        if not all(math.isfinite(row[k]) for k in ('p_Pa', 'q_Pa', 'axial_strain')) or row['p_Pa'] <= 0:
+            raise RuntimeError('triaxial: the specimen stopped carrying load at axial strain %.4g (p %.4g Pa)'
+                               % (row['axial_strain'], row['p_Pa']))
+        if progress is not None:
+            progress('shear', row['axial_strain'] / o['strain'], 'strain %.3g, q/p %.3f' % (row['axial_strain'],
+                                                                                           row['q_over_p']))
+        if folder is not None and time.time() - last > 60:
+            _save(run, folder, O)
+            last = time.time()
+
+
+def triaxial(templates, weights=None, grains=200, confining=1e5, state='dense', strain=0.2, undrained=False,
+             seed=1, density=2650.0, young=1e8, poisson=0.3, frictionAngle=0.5, inertialNumber=5e-4, damping=0.2,
+             records=200, spacing=None, compactionSteps=None, checkpoint=None, progress=None, n=None):
+    """Runs a triaxial test of clumps in the current (empty) YADE scene and returns its :class:`TriaxialResult`.
+
+    :param templates: :class:`MssTemplate` objects (:func:`mssTemplate` makes them), in SI units
+    :param weights: each template's share of the grains (default: equal)
+    :param int grains: clumps in the periodic cell
+    :param float confining: the confining pressure, Pa (compaction goal; the lateral stress while drained)
+    :param str state: 'dense' (compacted without friction) or 'loose' (compacted with it)
+    :param float strain: the axial strain at which shearing stops
+    :param bool undrained: constant volume while sheared (default: drained, constant lateral stress)
+    :param int seed: the specimen's places, orientations and grains (the same for any sphere count)
+    :param float density: kg/m^3
+    :param float young: the members' Young's modulus, Pa (FrictMat)
+    :param float poisson: FrictMat's poisson (the tangential over normal stiffness)
+    :param float frictionAngle: radians, the contacts' friction angle while sheared
+    :param float inertialNumber: I = rate d sqrt(rho / p) at the confining pressure: sets the strain rate
+    :param float damping: NewtonIntegrator's local damping
+    :param int records: records over the strain
+    :param float spacing: the lattice's spacing (default: twice the largest clearance of the templates);
+        give the same for every sphere count so that the places agree
+    :param int compactionSteps: give up the compaction after this many steps (default: 200,000 + 50 a grain)
+    :param str checkpoint: a folder: the run saves itself there (``O.save``) and resumes from it
+    :param progress: called as progress(phase, fraction, text) after each chunk of steps
+    :param n: the sphere count the records are labelled with (default: the templates' largest)
+    :return: :class:`TriaxialResult`
+    """
+    o = dict(grains=grains, confining=confining, state=state, strain=strain, undrained=undrained, seed=seed,
+             density=density, young=young, poisson=poisson, frictionAngle=frictionAngle,
+             inertialNumber=inertialNumber, damping=damping, records=records, spacing=spacing,
+             compactionSteps=compactionSteps)
+    templates, w = _checked(templates, weights, o)
+    o['n'] = int(n) if n is not None else max(len(t.result) for t in templates)
+    utils, O, me = yadeModules()
+    run = _Run(o)
+    if checkpoint is not None:
+        os.makedirs(checkpoint, exist_ok=True)
+    if not _resume(run, checkpoint, O):
+        scene = _Scene(templates, w, o)
+        clumpOf = {}
+        for c in scene.clumps:
+            for m in O.bodies[c].shape.members.keys():
+                clumpOf[m] = c
+        run.geometry = dict(solid=scene.solid, union=scene.union, diameter=scene.diameter, spheres=scene.spheres,
+                            clumps=len(scene.clumps), clumpOf=clumpOf, material=scene.material)
+        run.rate = o['inertialNumber'] / (scene.diameter * math.sqrt(density / confining))
+        # compaction as fast as the grains stay in contact: a twentieth of a grain per 1000 steps
+        dt = 0.5 * utils.PWaveTimeStep()
+        O.dt = dt
+        O.engines = _engines(o, 0.05 / (1000 * dt) * 1.0)
+    budget = o['compactionSteps'] or 200000 + 50 * o['grains']
+    try:
+        if run.phase == 'compaction':
+            _compact(run, O, utils, progress, checkpoint, budget)
+            _startShear(run, O)
+            _save(run, checkpoint, O)
+        _shear(run, O, utils, progress, checkpoint)
+    except KeyboardInterrupt:
+        _save(run, checkpoint, O)
+        raise
+    wall = run.wall + time.time() - run.started
+    steps = O.iter
+    cost = dict(steps=steps, shear_steps=steps - run.shearStart['step'], dt_s=O.dt, step_s=wall / max(1, steps),
+                wall_s=wall, spheres=run.geometry['spheres'], clumps=run.geometry['clumps'])
+    run.phase = 'done'
+    _save(run, checkpoint, O)
+    return TriaxialResult(run.records, run.compaction, cost, o)
