@@ -111,6 +111,18 @@ bool runFromBuildTree() {
     return std::string(exe).compare(0, dir.size(), dir) == 0;
 }
 
+/// The python3 child of runPython, for the signal handler below (0: none yet).
+volatile sig_atomic_t gChild = 0;
+
+/// SIGTERM, and a SIGINT sent to this process alone (kill -INT, timeout -s INT, a job scheduler), go on to the
+/// child, which stops as on Ctrl-C and says so; a terminal's Ctrl-C (SI_KERNEL) reaches the child by itself,
+/// through the process group, and is not sent twice.
+extern "C" void forwardSignal(int sig, siginfo_t* info, void*) {
+    if (gChild <= 0) return;
+    if (sig == SIGINT && info && info->si_code != SI_USER) return;
+    kill(pid_t(gChild), sig);
+}
+
 /// Runs `python3 -m yade_mss COMMAND ...` (Debian's python3): the commands drawn with matplotlib (`mss
 /// preview`, `mss curve`, `mss generate --preview`) and the batch (`mss batch`). The build tree's command
 /// puts the build tree's package first, so an uninstalled build draws with its own code; the installed
@@ -142,8 +154,15 @@ int runPython(const std::vector<std::string>& args) {
         std::perror("mss: cannot run " MSS_PYTHON);
         _exit(127);
     }
-    // Ctrl-C reaches the child too (one process group): the child stops cleanly and says so, this one waits
-    std::signal(SIGINT, SIG_IGN);
+    // Ctrl-C reaches the child too (one process group): the child stops cleanly and says so, this one waits;
+    // a signal meant for the whole job but sent to this process alone is passed on (forwardSignal)
+    gChild = pid;
+    struct sigaction sa {};
+    sa.sa_sigaction = forwardSignal;
+    sa.sa_flags = SA_SIGINFO | SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
     int status = 0;
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }

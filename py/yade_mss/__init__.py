@@ -13,7 +13,7 @@ Units are those of the input file. Densities come from the material, as in :yref
 The package is in layers, each a sub-package importing only those below it (docs/guide/architecture.rst):
 ``base`` (checks, files, the work limit), ``grains`` (sources, options, generation, results, scan contacts),
 ``exports``, ``pictures`` and ``spheropolygons``, ``yade`` (the only layer that imports YADE), ``specimens``
-(batch, assembly, synthetic specimens) and ``cli``. The names below are the user's API.
+(batch, assembly, synthetic specimens), ``studies`` (the triaxial test and the sphere-count study) and ``cli``. The names below are the user's API.
 """
 
 import os as _os
@@ -47,6 +47,7 @@ from .yade import (MssBreakage, MssTemplate, breakageLog, breakagePotential, gra
                    mssClumpCloud, mssReplaceByClumps, mssSplit, mssTemplate, porosity, readClumps, relativeBreakage,
                    restoreClumpProperties, totalMass, writeClumps)
 from .specimens import batch, mssAssembly, packedSpecimen, syntheticSpecimen, voronoiBall  # noqa: E402
+from .studies import TriaxialResult, triaxial, triaxialStudy  # noqa: E402
 from . import _mss  # noqa: E402,F401 (the C++ module, for tests and advanced use)
 
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties',
@@ -54,4 +55,4 @@ __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'c
            'mssTemplate', 'MssTemplate', 'mssClumpCloud', 'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions',
            'syntheticSpecimen', 'packedSpecimen', 'voronoiBall', 'findContacts', 'spheropolygon', 'spheropolygons',
            'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit', 'MssBreakage', 'breakageLog', 'grainSizes',
-           'breakagePotential', 'relativeBreakage']
+           'breakagePotential', 'relativeBreakage', 'triaxial', 'triaxialStudy', 'TriaxialResult']

@@ -10,10 +10,13 @@ from ..grains import optionTable
 from ..studies import triaxialStudy, verdict
 
 
-def _stopOnTerm():
-    """SIGTERM stops the study as Ctrl-C does: each count saves its checkpoint, what was recorded is written."""
+def _stopOnTerm(seen):
+    """SIGTERM stops the study as Ctrl-C does: each count saves its checkpoint, what was recorded is written;
+    the exit status then says which (130, 143)."""
 
     def stop(signum, frame):
+        seen.append(signum)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
         raise KeyboardInterrupt
     if threading.current_thread() is threading.main_thread():
         signal.signal(signal.SIGTERM, stop)
@@ -32,7 +35,8 @@ def main(argv=None):
     p.add_argument('--spheres', dest='counts', metavar='N,N,...', default=r['default'],
                    help='%s [default %s]' % (r['help'], r['default']))
     a = p.parse_args(argv)
-    _stopOnTerm()
+    seen = []
+    _stopOnTerm(seen)
     try:
         v = optionTable.parsed('triaxial', a)
         try:  # each count as the table parses one
@@ -45,7 +49,7 @@ def main(argv=None):
     except KeyboardInterrupt:
         print('\nmss triaxial: interrupted; what was recorded is written, each count saved where it was: run the '
               'same command again to resume', file=sys.stderr)
-        return 130
+        return 128 + (seen[0] if seen else signal.SIGINT)
     except (ValueError, RuntimeError, TypeError, OSError) as e:
         print('mss triaxial: error: %s' % e, file=sys.stderr)
         return 1

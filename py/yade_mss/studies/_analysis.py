@@ -3,6 +3,9 @@
 
 Conventions: compression positive (stresses and strains), as in soil mechanics; axial is z. sigma1 >= sigma2 >=
 sigma3 are the principal stresses; p = (sigma1 + sigma2 + sigma3) / 3, q = sigma_axial - (sigma_x + sigma_y) / 2.
+The friction angles take sigma1 and sigma3 as a triaxial lab does: the axial and the lateral stress (the mean of x
+and y), so that sin(phi) = 3 (q/p) / (6 + q/p) exactly. The principal values (sigma1..3_Pa) also carry the shear
+stresses a periodic cell of few grains holds; they are recorded beside.
 """
 
 import math
@@ -19,6 +22,8 @@ COLUMNS = ('n', 'phase', 'step', 'time_s', 'axial_strain', 'volumetric_strain', 
 # resultant force on a body over the mean contact force).
 QUASI_STATIC_I = 1e-3
 QUASI_STATIC_UNBALANCED = 0.1
+# The critical state: the volume no longer changes as the specimen shears, |d eps_v / d eps_a| under this.
+CRITICAL_SLOPE = 0.1
 
 
 def mobilized(sigma1, sigma3):
@@ -52,21 +57,22 @@ def derived(rows):
     E50, the initial void ratios, and whether the run was quasi-static.
 
     :param rows: the shearing records, dicts with :data:`COLUMNS` (at least axial_strain, volumetric_strain,
-        sigma1_Pa, sigma3_Pa, q_Pa, p_Pa, void_ratio, void_ratio_union, inertial_number, unbalanced), in order
-    :return: dict: phi_peak_deg (the largest mobilized angle), strain_at_peak, phi_cs_deg (the mean mobilized angle
+        sigma_axial_Pa, sigma_lateral_Pa, q_Pa, p_Pa, void_ratio, void_ratio_union, inertial_number, unbalanced), in order
+    :return: dict: phi_peak_deg (the largest mobilized angle, sigma1 axial and sigma3 lateral), strain_at_peak, phi_cs_deg (the mean mobilized angle
         over the last fifth of the axial strain), dvol_rate_end (d eps_v / d eps_a there: 0 at the critical state),
-        psi_max_deg (the largest dilatancy angle, slopes over windows of 1/20 of the strain), E50_Pa (the secant
+        psi_max_deg (the largest dilatancy angle, slopes over windows of 1/20 of the strain, 5 records at least), E50_Pa (the secant
         modulus to half the peak deviator, from the deviator at the start of shearing), e0, e0_union, q_peak_Pa,
-        p_peak_Pa, I_max, unbalanced_median, quasi_static
+        p_peak_Pa, I_max, unbalanced_median, quasi_static, strain_end, peak_reached (the largest angle lies
+        before the last tenth of the strain), critical_state (|dvol_rate_end| <= CRITICAL_SLOPE)
     """
     if len(rows) < 3:
         raise ValueError('triaxial: %d records of shearing: at least 3 are needed for the derived figures'
                          % len(rows))
-    col = {k: np.array([float(r[k]) for r in rows]) for k in ('axial_strain', 'volumetric_strain', 'sigma1_Pa',
-                                                              'sigma3_Pa', 'q_Pa', 'p_Pa', 'void_ratio',
+    col = {k: np.array([float(r[k]) for r in rows]) for k in ('axial_strain', 'volumetric_strain', 'sigma_axial_Pa',
+                                                              'sigma_lateral_Pa', 'q_Pa', 'p_Pa', 'void_ratio',
                                                               'void_ratio_union', 'inertial_number', 'unbalanced')}
     a, v = col['axial_strain'], col['volumetric_strain']
-    phi = mobilized(col['sigma1_Pa'], col['sigma3_Pa'])
+    phi = mobilized(col['sigma_axial_Pa'], col['sigma_lateral_Pa'])
     k = int(np.nanargmax(phi))
     span = a[-1] - a[0]
     late = a >= a[-1] - 0.2 * span
@@ -74,7 +80,8 @@ def derived(rows):
         slopeEnd = float(np.polyfit(a[late], v[late], 1)[0])
     else:
         slopeEnd = float('nan')
-    psi = dilatancy(a, v, span / 20.0)
+    # slopes over a twentieth of the strain, and over 5 records at least
+    psi = dilatancy(a, v, max(span / 20.0, 5.0 * float(np.median(np.diff(a)))))
     dq = col['q_Pa'] - col['q_Pa'][0]
     half = 0.5 * dq.max()
     j = int(np.argmax(dq >= half))
@@ -90,5 +97,6 @@ def derived(rows):
                 dvol_rate_end=slopeEnd, psi_max_deg=float(np.nanmax(psi)) if np.isfinite(psi).any() else float('nan'),
                 E50_Pa=e50, e0=float(col['void_ratio'][0]), e0_union=float(col['void_ratio_union'][0]),
                 q_peak_Pa=float(col['q_Pa'][k]), p_peak_Pa=float(col['p_Pa'][k]), I_max=iMax,
-                unbalanced_median=unbalanced,
+                unbalanced_median=unbalanced, strain_end=float(a[-1]),
+                peak_reached=bool(a[k] < a[-1] - 0.1 * span), critical_state=bool(abs(slopeEnd) <= CRITICAL_SLOPE),
                 quasi_static=bool(iMax <= QUASI_STATIC_I and unbalanced <= QUASI_STATIC_UNBALANCED))

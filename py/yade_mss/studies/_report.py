@@ -48,6 +48,17 @@ def drawCurves(path, records, title):
     plt.close(fig)
 
 
+def _countAxis(ax, n):
+    """The sphere counts on a log axis, each labelled plainly."""
+    from matplotlib.ticker import NullFormatter, NullLocator
+    ax.set_xscale('log')
+    ax.xaxis.set_minor_locator(NullLocator())
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xticks(n)
+    ax.set_xticklabels([str(x) for x in n])
+    ax.set_xlabel('spheres a grain, n')
+
+
 def drawCounts(path, rows, title):
     """Each result against the sphere count (its change from the largest count's in the legend), and the cost."""
     plt = _pyplot()
@@ -63,23 +74,21 @@ def drawCounts(path, rows, title):
             ax.legend(fontsize=7)
         last = y[-1]
         for x, v in zip(n, y):
-            if last and math.isfinite(v):
-                ax.annotate('%+.0f%%' % (100 * (v - last) / abs(last)), (x, v), textcoords='offset points',
-                            xytext=(3, 4), fontsize=7)
-        ax.set_xscale('log')
-        ax.set_xlabel('spheres a grain, n')
+            if last and math.isfinite(v):  # a void ratio near 0 has no meaningful relative change
+                text = ('%+.3f' % (v - last)) if key == 'e0' else ('%+.1f%%' % (100 * (v - last) / abs(last)))
+                ax.annotate(text, (x, v), textcoords='offset points', xytext=(3, 4), fontsize=7)
+        _countAxis(ax, n)
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
     ax = axes.ravel()[-1]
     ax.plot(n, [r['wall_s'] for r in rows], 'o-', label='wall time (s)')
     ax.plot(n, [r['steps'] / 1e3 for r in rows], 's--', label='steps (thousands)')
-    ax.set_xscale('log')
-    ax.set_yscale('log')
-    ax.set_xlabel('spheres a grain, n')
+    _countAxis(ax, n)
+    ax.set_ylim(bottom=0)
     ax.set_ylabel('cost')
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
-    fig.suptitle(title + '\n(percentages: change from the largest n)', fontsize=10)
+    fig.suptitle(title + '\n(labels: the change from the largest n, relative; for the void ratio, the difference)', fontsize=10)
     fig.tight_layout()
     _save(fig, path)
     plt.close(fig)
@@ -125,6 +134,13 @@ def _warnings(rows):
             out.append('n = %d was not quasi-static: largest inertial number %.2g (bound %g), median unbalanced force '
                        '%.2g (bound %g): lower the inertial number' % (r['n'], r['I_max'], QUASI_STATIC_I,
                                                                        r['unbalanced_median'], QUASI_STATIC_UNBALANCED))
+        if not r['peak_reached']:
+            out.append('n = %d: q/p was still rising at the end (largest at axial strain %.3g of %.3g): the peak angle '
+                       'is a lower bound; shear further (--strain)' % (r['n'], r['strain_at_peak'], r['strain_end']))
+        if not r['critical_state']:
+            out.append('n = %d: no critical state at the end (d eps_v / d eps_a = %.2f over the last fifth, not '
+                       'about 0): phi_cs is the angle there, not the critical-state one; shear further'
+                       % (r['n'], r['dvol_rate_end']))
         ratio = (1 + r['e0']) / (1 + r['e0_union'])  # the clumps' volume over the grains'
         if abs(1 - ratio) > 0.05:
             out.append('n = %d: the void ratio on the clumps\' own volumes (%.3f) differs from that on the grains\' '

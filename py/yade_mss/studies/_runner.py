@@ -36,7 +36,9 @@ def main(taskPath):
             _write(os.path.join(folder, 'progress.json'), dict(phase=phase, fraction=fraction, text=text,
                                                                elapsed=time.time() - started))
 
-    def stop(signum, frame):
+    def stop(signum, frame):  # once: the checkpoint is then written undisturbed
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
         raise KeyboardInterrupt
     signal.signal(signal.SIGTERM, stop)
     signal.signal(signal.SIGINT, stop)

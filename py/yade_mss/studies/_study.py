@@ -34,7 +34,8 @@ TEST_OPTIONS = ('grains', 'confining', 'state', 'strain', 'undrained', 'seed', '
 # the option table's defaults (mss triaxial --help shows the same)
 TEST_DEFAULTS = {k: optionTable.default(k, 'triaxial') for k in TEST_OPTIONS}
 SUMMARY = ('n', 'phi_peak_deg', 'phi_cs_deg', 'psi_max_deg', 'e0', 'e0_union', 'E50_Pa', 'strain_at_peak',
-           'q_peak_Pa', 'p_peak_Pa', 'dvol_rate_end', 'I_max', 'unbalanced_median', 'quasi_static',
+           'q_peak_Pa', 'p_peak_Pa', 'dvol_rate_end', 'I_max', 'unbalanced_median', 'quasi_static', 'strain_end',
+           'peak_reached', 'critical_state',
            'compaction_steps', 'steps', 'dt_s', 'step_s', 'wall_s', 'spheres', 'clumps', 'smallest_radius_m',
            'dice_mean')
 # The work model (seconds on a 2-core machine, one count a core), measured on this project's bench (60 to 1000
@@ -185,6 +186,7 @@ def _runLocal(tasks, outdir, workers, progress):
                         states[n] = dict(phase='done', fraction=1.0)
             progress.show(states)
     except KeyboardInterrupt:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second signal (the group's and a forwarded one) waits too
         for proc, log, folder in running.values():  # each saves its checkpoint and exits
             if proc.poll() is None:
                 proc.send_signal(signal.SIGINT)
@@ -258,8 +260,7 @@ def _runDask(tasks, outdir, scheduler, security, connectTimeout):
 
 
 def _prepare(grains, counts, gen, o, outdir):
-    """Each count's spheres (generated here, saved under templates/), the lattice spacing that fits every count,
-    and each count's task."""
+    """Each count's spheres (generated here), the lattice spacing that fits every count, and each count's task."""
     results = {}
     for n in counts:
         results[n] = [g.at(n, gen) for g in grains]
@@ -270,17 +271,20 @@ def _prepare(grains, counts, gen, o, outdir):
     spacing = 2.0 * 1.001 * max(r.boundingRadius(r.targetMass.centroid) for rs in results.values() for r in rs)
     tasks = []
     for n in counts:
-        folder = os.path.join(outdir, 'runs', 'n%d' % n)
-        os.makedirs(folder, exist_ok=True)
-        templates = []
-        for k, (r, g) in enumerate(zip(results[n], grains)):
-            name = 'grain%04d.npz' % k
-            r.save(os.path.join(folder, name))
-            templates.append(dict(file=name, weight=g.weight, name=g.name))
+        templates = [dict(file='grain%04d.npz' % k, weight=g.weight, name=g.name) for k, g in enumerate(grains)]
         task = dict(n=n, options=dict(o, spacing=spacing), templates=templates)
         task['digest'] = _digest(task, results[n])
         tasks.append(task)
     return results, tasks
+
+
+def _writeTask(outdir, task, results):
+    """A count's folder: its spheres (.npz) and task.json."""
+    folder = os.path.join(outdir, 'runs', 'n%d' % task['n'])
+    os.makedirs(folder, exist_ok=True)
+    for g, r in zip(task['templates'], results):
+        r.save(os.path.join(folder, g['file']))
+    _writeText(os.path.join(folder, 'task.json'), json.dumps(task))
 
 
 def _finished(outdir, task):
@@ -323,7 +327,6 @@ def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, schedul
         raise ValueError('triaxial: a sphere file has its own count: give one count (or none) with it')
     if os.path.lexists(outdir) and not os.path.isdir(outdir):
         raise ValueError('triaxial: %s exists and is not a folder' % outdir)
-    os.makedirs(outdir, exist_ok=True)
     refuseLinkedFolders('triaxial', [outdir])
     security = clusterSecurity(security)
     results, tasks = _prepare(grains, counts, gen, o, outdir)
@@ -337,6 +340,7 @@ def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, schedul
                          '(--max-work): fewer grains, a smaller strain, fewer or smaller counts, or raise the limit'
                          % (_clock(wall), ', '.join('n=%d %s' % (t['n'], _clock(s)) for t, s in zip(todo, seconds)),
                             maxWork))
+    os.makedirs(outdir, exist_ok=True)
     _writeText(os.path.join(outdir, 'options.json'), json.dumps(dict(
         inputs=[os.fspath(p) for p in (inputs if isinstance(inputs, (list, tuple)) else [inputs])],
         nSpheres=counts, grain=grain, options=o, generate=gen, grains=[g.name for g in grains]), indent=1,
@@ -346,7 +350,7 @@ def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, schedul
               % (o['grains'], len(grains), ','.join(map(str, counts)), len(todo), _clock(wall),
                  len(tasks) - len(todo)), file=sys.stderr)
     for t in todo:
-        _writeText(os.path.join(outdir, 'runs', 'n%d' % t['n'], 'task.json'), json.dumps(t))
+        _writeTask(outdir, t, results[t['n']])
     failed = {}
     interrupted = False
     try:
