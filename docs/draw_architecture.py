@@ -32,9 +32,10 @@ BOXES = [
     (8.4, 3.2, 2.35, 1.3, 'exports', 'a registry,\none module\na format', PY),
     (10.9, 3.2, 2.35, 1.3, 'pictures', 'preview,\ncurve, ochart', PY),
     (13.4, 3.2, 2.4, 1.3, 'spheropolygons', '2-D images,\nthe O-chart', PY),
-    (8.4, 4.8, 7.4, 1.3, 'yade_mss.yade', 'clumps, records, restore, clump files, templates and clouds,\n'
+    (8.4, 4.8, 7.4, 1.25, 'yade_mss.yade', 'clumps, records, restore, clump files, templates and clouds,\n'
      'breakage: the only layer that imports YADE', PY),
-    (8.4, 6.4, 7.4, 0.9, 'yade_mss.specimens', 'batch (local, Dask), report, assembly, synthetic specimens', PY),
+    (8.4, 6.12, 7.4, 0.7, 'yade_mss.specimens', 'batch (local, Dask), report, assembly, synthetic specimens', PY),
+    (8.4, 6.88, 7.4, 0.68, 'yade_mss.studies', 'the triaxial test in YADE, the sphere-count study, its report', PY),
     (8.4, 7.6, 3.6, 1.1, 'yade_mss.cli', 'every command\'s parser', PY),
     (12.2, 7.6, 3.6, 1.1, 'yade_mss  (__init__)', 'the user\'s names:\nmssClump, generate, batch, ...', TOP),
 ]

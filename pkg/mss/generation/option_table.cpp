@@ -337,6 +337,8 @@ const std::vector<OptionSpec> kTable = {
      "tcp:// or tls://HOST:PORT of a Dask scheduler: each sphere count a task on its workers (YADE and "
      "yade_mss installed there)",
      c::Triaxial},
+    {"quiet", "--quiet", true, T::Flag, "false", 0, 0, false, false, "", "", "",
+     "no progress line (the summary is printed all the same)", c::Triaxial},
     {"maxWork", "--max-work", true, T::Number, "7200", 0, kInf, true, true, "", "seconds", "S",
      "refuse a study whose estimated wall time (seconds on a 2-core machine, the counts side by side) "
      "exceeds this, before it starts, naming the estimate",

@@ -118,7 +118,7 @@ class _Progress(object):
             f = 0.3 * s['fraction'] if s['phase'] == 'compaction' else 0.3 + 0.7 * s['fraction']
             if s['phase'] == 'done':
                 f = 1.0
-            if 0 < f < 1 and s.get('elapsed'):
+            if 0.05 < f < 1 and s.get('elapsed'):  # a count just begun says nothing of its pace yet
                 left = max(left, s['elapsed'] * (1 - f) / f)
             parts.append('n=%d %s %d%%' % (n, s['phase'], int(100 * f)))
         line = 'triaxial: %s | %s elapsed%s' % (' | '.join(parts), _clock(now - self.start),
@@ -305,6 +305,8 @@ def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, schedul
     :param grain: the grain a sphere-file input stands for (its exact mass)
     :param int workers: counts run side by side (default: the free cores)
     :param str scheduler: a Dask scheduler's address: each count a task there
+    :param security: Dask's ``distributed.Security`` for a TLS scheduler (default: Dask's configuration)
+    :param float connectTimeout: seconds to wait for the scheduler to answer
     :param float maxWork: refuse a study estimated over this many seconds, before it starts
     :param bool quiet: no progress line
     :param options: the test's options (:func:`triaxial`: grains, confining, state, strain, undrained, seed,
@@ -334,6 +336,8 @@ def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, schedul
     todo = [t for t in tasks if _finished(outdir, t) is None]
     side = workers or (1 if scheduler else min(len(todo) or 1, freeCores()))
     seconds = [estimate(t['n'], results[t['n']], weights, o)[0] for t in todo]
+    order = sorted(range(len(todo)), key=lambda i: -seconds[i])  # the longest first: side by side, done sooner
+    todo, seconds = [todo[i] for i in order], [seconds[i] for i in order]
     wall = sum(sorted(seconds, reverse=True)[::side]) if seconds else 0.0  # the longest first, side by side
     if wall > maxWork:
         raise ValueError('triaxial: the study would take about %s on a 2-core machine (%s), over maxWork %g s '

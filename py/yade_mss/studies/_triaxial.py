@@ -30,6 +30,11 @@ COMPACTION_UNBALANCED = 0.01
 class TriaxialResult(object):
     """What :func:`triaxial` returns.
 
+    :param records: the shearing records (dicts of :data:`COLUMNS`)
+    :param compaction: the compaction's figures (dict)
+    :param cost: the run's cost (dict)
+    :param options: the options it ran with (dict)
+
     :ivar records: the shearing records, a dict a row with :data:`COLUMNS` (compression positive)
     :ivar compaction: dict: steps, p_Pa, void_ratio, void_ratio_union, unbalanced, seconds
     :ivar derived: dict of :func:`derived` (phi_peak_deg, phi_cs_deg, psi_max_deg, E50_Pa, e0, ...)
