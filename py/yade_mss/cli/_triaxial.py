@@ -32,7 +32,7 @@ def main(argv=None):
                    '(with --grain)')
     optionTable.addArguments(p, 'triaxial', skip=('nSpheres',))
     r = optionTable.row('nSpheres', 'triaxial')
-    p.add_argument('--spheres', dest='counts', metavar='N,N,...', default=r['default'],
+    p.add_argument('--spheres', dest='counts', metavar='N,N,...', default=None,
                    help='%s [default %s]' % (r['help'], r['default']))
     a = p.parse_args(argv)
     seen = []
@@ -40,7 +40,8 @@ def main(argv=None):
     try:
         v = optionTable.parsed('triaxial', a)
         try:  # each count as the table parses one
-            v['nSpheres'] = [optionTable.parseOne('nSpheres', 'triaxial', x) for x in a.counts.split(',')]
+            if a.counts is not None:
+                v['nSpheres'] = [optionTable.parseOne('nSpheres', 'triaxial', x) for x in a.counts.split(',')]
         except ValueError as e:
             raise ValueError(str(e).replace('options: nSpheres', '--spheres'))
         out = v.pop('output')

@@ -38,11 +38,12 @@ SUMMARY = ('n', 'phi_peak_deg', 'phi_cs_deg', 'psi_max_deg', 'e0', 'e0_union', '
            'peak_reached', 'critical_state',
            'compaction_steps', 'steps', 'dt_s', 'step_s', 'wall_s', 'spheres', 'clumps', 'smallest_radius_m',
            'dice_mean')
-# The work model (seconds on a 2-core machine, one count a core), measured on this project's bench (60 to 1000
-# clumps of 5 to 40 spheres): a step costs about this much a sphere, and compaction about this many steps.
-STEP_SECONDS_PER_SPHERE = 7e-7
-STEP_SECONDS_FIXED = 5e-5
-COMPACTION_STEPS = 25000
+# The work model (seconds on a 2-core machine, two counts side by side): a step costs a fixed part and a part a
+# sphere, and compaction takes about this many steps, fitted to the manual's study (80 grains of 5 to 40 spheres:
+# 0.31 ms a step at 400 spheres, 1.49 ms at 3,200; compaction 35,500 to 43,000 steps).
+STEP_SECONDS_PER_SPHERE = 4.3e-7
+STEP_SECONDS_FIXED = 1.4e-4
+COMPACTION_STEPS = 40000
 
 
 def _counts(nSpheres):
@@ -292,7 +293,7 @@ def _finished(outdir, task):
     return r if r is not None and r.get('digest') == task['digest'] else None
 
 
-def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, scheduler=None, security=None,
+def triaxialStudy(inputs, outdir, nSpheres=None, grain=None, workers=None, scheduler=None, security=None,
                   connectTimeout=5.0, maxWork=7200.0, quiet=False, **options):
     """The triaxial test of *inputs*' grains at each sphere count of *nSpheres*, the same specimen each time,
     in YADE processes side by side (``mss triaxial``). Runs in a plain python3 (it starts YADE itself).
@@ -301,7 +302,7 @@ def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, schedul
         files, a finished ``mss batch`` folder (its grains, regenerated from its scan at each count), or another
         generator's sphere file (with *grain*); or a list of these
     :param outdir: the output folder (a rerun resumes in it)
-    :param nSpheres: a count or a list of counts
+    :param nSpheres: a count or a list of counts (default 10; a sphere-file input: its own count)
     :param grain: the grain a sphere-file input stands for (its exact mass)
     :param int workers: counts run side by side (default: the free cores)
     :param str scheduler: a Dask scheduler's address: each count a task there
@@ -318,15 +319,18 @@ def triaxialStudy(inputs, outdir, nSpheres=10, grain=None, workers=None, schedul
                       extra=('inputs', 'outdir', 'nSpheres', 'grain', 'workers', 'scheduler', 'security',
                              'connectTimeout', 'maxWork', 'quiet'))
     o = dict(TEST_DEFAULTS, **optionTable.collect('triaxial', 'triaxial', test))
-    counts = _counts(nSpheres)
     if not isinstance(outdir, (str, os.PathLike)):
         raise TypeError('triaxial: outdir must be a folder\'s path, got %r' % (outdir,))
     outdir = os.fspath(outdir)
     maxWork = number('triaxial', 'maxWork', maxWork, 0.0)
     workers = None if workers is None else integer('triaxial', 'workers', workers, 1, 1024)
+    counts = _counts(optionTable.default('nSpheres', 'triaxial') if nSpheres is None else nSpheres)
     grains = resolve(inputs, grain, gen)
-    if any(g.fixed is not None for g in grains) and len(counts) > 1:
-        raise ValueError('triaxial: a sphere file has its own count: give one count (or none) with it')
+    fixed = [len(g.fixed) for g in grains if g.fixed is not None]
+    if fixed:  # another generator's spheres: their count labels the test
+        if nSpheres is not None and len(counts) > 1:
+            raise ValueError('triaxial: a sphere file has its own count: give one count (or none) with it')
+        counts = [max(fixed)] if len(fixed) == len(grains) else counts
     if os.path.lexists(outdir) and not os.path.isdir(outdir):
         raise ValueError('triaxial: %s exists and is not a folder' % outdir)
     refuseLinkedFolders('triaxial', [outdir])

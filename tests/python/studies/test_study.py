@@ -195,6 +195,72 @@ class Stopping(unittest.TestCase):
         self.stopAndResume(signal.SIGTERM, False)
 
 
+class Inputs(unittest.TestCase):
+    """What a study is made of: files, folders, labelled scans, batch folders, other generators' spheres."""
+
+    def test_a_folder_of_meshes_and_a_labelled_scan(self):
+        from yade_mss.studies import resolveInputs
+        with tempfile.TemporaryDirectory() as d:
+            for f in ('ellipsoid_2_1_1.stl', 'octahedron.stl'):
+                shutil.copy(os.path.join(DATA, f), d)
+            self.assertEqual([g.name for g in resolveInputs(d, None, {})], ['ellipsoid_2_1_1.stl', 'octahedron.stl'])
+        labels = os.path.join(DATA, 'two_grains_labels.npy')
+        grains = resolveInputs(labels, None, dict(voxelSize=1e-3))
+        self.assertEqual([g.label for g in grains], [1, 2])  # each label a grain, once: the scan's proportions
+        with self.assertRaises(ValueError) as e:
+            resolveInputs(labels, None, {})
+        self.assertIn('voxel edge in metres', str(e.exception))
+
+    def test_a_batch_folder_is_its_grains_with_its_voxel_size(self):
+        from yade_mss import batch
+        from yade_mss.studies import resolveInputs
+        with tempfile.TemporaryDirectory() as d:
+            batch([os.path.join(DATA, 'two_grains_labels.npy')], d, nSpheres=6, voxelSize=1e-3, workers=1)
+            gen = {}
+            grains = resolveInputs(d, None, gen)
+            self.assertEqual([(g.name, g.label) for g in grains], [('label_1', 1), ('label_2', 2)])
+            self.assertEqual(gen['voxelSize'], 1e-3)
+            r = grains[0].at(5, gen)
+            self.assertLessEqual(len(r), 5)
+            self.assertIsNotNone(r.targetMass)
+
+    def test_another_generators_spheres_with_their_grain(self):
+        from yade_mss import massProperties
+        from yade_mss.studies import resolveInputs
+        ell = os.path.join(DATA, 'ellipsoid_2_1_1.stl')
+        clump = os.path.join(DATA, 'clump', 'FA_ellipsoid_N10_min.txt')
+        g, = resolveInputs(clump, ell, dict(scale=1e-3))
+        self.assertEqual(len(g.fixed), 10)
+        # the grain's exact volume, scaled, carries the mass
+        self.assertAlmostEqual(g.fixed.targetMass.volume / (massProperties(ell).volume * 1e-9), 1.0, places=12)
+        for args, words in (((clump, None, {}), 'name the grain'),
+                            ((ell, ell, {}), 'none is'),
+                            ((os.path.join(DATA, 'clump', 'EU_femur_N70_div150_rMin4_ov0.95.txt'),
+                              os.path.join(DATA, 'human_femur.stl'), {}), 'another frame')):
+            with self.subTest(args=args[0]):
+                with self.assertRaises(ValueError) as e:
+                    resolveInputs(*args)
+                self.assertIn(words, str(e.exception))
+
+    def test_a_sphere_file_study_and_dask(self):
+        """Another generator's clump through the whole test, its own count labelling it; run as a task of a Dask
+        cluster (a local one: the scheduler's address as a user gives it)."""
+        from distributed import LocalCluster
+        ell = os.path.join(DATA, 'ellipsoid_2_1_1.stl')
+        clump = os.path.join(DATA, 'clump', 'FA_ellipsoid_N10_min.txt')
+        with tempfile.TemporaryDirectory() as d, LocalCluster(n_workers=1, threads_per_worker=1,
+                                                              dashboard_address=None) as cluster:
+            r = triaxialStudy(clump, d, grain=ell, scale=1e-3, grains=10, strain=0.004, records=20, seed=4,
+                              scheduler=cluster.scheduler_address, quiet=True)
+            self.assertEqual(r['failed'], {})
+            self.assertEqual([row['n'] for row in r['summary']], [10])
+            self.assertTrue(os.path.isfile(os.path.join(d, 'runs', 'n10', 'result.json')))
+            self.assertGreaterEqual(r['records'][-1]['axial_strain'], 0.004)
+            with self.assertRaises(ValueError) as e:
+                triaxialStudy(clump, d, grain=ell, nSpheres=[5, 10], scale=1e-3)
+            self.assertIn('its own count', str(e.exception))
+
+
 class Refusals(unittest.TestCase):
     def test_before_any_work(self):
         with tempfile.TemporaryDirectory() as d:
@@ -217,6 +283,13 @@ class Refusals(unittest.TestCase):
             r = run([GRAIN, '-o', d + '/o', '--spheres', '4', '--grian', 'x'])
             self.assertEqual(r.returncode, 2)  # no abbreviations, no misspellings
             self.assertIn('--grian', r.stderr)
+
+    def test_the_defaults_are_the_option_tables(self):
+        import inspect
+        from yade_mss.studies import TEST_DEFAULTS, triaxial
+        params = inspect.signature(triaxial).parameters
+        for k, v in TEST_DEFAULTS.items():
+            self.assertEqual(params[k].default, v, k)
 
     def test_the_python_function_checks_its_keywords(self):
         with tempfile.TemporaryDirectory() as d:
