@@ -34,7 +34,10 @@ COMMANDS = (('generate', 'mss generate INPUT -o OUT [options]', 'Spheres for a m
              'union as a closed, outward triangle mesh, within ``--tolerance`` of the union\'s exact volume (see '
              ':doc:`/guide/surface`).'),
             ('spheropolygon', 'mss spheropolygon IMAGE -o OUT.json [options]', '2-D particle images (.npy, .png) '
-             'to spheropolygons (the second paper), with the O-chart.'))
+             'to spheropolygons (the second paper), with the O-chart.'),
+            ('triaxial', 'mss triaxial GRAIN|FOLDER|BATCH_DIR|SPHERES -o DIR --spheres N,N,... [options]', 'A triaxial '
+             'test of the grains\' clumps in YADE, the same specimen at each sphere count (see '
+             ':doc:`/tutorials/triaxial`); every generation option applies to each grain.'))
 
 
 def esc(text):
@@ -58,7 +61,7 @@ def table(header, rows, widths=None):
 
 def cliReference(table_rows, _options):
     out = ['Command-line reference', '======================', '',
-           'Made from the option table (``pkg/mss/generation/options.cpp``), as ``mss COMMAND --help`` is: each option has '
+           'Made from the option table (``pkg/mss/generation/option_table.cpp``), as ``mss COMMAND --help`` is: each option has '
            'one name and one meaning in every command that takes it; the Python keyword is the same option in '
            ':func:`yade_mss.generate`, :func:`yade_mss.compareMany` and :func:`yade_mss.batch`.', '']
     for cmd, usage, text in COMMANDS:

@@ -49,6 +49,8 @@ expect api/cpp.html "unionSurface"
 expect guide/surface.html "317,440"
 expect results.html "femur 70"
 expect guide/architecture.html "check_imports.py"
+expect api/cli.html "--inertial-number"
+expect tutorials/triaxial.html "What the sphere count does"
 expect guide/export.html "_static/custom.css"   # code wraps, never clipped
 [ $fail -eq 0 ] || exit 1
 echo "docs: $BUILD/docs/html/index.html"
