@@ -43,7 +43,8 @@ from .grains import (MassProperties, MssResult, compareMany, findContacts, gener
                      readSpheres, regions, score)
 from .pictures import clumpOchart  # noqa: E402
 from .spheropolygons import boundaryRegions, ochart, spheropolygon, spheropolygons  # noqa: E402
-from .yade import (MssBreakage, MssTemplate, breakageLog, breakagePotential, grainSizes, mssClump,  # noqa: E402
+from .yade import (MssBreakage, MssTemplate, breakageLog, breakagePotential, contactStiffnessEngine,  # noqa: E402
+                   grainSizes, mssClump,
                    mssClumpCloud, mssReplaceByClumps, mssSplit, mssTemplate, porosity, readClumps, relativeBreakage,
                    restoreClumpProperties, totalMass, writeClumps)
 from .specimens import batch, mssAssembly, packedSpecimen, syntheticSpecimen, voronoiBall  # noqa: E402
@@ -55,4 +56,4 @@ __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'c
            'mssTemplate', 'MssTemplate', 'mssClumpCloud', 'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions',
            'syntheticSpecimen', 'packedSpecimen', 'voronoiBall', 'findContacts', 'spheropolygon', 'spheropolygons',
            'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit', 'MssBreakage', 'breakageLog', 'grainSizes',
-           'breakagePotential', 'relativeBreakage', 'triaxial', 'triaxialStudy', 'TriaxialResult']
+           'breakagePotential', 'relativeBreakage', 'contactStiffnessEngine', 'triaxial', 'triaxialStudy', 'TriaxialResult']

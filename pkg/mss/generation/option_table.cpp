@@ -337,6 +337,12 @@ const std::vector<OptionSpec> kTable = {
      "tcp:// or tls://HOST:PORT of a Dask scheduler: each sphere count a task on its workers (YADE and "
      "yade_mss installed there)",
      c::Triaxial},
+    {"contactStiffness", "--contact-stiffness", true, T::Choice, "spheres", 0, 0, false, false, "spheres|grain",
+     "", "K",
+     "spheres: YADE's own (each member contact its spheres' stiffness: a clump pair stiffens with the sphere "
+     "count); grain: each pair of bodies one contact of their grains' stiffness, whatever the count "
+     "(yade_mss.contactStiffnessEngine)",
+     c::Triaxial},
     {"quiet", "--quiet", true, T::Flag, "false", 0, 0, false, false, "", "", "",
      "no progress line (the summary is printed all the same)", c::Triaxial},
     {"maxWork", "--max-work", true, T::Number, "7200", 0, kInf, true, true, "", "seconds", "S",

@@ -30,7 +30,7 @@ from ._inputs import resolve
 from ._report import writeReport
 
 TEST_OPTIONS = ('grains', 'confining', 'state', 'strain', 'undrained', 'seed', 'density', 'young', 'poisson',
-                'frictionAngle', 'inertialNumber', 'damping', 'records', 'compactionSteps')
+                'frictionAngle', 'inertialNumber', 'damping', 'records', 'compactionSteps', 'contactStiffness')
 # the option table's defaults (mss triaxial --help shows the same)
 TEST_DEFAULTS = {k: optionTable.default(k, 'triaxial') for k in TEST_OPTIONS}
 SUMMARY = ('n', 'phi_peak_deg', 'phi_cs_deg', 'psi_max_deg', 'e0', 'e0_union', 'E50_Pa', 'strain_at_peak',

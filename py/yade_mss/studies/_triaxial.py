@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 from ..base import atomicWrite, flag, integer, number, randomRotation
-from ..yade import MssTemplate, yadeModules
+from ..yade import MssTemplate, contactStiffnessEngine, yadeModules
 from ._analysis import COLUMNS, derived
 
 STATES = ('dense', 'loose')
@@ -91,6 +91,8 @@ def _checked(templates, weights, o):
     o['frictionAngle'] = number(f, 'frictionAngle', o['frictionAngle'], 0.0, math.pi / 2)
     o['damping'] = number(f, 'damping', o['damping'], 0.0, 0.99)
     o['undrained'] = flag(f, 'undrained', o['undrained'])
+    if o['contactStiffness'] not in ('spheres', 'grain'):
+        raise ValueError("%s: contactStiffness must be 'spheres' or 'grain', got %r" % (f, o['contactStiffness']))
     if o['state'] not in STATES:
         raise ValueError("%s: state must be 'dense' or 'loose', got %r" % (f, o['state']))
     if o['compactionSteps'] is not None:
@@ -147,7 +149,8 @@ class _Scene(object):
             r = t.result
             target = r.targetMass.centroid if r.targetMass is not None else t.unionCentroid
             centre = c - t.scale * R.dot(target - t.unionCentroid)
-            self.clumps.append(t.place(centre, R, material=self.material)[0])
+            self.clumps.append(t.place(centre, R, material=self.material,
+                                       contactStiffness=o['contactStiffness'])[0])
             union += r.unionVolume() * t.scale ** 3
         self.solid = sum(O.bodies[c].state.mass for c in self.clumps) / o['density']
         self.union = union
@@ -157,9 +160,10 @@ class _Scene(object):
 
 def _engines(o):
     w = yadeModules()[0]  # YADE's utils holds its classes too
+    stiffness = [contactStiffnessEngine(every=STIFFNESS_EVERY)] if o.get('contactStiffness') == 'grain' else []
     return [w.ForceResetter(), w.InsertionSortCollider([w.Bo1_Sphere_Aabb()]),
             w.InteractionLoop([w.Ig2_Sphere_Sphere_ScGeom()], [w.Ip2_FrictMat_FrictMat_FrictPhys()],
-                              [w.Law2_ScGeom_FrictPhys_CundallStrack()]),
+                              [w.Law2_ScGeom_FrictPhys_CundallStrack()])] + stiffness + [
             w.PyRunner(command='import yade_mss.studies._triaxial as m; m.servoStep()', iterPeriod=SERVO_STEPS,
                        label='mssTriaxialServo'),
             w.NewtonIntegrator(damping=o['damping'])]
@@ -171,6 +175,7 @@ def _engines(o):
 # PeriTriaxController stalled here (12 frictionless clumps held at 79 / 91 / 100 kPa for 40,000 steps while it
 # aimed at 100 kPa on each axis); a servo whose gain ignored the stiffness ran into a limit cycle at jamming.
 SERVO_STEPS = 10
+STIFFNESS_EVERY = 10  # steps between the passes of contactStiffness='grain' (bench/pair_stiffness.py)
 SERVO_RELAX = 200
 
 
@@ -413,7 +418,8 @@ def _shear(run, O, utils, progress, folder):
 
 def triaxial(templates, weights=None, grains=200, confining=1e5, state='dense', strain=0.2, undrained=False,
              seed=1, density=2650.0, young=1e8, poisson=0.3, frictionAngle=0.5, inertialNumber=5e-4, damping=0.2,
-             records=200, spacing=None, compactionSteps=None, checkpoint=None, progress=None, n=None):
+             records=200, spacing=None, compactionSteps=None, contactStiffness='spheres', checkpoint=None,
+             progress=None, n=None):
     """Runs a triaxial test of clumps in the current (empty) YADE scene and returns its :class:`TriaxialResult`.
 
     :param templates: :class:`MssTemplate` objects (:func:`mssTemplate` makes them), in SI units
@@ -434,6 +440,8 @@ def triaxial(templates, weights=None, grains=200, confining=1e5, state='dense', 
     :param float spacing: the lattice's spacing (default: twice the largest clearance of the templates);
         give the same for every sphere count so that the places agree
     :param int compactionSteps: give up the compaction after this many steps (default: 200,000 + 50 a grain)
+    :param str contactStiffness: 'spheres' (YADE's own) or 'grain' (one contact of the grains' stiffness a pair
+        of clumps, whatever the sphere count: :func:`contactStiffnessEngine`, a pass every 10 steps)
     :param str checkpoint: a folder: the run saves itself there (``O.save``) and resumes from it
     :param progress: called as progress(phase, fraction, text) after each chunk of steps
     :param n: the sphere count the records are labelled with (default: the templates' largest)
@@ -442,7 +450,7 @@ def triaxial(templates, weights=None, grains=200, confining=1e5, state='dense', 
     o = dict(grains=grains, confining=confining, state=state, strain=strain, undrained=undrained, seed=seed,
              density=density, young=young, poisson=poisson, frictionAngle=frictionAngle,
              inertialNumber=inertialNumber, damping=damping, records=records, spacing=spacing,
-             compactionSteps=compactionSteps)
+             compactionSteps=compactionSteps, contactStiffness=contactStiffness)
     templates, w = _checked(templates, weights, o)
     o['n'] = int(n) if n is not None else max(len(t.result) for t in templates)
     utils, O, me = yadeModules()

@@ -10,10 +10,12 @@ from ._clumpfiles import readClumps, writeClumps
 from ._clumps import bodyOptions, buildClump, mssClump, porosity, rotation, totalMass, yadeModules
 from ._loads import memberLoads, sumsAsYade, tiltedShares
 from ._restore import restoreClumpProperties
+from ._stiffness import MARK as GRAIN_STIFFNESS_MARK, contactStiffnessEngine, contactStiffnessStep
 from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTemplate
 
 __all__ = ['MssBreakage', 'breakageLog', 'breakagePotential', 'contactsByClump', 'grainSizes', 'mssSplit',
            'opposingPair', 'relativeBreakage', 'breakageStep', 'weibullStrength', 'readClumps', 'writeClumps',
            'bodyOptions', 'buildClump', 'mssClump', 'porosity', 'rotation', 'totalMass', 'yadeModules',
            'memberLoads', 'sumsAsYade', 'tiltedShares', 'restoreClumpProperties', 'MssTemplate', 'mssClumpCloud',
-           'mssReplaceByClumps', 'mssTemplate']
+           'mssReplaceByClumps', 'mssTemplate', 'GRAIN_STIFFNESS_MARK', 'contactStiffnessEngine',
+           'contactStiffnessStep']

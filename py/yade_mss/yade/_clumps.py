@@ -36,6 +36,7 @@ from ..base import INT64_MAX, flag, integer, number, quaternionMatrix, randomRot
 from ..grains import GENERATE_OPTIONS, Mesh, MssResult, generate, readGrain
 from ._loads import memberLoads
 from ._records import attach, encodeGrain, encodeParts, recordParts
+from ._stiffness import grainMaterial
 
 _colours = random.Random()  # utils.randomColor's uniform colours, without reseeding the user's `random`
 
@@ -54,10 +55,13 @@ _bodyOptions = []
 
 
 def bodyOptions():
-    """The body keywords of ``utils.sphere`` (material, color, mask, fixed, wire, highlight, ...)."""
+    """The body keywords of ``utils.sphere`` (material, color, mask, fixed, wire, highlight, ...), and
+    contactStiffness ('spheres': YADE's own; 'grain': one contact of the grains, whatever the sphere count, see
+    :func:`contactStiffnessEngine`)."""
     if not _bodyOptions:
         utils, O, me = yadeModules()
         _bodyOptions.extend(p for p in inspect.signature(utils.sphere).parameters if p not in ('center', 'radius'))
+        _bodyOptions.append('contactStiffness')
     return tuple(_bodyOptions)
 
 
@@ -149,6 +153,9 @@ class _Members(object):
         self.utils, self.me, self.Body, self.Sphere = utils, me, Body, Sphere
         self.func = func
         self.body = _checkBody(func, dict(body))
+        stiffness = self.body.pop('contactStiffness', 'spheres')
+        if stiffness not in ('spheres', 'grain'):
+            raise ValueError("%s: contactStiffness must be 'spheres' or 'grain', got %r" % (func, stiffness))
         m = self.body.get('material')
         self.factory = m is not None and callable(m) and not isinstance(m, (int, str))
         try:  # with a colour: utils.sphere would reseed Python's random for a random one
@@ -157,6 +164,10 @@ class _Members(object):
             raise ValueError('%s: utils.sphere refused the body options %s: %s' % (
                 func, ', '.join('%s=%r' % kv for kv in sorted(self.body.items())) or '(none)', e))
         self.mat = proto.mat
+        if stiffness == 'grain':  # the members' material says so (_stiffness.py): a twin of the material
+            if self.factory:
+                raise ValueError("%s: contactStiffness='grain' needs a material, not a factory of them" % func)
+            self.mat = self.body['material'] = grainMaterial(self.mat)
         self.blocked = proto.state.blockedDOFs
         self.mask = proto.mask
         self.bounded = proto.bounded
@@ -504,7 +515,9 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
         :class:`MssResult` (then no generation happens)
     :param options: every keyword of :func:`generate` (nSpheres, eta, dice, rMin, voxelSize, resolution,
         method, clip, planes, label, origin, supersample, threads, memoryLimit, ...) and of ``utils.sphere``
-        for the bodies (material, color, mask, fixed, wire, highlight). An unknown keyword raises TypeError
+        for the bodies (material, color, mask, fixed, wire, highlight), and contactStiffness: 'spheres'
+        (YADE's own, the default) or 'grain' (a pair of clumps as stiff as one contact of their grains, whatever
+        the sphere count; put :func:`contactStiffnessEngine` in O.engines). An unknown keyword raises TypeError
         naming the closest valid one, before anything is generated.
     :param Vector3 center: where the clump's centre of mass goes (default: where it is in the file's frame)
     :param orientation: rotation about the centre of mass: a Quaternion, (axis, angle), a 3x3 matrix,

@@ -1,0 +1,165 @@
+"""What the sphere count does to a clump pair's stiffness, with YADE's own contacts (contactStiffness='spheres')
+and with contactStiffness='grain'; what the option costs; what it does to a triaxial test.
+
+1. Two fixed clumps of the bundled ellipsoid (tests/data/ellipsoid_2_1_1.stl), FrictMat young 1e8, the linear
+   law; the second moved tip to tip, side to side or at 45 degrees to an overlap (0.5 to 4 % of the equivalent
+   diameter) past the first touch of their spheres; the secant stiffness F / overlap for n = 5, 10, 20, 30, 70,
+   and the reference: one contact of the grains, 2 E R1 R2 / (R1 + R2) = E R (R the equivalent radius).
+2. The step time of a compacted periodic packing of MSS_CLUMPS (default 1000) clumps of 10 spheres (the triaxial
+   test's specimen), with and without the option (its pass every 10 steps).
+3. The triaxial test (yade_mss.triaxial: 60 grains of the CT grain, dense, 100 kPa, drained to 5 %) at n = 10, 20,
+   40, with and without: E50 and the peak angle.
+Prints the tables and appends rows to bench/results/pair_stiffness.csv (date, commit, machine, load).
+Run: yade -n -x bench/pair_stiffness.py (MSS_PARTS=1,2,3 picks the parts)."""
+import csv
+import datetime
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+from yade import utils
+
+from yade_mss import contactStiffnessEngine, generate, mssClump, mssTemplate, triaxial
+
+HERE = os.path.dirname(os.path.abspath(sys.argv[0]))  # yade -x: __file__ is yade's own
+DATA = os.path.join(HERE, '..', 'tests', 'data')
+ELL = os.path.join(DATA, 'ellipsoid_2_1_1.stl')
+GRAIN = os.path.join(DATA, 'grain_voxels_155x157x167.npy')
+PARTS = [int(x) for x in os.environ.get('MSS_PARTS', '1,2,3').split(',')]
+E = 1e8
+
+
+def commit():
+    try:
+        return subprocess.run(['git', '-C', HERE, 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True,
+                              check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return 'unknown'
+
+
+def machine():
+    model = 'unknown CPU'
+    with open('/proc/cpuinfo') as f:
+        for line in f:
+            if line.startswith('model name'):
+                model = ' '.join(line.split(':', 1)[1].replace(',', ' ').split())
+                break
+    return '%d cores %s' % (os.cpu_count(), model)
+
+
+def loop():
+    return [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+            InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                            [Law2_ScGeom_FrictPhys_CundallStrack()])]
+
+
+RESULTS = {}
+
+
+def pair(n, u, overlap, stiffness):
+    O.reset()
+    mat = O.materials.append(FrictMat(young=E, poisson=0.3, frictionAngle=0.5, density=2000))
+    if n not in RESULTS:
+        RESULTS[n] = generate(ELL, nSpheres=n)
+    r = RESULTS[n]
+    u = np.asarray(u, float) / np.linalg.norm(u)
+    c, rad = r.centers, r.radii
+    lo, hi = 0.0, 10.0
+    for _ in range(100):
+        m = 0.5 * (lo + hi)
+        gap = (np.linalg.norm(c[:, None] - (c[None] + m * u), axis=2) - rad[:, None] - rad[None]).min()
+        lo, hi = (m, hi) if gap < 0 else (lo, m)
+    dv = 2 * (3 * r.targetMass.volume / (4 * np.pi)) ** (1 / 3)
+    C = r.targetMass.centroid
+    mssClump(r, center=tuple(C), material=mat, fixed=True, contactStiffness=stiffness)
+    b, bm = mssClump(r, center=tuple(C + (hi - overlap * dv) * u), material=mat, fixed=True,
+                     contactStiffness=stiffness)
+    O.engines = loop() + ([contactStiffnessEngine(every=1)] if stiffness == 'grain' else []) + [
+        NewtonIntegrator(damping=0)]
+    O.dt = 1e-6
+    for _ in range(3):
+        O.step()
+    F = sum(np.array(O.forces.f(i)) for i in bm)
+    return abs(F.dot(u)) / (overlap * dv), sum(1 for i in O.interactions if i.isReal), E * dv / 2
+
+
+def partOne(rows, base):
+    print('%-10s %6s %-8s %s' % ('direction', 'overlap', 'contacts', 'K (N/m) for n = 5, 10, 20, 30, 70 '
+                                 '[member pairs]; max/min over 10, 30, 70; the reference E R'))
+    for name, u in (('tip', (1, 0, 0)), ('side', (0, 1, 0)), ('45 deg', (1, 1, 0))):
+        for overlap in (0.005, 0.01, 0.02, 0.04):
+            for stiffness in ('spheres', 'grain'):
+                got = {n: pair(n, u, overlap, stiffness) for n in (5, 10, 20, 30, 70)}
+                K = [got[n][0] for n in (10, 30, 70)]
+                ratio = max(K) / min(K)
+                print('%-10s %5.1f%% %-8s %s  max/min %.2f  ref %.3g' % (
+                    name, 100 * overlap, stiffness, ' '.join('%.3g[%d]' % (got[n][0], got[n][1]) for n in got),
+                    ratio, got[70][2]), flush=True)
+                rows.append(dict(base, part='pair', direction=name, overlap=overlap, contactStiffness=stiffness,
+                                 **{'K_n%d' % n: round(got[n][0], 1) for n in got},
+                                 **{'pairs_n%d' % n: got[n][1] for n in got}, max_over_min_10_30_70=round(ratio, 3),
+                                 reference=round(got[70][2], 1)))
+
+
+def stepTime(stiffness, clumps):
+    O.reset()
+    t = mssTemplate(GRAIN, nSpheres=10, voxelSize=1.25e-5)
+    triaxial([t], grains=clumps, strain=0.001, records=10, seed=1, contactStiffness=stiffness)
+    O.run(500, True)
+    t0 = time.perf_counter()
+    O.run(2000, True)
+    return (time.perf_counter() - t0) / 2000, len([i for i in O.interactions if i.isReal])
+
+
+def partTwo(rows, base):
+    clumps = int(os.environ.get('MSS_CLUMPS', '1000'))
+    plain, contacts = stepTime('spheres', clumps)
+    grain, contacts2 = stepTime('grain', clumps)
+    print('%d clumps of 10 spheres, compacted: a step %.3g ms (%d contacts); with grain %.3g ms (%d contacts): '
+          '%.2fx' % (clumps, 1e3 * plain, contacts, 1e3 * grain, contacts2, grain / plain), flush=True)
+    rows.append(dict(base, part='step', clumps=clumps, step_ms_spheres=round(1e3 * plain, 3),
+                     step_ms_grain=round(1e3 * grain, 3), ratio=round(grain / plain, 3)))
+
+
+def partThree(rows, base):
+    for stiffness in ('spheres', 'grain'):
+        for n in (10, 20, 40):
+            O.reset()
+            t = mssTemplate(GRAIN, nSpheres=n, voxelSize=1.25e-5)
+            r = triaxial([t], grains=60, strain=0.05, records=100, seed=1, contactStiffness=stiffness)
+            d = r.derived
+            print('triaxial %-7s n %2d: E50 %.3g Pa, phi_peak %.1f deg, e0 %.3f, %d steps' % (
+                stiffness, n, d['E50_Pa'], d['phi_peak_deg'], d['e0'], r.cost['steps']), flush=True)
+            rows.append(dict(base, part='triaxial', contactStiffness=stiffness, n=n, E50_Pa=round(d['E50_Pa']),
+                             phi_peak_deg=round(d['phi_peak_deg'], 2), e0=round(d['e0'], 4), steps=r.cost['steps']))
+
+
+def main():
+    base = dict(date=datetime.datetime.now().isoformat(timespec='seconds'), commit=commit(), machine=machine(),
+                load=round(os.getloadavg()[0], 2))
+    rows = []
+    for k, part in ((1, partOne), (2, partTwo), (3, partThree)):
+        if k in PARTS:
+            part(rows, base)
+    path = os.path.join(HERE, 'results', 'pair_stiffness.csv')
+    fields = []
+    for r in rows:
+        fields += [k for k in r if k not in fields]
+    old = []
+    if os.path.exists(path):
+        with open(path) as f:
+            old = list(csv.DictReader(f))
+        fields += [k for k in (old[0] if old else {}) if k not in fields]
+    with open(path, 'w') as f:
+        w = csv.DictWriter(f, fieldnames=fields, lineterminator='\n')
+        w.writeheader()
+        w.writerows(old + rows)
+    print('wrote %d rows to %s' % (len(rows), path))
+
+
+main()
+sys.stdout.flush()
+os._exit(0)
