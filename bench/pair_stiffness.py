@@ -12,15 +12,14 @@ and with contactStiffness='grain'; what the option costs; what it does to a tria
 Prints the tables and appends rows to bench/results/pair_stiffness.csv (date, commit, machine, load).
 Run: yade -n -x bench/pair_stiffness.py (MSS_PARTS=1,2,3 picks the parts)."""
 import csv
-import datetime
 import os
-import subprocess
 import sys
 import time
 
 import numpy as np
 
-from yade import utils
+sys.path.insert(0, os.path.join(os.getcwd(), 'bench'))  # run from the repository root
+from rows import stamp  # noqa: E402
 
 from yade_mss import contactStiffnessEngine, generate, mssClump, mssTemplate, triaxial
 
@@ -30,24 +29,6 @@ ELL = os.path.join(DATA, 'ellipsoid_2_1_1.stl')
 GRAIN = os.path.join(DATA, 'grain_voxels_155x157x167.npy')
 PARTS = [int(x) for x in os.environ.get('MSS_PARTS', '1,2,3').split(',')]
 E = 1e8
-
-
-def commit():
-    try:
-        return subprocess.run(['git', '-C', HERE, 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True,
-                              check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return 'unknown'
-
-
-def machine():
-    model = 'unknown CPU'
-    with open('/proc/cpuinfo') as f:
-        for line in f:
-            if line.startswith('model name'):
-                model = ' '.join(line.split(':', 1)[1].replace(',', ' ').split())
-                break
-    return '%d cores %s' % (os.cpu_count(), model)
 
 
 def loop():
@@ -138,8 +119,7 @@ def partThree(rows, base):
 
 
 def main():
-    base = dict(date=datetime.datetime.now().isoformat(timespec='seconds'), commit=commit(), machine=machine(),
-                load=round(os.getloadavg()[0], 2))
+    base = stamp()
     rows = []
     for k, part in ((1, partOne), (2, partTwo), (3, partThree)):
         if k in PARTS:

@@ -7,16 +7,17 @@ the wall time to 20 % axial strain (the steps the strain rate needs there times 
 compaction's measured wall time), and appends a row a case to bench/results/triaxial.csv (date, commit, machine,
 load). Run on a quiet machine: yade -n -x bench/triaxial.py (MSS_CASES=200x10 for one case)."""
 import csv
-import datetime
 import math
 import os
-import subprocess
 import sys
 import time
 
 import numpy as np
 
 from yade import pack, utils
+
+sys.path.insert(0, os.path.join(os.getcwd(), 'bench'))  # run from the repository root
+from rows import stamp  # noqa: E402
 
 from yade_mss import MssResult, mssClump, mssTemplate
 from yade_mss.studies import triaxial
@@ -28,24 +29,6 @@ CASES = [tuple(int(x) for x in c.split('x')) for c in os.environ.get('MSS_CASES'
          .split(',')]
 TIMED = int(os.environ.get('MSS_TIMED_STEPS', '2000'))
 P0 = 1e5
-
-
-def commit():
-    try:
-        return subprocess.run(['git', '-C', HERE, 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True,
-                              check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return 'unknown'
-
-
-def machine():
-    model = 'unknown CPU'
-    with open('/proc/cpuinfo') as f:
-        for line in f:
-            if line.startswith('model name'):
-                model = ' '.join(line.split(':', 1)[1].replace(',', ' ').split())
-                break
-    return '%d cores %s' % (os.cpu_count(), model)
 
 
 def timed(steps):
@@ -145,9 +128,7 @@ def case(N, n):
 def main():
     rows = []
     for N, n in CASES:
-        load = os.getloadavg()[0]
-        row = dict(date=datetime.datetime.now().isoformat(timespec='seconds'), commit=commit(), machine=machine(),
-                   load=round(load, 2))
+        row = stamp()
         row.update(case(N, n))
         rows.append(row)
         print('%5d clumps x %2d spheres: dt %.3g s, %d steps to 20 %% (%d compacting), the test\'s step %.3g ms; '

@@ -15,7 +15,6 @@ import csv
 import datetime
 import gc
 import os
-import subprocess
 import sys
 import time
 
@@ -25,6 +24,8 @@ from yade import pack, utils
 from yade.wrapper import FrictMat, Omega
 import yade.minieigenHP as me
 
+sys.path.insert(0, os.path.join(os.getcwd(), 'bench'))  # run from the repository root
+from rows import commit, machine  # noqa: E402
 from yade_mss import generate, mssClump, mssClumpCloud, mssTemplate, restoreClumpProperties
 
 O = Omega()
@@ -136,25 +137,6 @@ def restoreFloor(r, at):
         st.vel, st.angVel, st.angMom = V3(0, 0, 0), V3(0, 0, 0), V3(0, 0, 0)
     gc.enable()
     return time.perf_counter() - t
-
-
-def commit():
-    try:
-        return subprocess.run(['git', '-C', HERE, 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True,
-                              check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return 'unknown'
-
-
-def machine():
-    """Cores and CPU model, as bench/lib.sh writes them."""
-    model = 'unknown CPU'
-    with open('/proc/cpuinfo') as f:
-        for line in f:
-            if line.startswith('model name'):
-                model = ' '.join(line.split(':', 1)[1].replace(',', ' ').split())
-                break
-    return '%d cores %s' % (os.cpu_count(), model)
 
 
 def main():

@@ -84,6 +84,23 @@ class PairStiffness(unittest.TestCase):
         self.assertAlmostEqual(k / (1e8 * R), 1.0, delta=0.02)  # the overlap measured from the first touch
 
 
+class Sliding(unittest.TestCase):
+    def test_a_sliding_pair_carries_mu_times_its_normal_force(self):
+        # side to side at 2 %, the upper clump dragged along x: every member contact at its Coulomb limit, so the
+        # pair's shear force is tan(phi) times its normal force, as one contact of the grains would carry
+        pairStiffness(30, (0, 1, 0), 0.02, 'grain')
+        moving = [b for b in O.bodies if b.isClump][1]
+        moving.state.vel = (100.0, 0, 0)  # 0.2 of a length in 2000 steps: each contact past its elastic share
+        O.run(2000, True)
+        fn, fs = np.zeros(3), np.zeros(3)
+        for i in O.interactions:
+            if i.isReal:
+                n, s_ = np.array(i.phys.normalForce), np.array(i.phys.shearForce)
+                self.assertLessEqual(np.linalg.norm(s_), np.tan(0.5) * np.linalg.norm(n) * (1 + 1e-9))
+                fn, fs = fn + n, fs + s_
+        self.assertAlmostEqual(np.linalg.norm(fs) / np.linalg.norm(fn), np.tan(0.5), delta=0.02 * np.tan(0.5))
+
+
 class Default(unittest.TestCase):
     def test_spheres_is_yades_own(self):
         O.reset()
