@@ -49,23 +49,33 @@ def members():
     return out
 
 
-def yadeClumps(groups, mat):
-    """Our clumps replaced by YADE's own of the same spheres, at the same places (the cell as it is)."""
-    for b in list(O.bodies):
-        if b is not None and b.isClump:
-            O.bodies.erase(b.id, True)
-    for c, r in groups:
-        O.bodies.appendClumped([utils.sphere(tuple(p), float(x), material=mat) for p, x in zip(c, r)])
+def freshScene(cell, mat, dt):
+    """A new scene with the sheared specimen's cell, material, engines (no servo) and time step: each kind of
+    body is timed in a scene of its own (a scene whose bodies were erased and appended again keeps the holes in
+    its body container, and a step walks them: the kind timed later paid for them)."""
+    O.reset()
+    O.periodic = True
+    O.cell.hSize = cell
+    m = O.materials.append(FrictMat(young=mat.young, poisson=mat.poisson, frictionAngle=mat.frictionAngle,
+                                    density=mat.density))
+    O.engines = engine._engines(dict(damping=0.2))
+    O.dt = dt
+    return m
 
 
-def ourClumps(groups, mat):
-    """The clumps replaced by ours (mssClump) of the same spheres, built afresh as YADE's were (mass: the union's;
-    the step's cost does not depend on the masses)."""
-    for b in list(O.bodies):
-        if b is not None and b.isClump:
-            O.bodies.erase(b.id, True)
+def yadeClumps(groups, cell, mat, dt):
+    """YADE's own clumps of the same spheres at the same places, in a scene of their own."""
+    m = freshScene(cell, mat, dt)
     for c, r in groups:
-        mssClump(MssResult(c, r), mass='union', material=mat)
+        O.bodies.appendClumped([utils.sphere(tuple(p), float(x), material=m) for p, x in zip(c, r)])
+
+
+def ourClumps(groups, cell, mat, dt):
+    """Ours (mssClump) of the same spheres at the same places, built as YADE's were (mass: the union's; the
+    step's cost does not depend on the masses)."""
+    m = freshScene(cell, mat, dt)
+    for c, r in groups:
+        mssClump(MssResult(c, r), mass='union', material=m)
 
 
 def plainSpheres(radii, mat, dt):
@@ -106,12 +116,12 @@ def case(N, n):
     ours = timed(TIMED)
     groups = members()
     spheres = sum(len(g[1]) for g in groups)
-    yadeClumps(groups, mat)
+    cell, dt = O.cell.hSize, O.dt
+    yadeClumps(groups, cell, mat, dt)
     theirs = timed(TIMED)
-    ourClumps(groups, mat)  # afresh, as YADE's: the same interaction container's history
+    ourClumps(groups, cell, mat, dt)
     fresh = timed(TIMED)
     radii = np.concatenate([g[1] for g in groups])
-    dt = O.dt
     count, p = plainSpheres(radii, mat, dt)
     O.engines = [e for e in O.engines if type(e).__name__ != 'PyRunner']
     plain = timed(TIMED)
@@ -127,23 +137,23 @@ def case(N, n):
 
 def main():
     rows = []
+    path = os.path.join(HERE, 'results', 'triaxial.csv')
     for N, n in CASES:
         row = stamp()
         row.update(case(N, n))
         rows.append(row)
+        new = not os.path.exists(path)
+        with open(path, 'a') as f:  # a row as each case ends: a long run stopped keeps what it measured
+            w = csv.DictWriter(f, fieldnames=list(row), lineterminator='\n')
+            if new:
+                w.writeheader()
+            w.writerow(row)
         print('%5d clumps x %2d spheres: dt %.3g s, %d steps to 20 %% (%d compacting), the test\'s step %.3g ms; '
               'without its servo %.3g ms, built afresh %.3g ms (YADE\'s clumps %.3g ms: %.2fx; plain spheres %.3g ms: '
               '%.2fx), wall to 20 %% %.0f s' % (N, n, row['dt_s'], row['steps_to_20pct'], row['compaction_steps'],
                                                 row['test_step_ms'], row['step_ms'], row['fresh_step_ms'],
                   row['yade_clumps_step_ms'], row['ratio_yade_clumps'], row['plain_spheres_step_ms'],
                   row['ratio_plain'], row['wall_to_20pct_s']), flush=True)
-    path = os.path.join(HERE, 'results', 'triaxial.csv')
-    new = not os.path.exists(path)
-    with open(path, 'a') as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator='\n')
-        if new:
-            w.writeheader()
-        w.writerows(rows)
     print('appended %d rows to %s' % (len(rows), path))
 
 
