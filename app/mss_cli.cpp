@@ -114,9 +114,9 @@ bool runFromBuildTree() {
 /// The python3 child of runPython, for the signal handler below (0: none yet).
 volatile sig_atomic_t gChild = 0;
 
-/// SIGTERM, and a SIGINT sent to this process alone (kill -INT, timeout -s INT, a job scheduler), go on to the
-/// child, which stops as on Ctrl-C and says so; a terminal's Ctrl-C (SI_KERNEL) reaches the child by itself,
-/// through the process group, and is not sent twice.
+/// SIGTERM, and a SIGINT sent to this process alone (kill -INT, timeout -s INT, a job scheduler), go on to
+/// the child, which stops as on Ctrl-C and says so; a terminal's Ctrl-C (SI_KERNEL) reaches the child by
+/// itself, through the process group, and is not sent twice.
 extern "C" void forwardSignal(int sig, siginfo_t* info, void*) {
     if (gChild <= 0) return;
     if (sig == SIGINT && info && info->si_code != SI_USER) return;

@@ -35,8 +35,7 @@ enum class OptionType {
 /// the Python function of the same name (compare: compareMany) take the same options.
 namespace command {
 constexpr unsigned Generate = 1, Compare = 2, Info = 4, Batch = 8, Preview = 16, Curve = 32,
-                   Spheropolygon = 64, Ochart = 128, Export = 256, Surface = 512,
-                   Triaxial = 1024;
+                   Spheropolygon = 64, Ochart = 128, Export = 256, Surface = 512, Triaxial = 1024;
 }
 
 /// One row of the table.

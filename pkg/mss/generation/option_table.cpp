@@ -17,8 +17,8 @@ constexpr double kMaxMemoryGiB = 1048576.0;
 
 using T = OptionType;
 namespace c = command;
-constexpr unsigned kGrain = c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve | c::Ochart |
-                           c::Export | c::Triaxial;
+constexpr unsigned kGrain = c::Generate | c::Compare | c::Info | c::Batch | c::Preview | c::Curve |
+                            c::Ochart | c::Export | c::Triaxial;
 constexpr unsigned kGenerating = c::Generate | c::Batch | c::Export; // the commands whose work is generation
 constexpr unsigned kGen = kGenerating | c::Triaxial;                 // a generation's own options
 
@@ -316,8 +316,9 @@ const std::vector<OptionSpec> kTable = {
      c::Triaxial},
     {"poisson", "--poisson", true, T::Number, "0.3", -1, 0.5, false, false, "", "", "NU",
      "YADE's FrictMat poisson: a contact's shear over normal stiffness", c::Triaxial},
-    {"frictionAngle", "--friction", true, T::Number, "0.5", 0, 1.5707963267948966, false, false, "", "radians",
-     "PHI", "the contacts' friction angle while sheared (YADE's FrictMat frictionAngle)", c::Triaxial},
+    {"frictionAngle", "--friction", true, T::Number, "0.5", 0, 1.5707963267948966, false, false, "",
+     "radians", "PHI", "the contacts' friction angle while sheared (YADE's FrictMat frictionAngle)",
+     c::Triaxial},
     {"inertialNumber", "--inertial-number", true, T::Number, "5e-4", 0, 0.1, true, false, "", "", "I",
      "the inertial number I = rate d sqrt(density / p) at the confining pressure: sets the strain rate "
      "(quasi-static: I under 1e-3)",
@@ -337,8 +338,8 @@ const std::vector<OptionSpec> kTable = {
      "tcp:// or tls://HOST:PORT of a Dask scheduler: each sphere count a task on its workers (YADE and "
      "yade_mss installed there)",
      c::Triaxial},
-    {"contactStiffness", "--contact-stiffness", true, T::Choice, "spheres", 0, 0, false, false, "spheres|grain",
-     "", "K",
+    {"contactStiffness", "--contact-stiffness", true, T::Choice, "spheres", 0, 0, false, false,
+     "spheres|grain", "", "K",
      "spheres: YADE's own (each member contact its spheres' stiffness: a clump pair stiffens with the sphere "
      "count); grain: each pair of bodies one contact of their grains' stiffness, whatever the count "
      "(yade_mss.contactStiffnessEngine)",
