@@ -17,11 +17,11 @@ import time
 
 import numpy as np
 
-from ..base import atomicWrite, flag, integer, number, randomRotation
+from ..base import atomicWrite, number, randomRotation
+from ..grains import optionTable
 from ..yade import MssTemplate, contactStiffnessEngine, yadeModules
 from ._analysis import COLUMNS, derived
 
-STATES = ('dense', 'loose')
 # Compaction is done when the mean stress is within this of the goal and the unbalanced force under the bound.
 COMPACTION_STRESS_TOL = 0.01
 COMPACTION_UNBALANCED = 0.01
@@ -77,26 +77,8 @@ def _checked(templates, weights, o):
     w = np.array([number(f, 'weights', x, 0.0) for x in weights])
     if w.sum() <= 0:
         raise ValueError('%s: weights must not all be 0' % f)
-    o['grains'] = integer(f, 'grains', o['grains'], 2, 100000)
-    o['seed'] = integer(f, 'seed', o['seed'], 0)
-    o['records'] = integer(f, 'records', o['records'], 10, 100000)
-    for k in ('confining', 'strain', 'density', 'young', 'inertialNumber'):
-        o[k] = number(f, k, o[k])
-        if not o[k] > 0:
-            raise ValueError('%s: %s must be > 0, got %r' % (f, k, o[k]))
-    if o['strain'] >= 0.9:
-        raise ValueError('%s: strain must be under 0.9 (an axial strain, compression positive), got %r'
-                         % (f, o['strain']))
-    o['poisson'] = number(f, 'poisson', o['poisson'], -1.0, 0.5)
-    o['frictionAngle'] = number(f, 'frictionAngle', o['frictionAngle'], 0.0, math.pi / 2)
-    o['damping'] = number(f, 'damping', o['damping'], 0.0, 0.99)
-    o['undrained'] = flag(f, 'undrained', o['undrained'])
-    if o['contactStiffness'] not in ('spheres', 'grain'):
-        raise ValueError("%s: contactStiffness must be 'spheres' or 'grain', got %r" % (f, o['contactStiffness']))
-    if o['state'] not in STATES:
-        raise ValueError("%s: state must be 'dense' or 'loose', got %r" % (f, o['state']))
-    if o['compactionSteps'] is not None:
-        o['compactionSteps'] = integer(f, 'compactionSteps', o['compactionSteps'], 100)
+    # the option table's types and ranges, as mss triaxial and triaxialStudy check them (one source)
+    o.update(optionTable.collect(f, 'triaxial', {k: v for k, v in o.items() if k not in ('spacing', 'n')}))
     if o['spacing'] is not None:
         o['spacing'] = number(f, 'spacing', o['spacing'])
         if not o['spacing'] > 0:

@@ -36,7 +36,7 @@ from ..base import INT64_MAX, flag, integer, number, quaternionMatrix, randomRot
 from ..grains import GENERATE_OPTIONS, Mesh, MssResult, generate, readGrain
 from ._loads import memberLoads
 from ._records import attach, encodeGrain, encodeParts, recordParts
-from ._stiffness import grainMaterial
+from ._stiffness import checkStiffness, grainMaterial
 
 _colours = random.Random()  # utils.randomColor's uniform colours, without reseeding the user's `random`
 
@@ -153,9 +153,7 @@ class _Members(object):
         self.utils, self.me, self.Body, self.Sphere = utils, me, Body, Sphere
         self.func = func
         self.body = _checkBody(func, dict(body))
-        stiffness = self.body.pop('contactStiffness', 'spheres')
-        if stiffness not in ('spheres', 'grain'):
-            raise ValueError("%s: contactStiffness must be 'spheres' or 'grain', got %r" % (func, stiffness))
+        stiffness = checkStiffness(func, self.body.pop('contactStiffness', 'spheres'))
         m = self.body.get('material')
         self.factory = m is not None and callable(m) and not isinstance(m, (int, str))
         try:  # with a colour: utils.sphere would reseed Python's random for a random one
