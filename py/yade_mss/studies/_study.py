@@ -18,6 +18,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 
 import numpy as np
@@ -186,8 +187,7 @@ def _runLocal(tasks, outdir, workers, progress):
                     else:
                         states[n] = dict(phase='done', fraction=1.0)
             progress.show(states)
-    except KeyboardInterrupt:
-        signal.signal(signal.SIGINT, signal.SIG_IGN)  # a second signal (the group's and a forwarded one) waits too
+    except KeyboardInterrupt:  # a second signal is ignored till the study has written what it has (_OneStop)
         for proc, log, folder in running.values():  # each saves its checkpoint and exits
             if proc.poll() is None:
                 proc.send_signal(signal.SIGINT)
@@ -361,18 +361,41 @@ def triaxialStudy(inputs, outdir, nSpheres=None, grain=None, workers=None, sched
         _writeTask(outdir, t, results[t['n']])
     failed = {}
     interrupted = False
-    try:
-        if todo:
-            if scheduler:
-                failed = _runDask(todo, outdir, scheduler, security, connectTimeout)
-            else:
-                failed = _runLocal(todo, outdir, side, _Progress(quiet))
-    except KeyboardInterrupt:
-        interrupted = True
-    out = _collect(outdir, tasks, results, weights, failed)
+    with _OneStop():
+        try:
+            if todo:
+                if scheduler:
+                    failed = _runDask(todo, outdir, scheduler, security, connectTimeout)
+                else:
+                    failed = _runLocal(todo, outdir, side, _Progress(quiet))
+        except KeyboardInterrupt:
+            interrupted = True
+        out = _collect(outdir, tasks, results, weights, failed)
     if interrupted:
         raise KeyboardInterrupt
     return out
+
+
+class _OneStop:
+    """Ctrl-C stops a study once: a second SIGINT (the terminal's to the whole group and the mss launcher's
+    forwarded copy arrive together) must not cut short the wait for each count's checkpoint or the writing of
+    what was recorded. Outside the main thread Python keeps its own handler."""
+
+    def __enter__(self):
+        self.before = None
+        if threading.current_thread() is threading.main_thread():
+            self.before = signal.getsignal(signal.SIGINT)
+
+            def once(signum, frame):
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+                raise KeyboardInterrupt
+            signal.signal(signal.SIGINT, once)
+        return self
+
+    def __exit__(self, *exc):
+        if self.before is not None:
+            signal.signal(signal.SIGINT, self.before)
+        return False
 
 
 def _partial(outdir, n):
