@@ -1,5 +1,5 @@
 """The bottom layer of the Python package: argument checks, keyword splitting, files written whole, the work
-limit and rotations. It imports nothing of the package but the C++ module (``yade_mss._mss``).
+limit, rotations and stopping once on a signal. It imports nothing of the package but the C++ module (``yade_mss._mss``).
 
 Every layer above may use these names; they are not part of the user's API (:mod:`yade_mss` is).
 """
@@ -9,8 +9,10 @@ from ._files import (atomicWrite, cppPath, memoryBytes, readNpy, readTiff, refus
                      requireRegularFile, umask)
 from ._keywords import split
 from ._rotations import quaternionMatrix, randomRotation
+from ._signals import exitStatus, restore as restoreSignals, stopOnce
 from ._work import bar as progressBar, check as checkWork, checkSweep
 
 __all__ = ['INT64_MAX', 'INT_MAX', 'flag', 'integer', 'number', 'vector3', 'atomicWrite', 'cppPath', 'memoryBytes',
            'readNpy', 'readTiff', 'refuseLinkedFolders', 'refuseOverInputs', 'requireRegularFile', 'umask', 'split',
-           'quaternionMatrix', 'randomRotation', 'progressBar', 'checkWork', 'checkSweep']
+           'quaternionMatrix', 'randomRotation', 'progressBar', 'checkWork', 'checkSweep', 'exitStatus',
+           'restoreSignals', 'stopOnce']

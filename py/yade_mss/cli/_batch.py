@@ -1,21 +1,11 @@
 """``mss batch``: a CT specimen or a folder of grains to a DEM assembly (:func:`yade_mss.batch`)."""
 
 import argparse
-import signal
 import sys
-import threading
 
+from ..base import exitStatus, stopOnce
 from ..grains import optionTable
 from ..specimens import batch, clusterSecurity
-
-
-def _stopOnTerm():
-    """SIGTERM (a `kill` of the batch) stops it as Ctrl-C does: the workers end, what is finished is kept."""
-
-    def stop(signum, frame):
-        raise KeyboardInterrupt
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGTERM, stop)
 
 
 def main(argv=None):
@@ -25,7 +15,8 @@ def main(argv=None):
                    'files, or directories of them')
     optionTable.addArguments(p, 'batch')
     a = p.parse_args(argv)
-    _stopOnTerm()
+    seen = []
+    stopOnce(seen=seen)  # SIGTERM (a `kill` of the batch) as Ctrl-C: the workers end, what is finished is kept
     try:
         v = optionTable.parsed('batch', a)
         own = ('output', 'workers', 'scheduler', 'tlsCaFile', 'tlsCert', 'tlsKey', 'minVoxels', 'excludeBorder',
@@ -43,7 +34,7 @@ def main(argv=None):
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)
-        return 130
+        return exitStatus(seen)
     except (ValueError, RuntimeError, OSError) as e:
         print('mss batch: error: %s' % e, file=sys.stderr)
         return 1

@@ -2,24 +2,11 @@
 (:func:`yade_mss.studies.triaxialStudy`); it starts YADE itself."""
 
 import argparse
-import signal
 import sys
-import threading
 
+from ..base import exitStatus, stopOnce
 from ..grains import optionTable
 from ..studies import triaxialStudy, verdict
-
-
-def _stopOnTerm(seen):
-    """SIGTERM stops the study as Ctrl-C does: each count saves its checkpoint, what was recorded is written;
-    the exit status then says which (130, 143)."""
-
-    def stop(signum, frame):
-        seen.append(signum)
-        signal.signal(signal.SIGTERM, signal.SIG_IGN)
-        raise KeyboardInterrupt
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGTERM, stop)
 
 
 def main(argv=None):
@@ -36,7 +23,7 @@ def main(argv=None):
                    help='%s [default %s]' % (r['help'], r['default']))
     a = p.parse_args(argv)
     seen = []
-    _stopOnTerm(seen)
+    stopOnce(seen=seen)  # SIGTERM as Ctrl-C: each count saves its checkpoint, the records are written
     try:
         v = optionTable.parsed('triaxial', a)
         try:  # each count as the table parses one
@@ -50,7 +37,7 @@ def main(argv=None):
     except KeyboardInterrupt:
         print('\nmss triaxial: interrupted; what was recorded is written, each count saved where it was: run the '
               'same command again to resume', file=sys.stderr)
-        return 128 + (seen[0] if seen else signal.SIGINT)
+        return exitStatus(seen)
     except (ValueError, RuntimeError, TypeError, OSError) as e:
         print('mss triaxial: error: %s' % e, file=sys.stderr)
         return 1

@@ -18,12 +18,11 @@ import signal
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 
 import numpy as np
 
-from ..base import atomicWrite, integer, number, refuseLinkedFolders, split
+from ..base import atomicWrite, integer, number, refuseLinkedFolders, restoreSignals, split, stopOnce
 from ..grains import GENERATE_OPTIONS, MssResult, optionTable
 from ..specimens import clusterSecurity, freeCores
 from ._analysis import COLUMNS, derived
@@ -187,7 +186,7 @@ def _runLocal(tasks, outdir, workers, progress):
                     else:
                         states[n] = dict(phase='done', fraction=1.0)
             progress.show(states)
-    except KeyboardInterrupt:  # a second signal is ignored till the study has written what it has (_OneStop)
+    except KeyboardInterrupt:  # a second signal is ignored till the study has written what it has (stopOnce)
         for proc, log, folder in running.values():  # each saves its checkpoint and exits
             if proc.poll() is None:
                 proc.send_signal(signal.SIGINT)
@@ -361,7 +360,8 @@ def triaxialStudy(inputs, outdir, nSpheres=None, grain=None, workers=None, sched
         _writeTask(outdir, t, results[t['n']])
     failed = {}
     interrupted = False
-    with _OneStop():
+    before = stopOnce((signal.SIGINT,))  # a second Ctrl-C waits for the checkpoints and the files
+    try:
         try:
             if todo:
                 if scheduler:
@@ -371,31 +371,11 @@ def triaxialStudy(inputs, outdir, nSpheres=None, grain=None, workers=None, sched
         except KeyboardInterrupt:
             interrupted = True
         out = _collect(outdir, tasks, results, weights, failed)
+    finally:
+        restoreSignals(before)
     if interrupted:
         raise KeyboardInterrupt
     return out
-
-
-class _OneStop:
-    """Ctrl-C stops a study once: a second SIGINT (the terminal's to the whole group and the mss launcher's
-    forwarded copy arrive together) must not cut short the wait for each count's checkpoint or the writing of
-    what was recorded. Outside the main thread Python keeps its own handler."""
-
-    def __enter__(self):
-        self.before = None
-        if threading.current_thread() is threading.main_thread():
-            self.before = signal.getsignal(signal.SIGINT)
-
-            def once(signum, frame):
-                signal.signal(signal.SIGINT, signal.SIG_IGN)
-                raise KeyboardInterrupt
-            signal.signal(signal.SIGINT, once)
-        return self
-
-    def __exit__(self, *exc):
-        if self.before is not None:
-            signal.signal(signal.SIGINT, self.before)
-        return False
 
 
 def _partial(outdir, n):

@@ -231,8 +231,9 @@ class Stopping(unittest.TestCase):
         with tempfile.TemporaryDirectory() as d:
             path = os.path.join(d, 'spec.npy')
             np.save(path, specimen())
-            # SIGTERM to mss (kill); SIGINT to its whole process group, as a terminal's Ctrl-C sends it
-            for how in ('SIGTERM', 'SIGINT'):
+            # SIGTERM to mss (kill); SIGINT to its whole process group, as a terminal's Ctrl-C sends it; SIGINT
+            # to mss alone (timeout -s INT, job schedulers: once ignored, the batch ran to its end)
+            for how in ('SIGTERM', 'SIGINT', 'SIGINT to mss alone'):
                 with self.subTest(how):
                     out = os.path.join(d, 'out-kill-test-' + how)
                     proc = subprocess.Popen([mss, 'batch', path, '-o', out, '--spheres', '40', '--workers', '2'],
@@ -242,13 +243,20 @@ class Stopping(unittest.TestCase):
                     t0 = time.monotonic()
                     if how == 'SIGTERM':
                         proc.send_signal(signal.SIGTERM)
-                    else:
+                    elif how == 'SIGINT':
                         os.killpg(proc.pid, signal.SIGINT)
+                    else:
+                        proc.send_signal(signal.SIGINT)
                     while processesMentioning(out) and time.monotonic() - t0 < 10:
                         time.sleep(0.02)
                     gone = time.monotonic() - t0
                     proc.wait(timeout=30)
                     print('%s: every process gone %.2f s after the signal' % (how, gone))
+                    self.assertEqual(proc.returncode, 143 if how == 'SIGTERM' else 130)
+                    # nothing half-published: no temporary file left, no manifest of a finished run
+                    left = [n for top, _, names in os.walk(out) for n in names if n.startswith('.')]
+                    self.assertEqual(left, [])
+                    self.assertFalse(os.path.exists(os.path.join(out, 'batch.json')))
                     self.assertEqual(processesMentioning(out), [])
                     self.assertLess(gone, 2.0)  # the bar is a second; CI's machines are loaded
                     done = len(finished(os.path.join(out, 'grains')))

@@ -1,0 +1,68 @@
+"""A job stops once (yade_mss.base.stopOnce): a second SIGINT or SIGTERM during the first one's clean-up (a
+terminal's Ctrl-C and the mss launcher's forwarded copy arrive together) must not cut the clean-up short."""
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import unittest
+
+SCRIPT = r'''
+import sys, time
+from yade_mss.base import exitStatus, stopOnce
+seen = []
+stopOnce(seen=seen)
+print('ready', flush=True)
+try:
+    time.sleep(60)
+except KeyboardInterrupt:
+    print('cleaning', flush=True)
+    time.sleep(1.0)  # the second signal arrives here
+    print('cleaned', flush=True)
+    sys.exit(exitStatus(seen))
+'''
+
+
+class StopOnce(unittest.TestCase):
+    def stop(self, first, second):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'job.py')
+            with open(path, 'w') as f:
+                f.write(SCRIPT)
+            p = subprocess.Popen([sys.executable, path], stdout=subprocess.PIPE, text=True)
+            self.assertEqual(p.stdout.readline().strip(), 'ready')
+            p.send_signal(first)
+            self.assertEqual(p.stdout.readline().strip(), 'cleaning')
+            p.send_signal(second)
+            out = p.stdout.read()
+            p.wait(timeout=30)
+            self.assertIn('cleaned', out)
+            return p.returncode
+
+    def test_a_second_signal_waits_for_the_clean_up(self):
+        self.assertEqual(self.stop(signal.SIGINT, signal.SIGINT), 130)
+        self.assertEqual(self.stop(signal.SIGTERM, signal.SIGINT), 143)
+        self.assertEqual(self.stop(signal.SIGINT, signal.SIGTERM), 130)
+
+    def test_off_the_main_thread_nothing_is_installed(self):
+        import threading
+        from yade_mss.base import stopOnce
+        got = []
+        t = threading.Thread(target=lambda: got.append(stopOnce()))
+        t.start()
+        t.join()
+        self.assertEqual(got, [{}])
+        self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
+
+    def test_restored(self):
+        from yade_mss.base import restoreSignals, stopOnce
+        before = stopOnce()
+        self.assertTrue(getattr(signal.getsignal(signal.SIGINT), 'mssStopOnce', False))
+        self.assertEqual(stopOnce(), {})  # one is installed: a library call inside a command installs none
+        restoreSignals(before)
+        self.assertIs(signal.getsignal(signal.SIGINT), signal.default_int_handler)
+        self.assertEqual(signal.getsignal(signal.SIGTERM), signal.SIG_DFL)
+
+
+if __name__ == '__main__':
+    unittest.main()
