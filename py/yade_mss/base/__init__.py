@@ -1,18 +1,19 @@
-"""The bottom layer of the Python package: argument checks, keyword splitting, files written whole, the work
-limit, rotations and stopping once on a signal. It imports nothing of the package but the C++ module (``yade_mss._mss``).
+"""The bottom layer of the Python package: argument checks, keyword splitting, files written whole, folder
+locks, the work limit, rotations and stopping once on a signal. It imports nothing of the package but the C++
+module (``yade_mss._mss``).
 
 Every layer above may use these names; they are not part of the user's API (:mod:`yade_mss` is).
 """
 
 from ._args import INT64_MAX, INT_MAX, flag, integer, number, vector3
-from ._files import (atomicWrite, cppPath, memoryBytes, readNpy, readTiff, refuseLinkedFolders, refuseOverInputs,
-                     requireRegularFile, umask)
+from ._files import (atomicWrite, cppPath, folderLock, memoryBytes, readNpy, readTiff, refuseLinkedFolders,
+                     refuseOverInputs, requireRegularFile, umask)
 from ._keywords import split
 from ._rotations import quaternionMatrix, randomRotation
 from ._signals import exitStatus, restore as restoreSignals, stopOnce
 from ._work import bar as progressBar, check as checkWork, checkSweep
 
-__all__ = ['INT64_MAX', 'INT_MAX', 'flag', 'integer', 'number', 'vector3', 'atomicWrite', 'cppPath', 'memoryBytes',
-           'readNpy', 'readTiff', 'refuseLinkedFolders', 'refuseOverInputs', 'requireRegularFile', 'umask', 'split',
-           'quaternionMatrix', 'randomRotation', 'progressBar', 'checkWork', 'checkSweep', 'exitStatus',
-           'restoreSignals', 'stopOnce']
+__all__ = ['INT64_MAX', 'INT_MAX', 'flag', 'integer', 'number', 'vector3', 'atomicWrite', 'cppPath', 'folderLock',
+           'memoryBytes', 'readNpy', 'readTiff', 'refuseLinkedFolders', 'refuseOverInputs', 'requireRegularFile',
+           'umask', 'split', 'quaternionMatrix', 'randomRotation', 'progressBar', 'checkWork', 'checkSweep',
+           'exitStatus', 'restoreSignals', 'stopOnce']

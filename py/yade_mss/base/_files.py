@@ -83,6 +83,7 @@ def refuseLinkedFolders(where, folders):
     """Refuses an output folder, or a folder the command writes into inside it, that is a symbolic link: files
     would land wherever the link points (a link planted in a shared output folder)."""
     for path in folders:
+        path = os.path.normpath(os.fspath(path))  # 'lnk/' and 'lnk/.' name the link itself, not its target
         if os.path.islink(path):
             raise ValueError('%s: %s is a symbolic link: the outputs would be written where it points (%s); give '
                              'a real folder' % (where, os.fspath(path), os.path.realpath(path)))
@@ -199,3 +200,56 @@ def readTiff(where, path):
             return t.asarray()
     except Exception as e:  # as readNpy's
         raise ValueError('%s: %s: cannot read the TIFF (%s)' % (where, path, e)) from None
+
+
+class folderLock(object):
+    """An exclusive lock on an output folder for one job at a time (``with folderLock('batch', OUT): ...``): an
+    ``fcntl`` lock on OUT/.mss.lock, taken at once or refused with whose it is (process, host, since when). The
+    kernel drops the lock of a process that is gone, so a stale lock file is simply taken over. The folder is
+    made if it is missing; a lock file that is a link or not a regular file is refused."""
+
+    NAME = '.mss.lock'
+
+    def __init__(self, where, folder):
+        self.where, self.folder, self.fd = where, os.fspath(folder), None
+
+    def __enter__(self):
+        import fcntl
+        import json
+        import socket
+        import time
+        path = os.path.join(self.folder, self.NAME)
+        try:
+            os.makedirs(self.folder, exist_ok=True)
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_CLOEXEC | os.O_NONBLOCK,
+                         0o666 & ~umask())  # non-blocking: a FIFO planted there does not hang the open
+        except OSError as e:
+            raise RuntimeError('%s: %s: cannot take the folder\'s lock %s (%s)' % (self.where, self.folder, path, e))
+        try:
+            if not stat.S_ISREG(os.fstat(fd).st_mode):
+                raise RuntimeError('%s: %s: not a regular file: not used as a lock' % (self.where, path))
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                try:
+                    holder = json.loads(os.pread(fd, 4096, 0).decode('utf-8', 'replace'))
+                    who = 'process %d on %s, since %s' % (int(holder['pid']), str(holder['host'])[:64],
+                                                          str(holder['since'])[:32])
+                except (ValueError, KeyError, TypeError):
+                    who = 'another process'
+                raise RuntimeError('%s: %s is in use by another job (%s): wait for it to end, or name another '
+                                   'output folder' % (self.where, self.folder, who))
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, json.dumps(dict(pid=os.getpid(), host=socket.gethostname(),
+                                          since=time.strftime('%Y-%m-%dT%H:%M:%S'))).encode(), 0)
+        except BaseException:
+            os.close(fd)
+            raise
+        self.fd = fd
+        return self
+
+    def __exit__(self, *exc):
+        if self.fd is not None:
+            os.close(self.fd)  # releases the lock; the file stays (removing it would race a job taking it)
+            self.fd = None
+        return False

@@ -4,9 +4,10 @@ functions); synthetic specimens made as real pipelines make them, for tests and 
 """
 
 from ._assembly import Assembly, mssAssembly
-from ._batch import Batch, GrainTask, batch, checkLabelled, makeTasks, runGrain
+from ._batch import Batch, GrainTask, batch, checkLabelled, grainRecord, makeTasks, runGrain
+from ._manifest import read as readManifest
 from ._pools import clusterSecurity, freeCores
 from ._synthetic import packedSpecimen, syntheticSpecimen, voronoiBall
 
 __all__ = ['Assembly', 'mssAssembly', 'Batch', 'GrainTask', 'batch', 'checkLabelled', 'clusterSecurity', 'freeCores',
-           'makeTasks', 'runGrain', 'packedSpecimen', 'syntheticSpecimen', 'voronoiBall']
+           'grainRecord', 'makeTasks', 'readManifest', 'runGrain', 'packedSpecimen', 'syntheticSpecimen', 'voronoiBall']

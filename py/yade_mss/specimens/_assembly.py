@@ -2,15 +2,15 @@
 its true position with its exact mass properties (:func:`mssAssembly`)."""
 
 import csv
-import json
 import os
 
 import numpy as np
 
 from ..base import split
-from ..grains import GENERATE_OPTIONS, MssResult
+from ..grains import GENERATE_OPTIONS
 from ..yade import bodyOptions, buildClump, yadeModules
-from ._batch import batch
+from . import _manifest
+from ._batch import batch, grainRecord
 
 
 class Assembly(dict):
@@ -109,11 +109,14 @@ def _finished(outdir):
     for name in sorted(os.listdir(g)):
         if not name.endswith('.json'):
             continue
-        with open(os.path.join(g, name)) as f:
-            row = json.load(f)['row']
+        found = grainRecord(outdir, name[:-5])
+        if found is None:
+            raise ValueError('mssAssembly: %s: its record or files changed since the batch wrote them (or are not '
+                             'a batch\'s): run the batch again' % os.path.join(g, name[:-5]))
+        meta, r = found
+        row = meta['row']
         if row['status'] == 'ok':
-            key = row['label'] if row['label'] != '' else row['file']
-            out[key] = MssResult.load(os.path.join(g, name[:-5] + '.npz'))
+            out[row['label'] if row['label'] != '' else row['file']] = r
     return out
 
 
@@ -179,7 +182,6 @@ def _tolerance(outdir):
     """The contact gap (voxels) a finished batch counted its scan's contacts with: its manifest's, or the
     default."""
     try:
-        with open(os.path.join(outdir, 'batch.json')) as f:
-            return float(json.load(f)['state']['contacts']['gap'])
-    except (OSError, ValueError, KeyError, TypeError):
+        return float(_manifest.read(outdir)['state']['contacts']['gap'])
+    except (ValueError, KeyError, TypeError):
         return 1.0

@@ -10,9 +10,11 @@ At the end: ``assembly.txt`` (every sphere, ``x y z r clumpId``, with each clump
 ``#mss clump`` line for ``readClumps``), ``grains.csv`` and ``report.html``.
 """
 
+import contextlib
 import hashlib
 import json
 import os
+import stat
 import sys
 import time
 import zlib
@@ -20,7 +22,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..base import atomicWrite, integer, refuseLinkedFolders, refuseOverInputs, requireRegularFile, split
+from ..base import (atomicWrite, flag, folderLock, integer, number, refuseLinkedFolders, refuseOverInputs,
+                    requireRegularFile, split, vector3)
 from ..exports import MAX_TEMPLATES, writeTemplates
 from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, MssResult, binaryValue, contactsByLabel, generateWith,
                       optionTable, pieces, readVolume, regions, scanContacts, segmentBinary)
@@ -393,44 +396,78 @@ def _runKey(inputs, options, extra):
                                  default=str))
 
 
-def _done(outdir, key, optionsKey, digest):
-    """The row and result of a grain already done from the same input (*digest*) with these options, or None."""
-    path = os.path.join(outdir, 'grains', key + '.json')
+META_BYTES = 1 << 24  # a grain's record is its row and digests: a few KB
+
+
+def _rowSum(row):
+    """The digest of a row as its record holds it (read back from JSON: the same text on both sides)."""
+    text = json.dumps(json.loads(json.dumps(row, default=str)), sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def grainRecord(outdir, key):
+    """(record, result) of the grain KEY that a batch wrote to *outdir*, checked: the record (grains/KEY.json,
+    bounded) must hold the digest of its own row, and every file the grain wrote (.npz, .csv, .png) the digest
+    recorded when it was written; None for a record missing, unreadable, edited, or whose files were swapped,
+    truncated or edited since (the result None for a grain that was skipped)."""
+    g = os.path.join(outdir, 'grains')
+    path = os.path.join(g, key + '.json')
     try:
+        requireRegularFile('batch', path)
+        if os.path.getsize(path) > META_BYTES:
+            return None
         with open(path) as f:
             meta = json.load(f)
-        if meta.get('options') != optionsKey or meta.get('input') != digest or meta['row']['status'] == 'failed':
+        if not isinstance(meta, dict) or not isinstance(meta.get('row'), dict):
             return None
-        r = None
-        if meta['row']['status'] == 'ok':
-            # the result must be the one this grain wrote: a file swapped or edited since is made again
-            path = os.path.join(outdir, 'grains', key + '.npz')
-            if _fileDigest(path) != meta.get('result'):
+        row, files = meta['row'], meta.get('files')
+        if meta.get('rowSum') != _rowSum(row) or not isinstance(files, dict):
+            return None
+        for ext, sum_ in files.items():
+            if ext not in ('npz', 'csv', 'png') or _fileDigest(os.path.join(g, key + '.' + ext)) != sum_:
                 return None
-            r = MssResult.load(path)
-        return meta['row'], r
-    except (OSError, ValueError, KeyError):
+        r = None
+        if row.get('status') == 'ok':
+            if 'npz' not in files or 'csv' not in files:
+                return None
+            r = MssResult.load(os.path.join(g, key + '.npz'))
+        return meta, r
+    except (OSError, ValueError, KeyError, TypeError, RecursionError):
         return None
 
 
+def _done(outdir, key, optionsKey, digest):
+    """The row and result of a grain already done from the same input (*digest*) with these options, its files
+    as it wrote them (:func:`grainRecord`), or None: the grain is made again."""
+    found = grainRecord(outdir, key)
+    if found is None:
+        return None
+    meta, r = found
+    if meta.get('options') != optionsKey or meta.get('input') != digest or meta['row'].get('status') == 'failed':
+        return None
+    return meta['row'], r
+
+
 def _store(outdir, key, row, result, optionsKey, digest=None):
+    """Writes a grain's files, then its record (grains/KEY.json, last: a grain without it is not done) with the
+    digest of each file and of its row, for the rerun to check (_done)."""
     g = os.path.join(outdir, 'grains')
+    sums = {}
+
+    def digested(ext, write):
+        def put(p):
+            write(p)
+            sums[ext] = _fileDigest(p)
+        _atomic(os.path.join(g, key + '.' + ext), put)
     png = getattr(result, 'png', None)
     if png is not None:
-        _atomic(os.path.join(g, key + '.png'), lambda p: _write(p, png))
+        digested('png', lambda p: _write(p, png))
         del result.png
-    made = None
     if result is not None:
-        sums = []
-
-        def save(p):
-            result.save(p, compress=False)
-            sums.append(_fileDigest(p))
-        _atomic(os.path.join(g, key + '.npz'), save)
-        made = sums[0]
-        _atomic(os.path.join(g, key + '.csv'), result.save)
-    _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({'options': optionsKey, 'input': digest,
-                                                                            'result': made, 'row': row})))
+        digested('npz', lambda p: result.save(p, compress=False))
+        digested('csv', result.save)
+    _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({
+        'options': optionsKey, 'input': digest, 'files': sums, 'row': row, 'rowSum': _rowSum(row)})))
 
 
 @optionTable.documented('batch')
@@ -453,6 +490,18 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     """
     gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
                                                                              'threads')])
+    inputs = _checkedInputs(inputs)
+    segment, excludeBorder, previews, progress = (flag('batch', n, v) for n, v in (
+        ('segment', segment), ('excludeBorder', excludeBorder), ('previews', previews), ('progress', progress)))
+    minVoxels = integer('batch', 'minVoxels', minVoxels, 0, None)
+    if voxelSize is not None and number('batch', 'voxelSize', voxelSize) <= 0:
+        raise ValueError('batch: voxelSize must be > 0 (the voxel edge in metres), got %r' % (voxelSize,))
+    if origin is not None:
+        origin = tuple(vector3('batch', 'origin', origin))
+    if labels is not None:
+        if not isinstance(labels, (list, tuple)):
+            raise TypeError('batch: labels must be a list of integers, got %r' % (labels,))
+        labels = [integer('batch', 'labels', x, 1, None) for x in labels]
     if workers is None:  # inside YADE one process: spawning children of the yade launcher does not work
         workers = 1 if 'yade' in sys.modules else freeCores()
     workers = integer('batch', 'workers', workers, 1, 1024)
@@ -463,104 +512,124 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         if outdir is None:
             raise ValueError('batch: format %r writes templates into the output folder: give outdir' % format)
     t0 = time.perf_counter()
-    runKey = None
     if outdir is not None and not isinstance(outdir, (str, bytes, os.PathLike)):
         raise TypeError('batch: outdir must be a folder path, got %s' % type(outdir).__name__)
     if outdir is not None:
         _refuseOverInputs(inputs, outdir)
-        runKey = _runKey(inputs, gen, {'voxelSize': voxelSize, 'origin': origin, 'minVoxels': minVoxels,
-                                       'excludeBorder': excludeBorder, 'labels': labels, 'previews': previews,
-                                       'density': density, 'young': young, 'format': format, 'segment': segment,
-                                       'segmentH': segmentH})
-        state = _manifest.finished(outdir, runKey)
-        if state is not None:
-            out = _upToDate(outdir, state, time.perf_counter() - t0)
-            if progress:
-                print('batch: %s is up to date (its inputs, options and files are those of its finished run): '
-                      'nothing to do\n%s' % (outdir, _report.summary(out, len(out.rows), density, young)),
-                      flush=True)
-            return out
-        _manifest.forget(outdir)
-    segmented = None
-    if segment or segmentH != 1.0:
-        segmentH = optionTable.check('batch', 'batch', 'segmentH', segmentH)
-        if not segment:
-            raise ValueError('batch: segmentH applies with segment (a binary scan to cut into grains)')
-        inputs, segmented = _segmented(inputs, outdir, segmentH, gen.get('memoryLimit'))
-    tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
-    if segmented is not None:
-        key = _optionsKey(key, {'segment': segmentH})
-    if format == 'liggghts':
-        if len(tasks) > MAX_TEMPLATES:  # said before the grains are generated, not after
-            raise ValueError('batch: %d grains: LIGGGHTS templates are numbered by 32-bit seeds, at most %d'
-                             % (len(tasks), MAX_TEMPLATES))
-    out = Batch()
-    out.segmented = segmented
-    if outdir is not None:
-        os.makedirs(os.path.join(outdir, 'grains'), exist_ok=True)
-        for k, row in skipped.items():
-            _store(outdir, k, row, None, key)
-    out.rows.update(skipped)
-    todo = []
-    for t in tasks:
-        prior = _done(outdir, t.key, key, t.digest) if outdir is not None else None
-        if prior is None:
-            todo.append(t)
-        else:
-            out.rows[t.key], r = prior
-            if r is not None:
-                out.results[t.key] = r
-    total, already = len(tasks) + len(skipped), len(tasks) - len(todo)
-    bar = None
-    if progress and sys.stderr.isatty():
-        from tqdm import tqdm
-        bar = tqdm(total=len(todo), unit='grain', desc='mss batch')
-    elif progress:
-        print('batch: %d grains, %d done before, %d skipped, %d to generate' % (total, already, len(skipped), len(todo)),
-              flush=True)
-    # no idle processes for few grains
-    run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
-    n = 0
-    digests = {t.key: t.digest for t in todo}
-    try:
-        for k, row, r in run(todo):
-            # a grain whose worker died is not the grain's failure: nothing is written for it (the pool's stop,
-            # an interrupted batch's workers ending before the batch, must not look like a finished grain)
-            if outdir is not None and not row['message'].startswith(WORKER_DIED):
-                _store(outdir, k, row, r, key, digests[k])
-            out.rows[k] = row
-            if r is not None:
-                out.results[k] = r
-            n += 1
+    # one batch a folder: a second is refused at once, not left to mix its grains with the first's
+    with folderLock('batch', outdir) if outdir is not None else contextlib.nullcontext():
+        runKey = None
+        if outdir is not None:
+            runKey = _runKey(inputs, gen, {'voxelSize': voxelSize, 'origin': origin, 'minVoxels': minVoxels,
+                                           'excludeBorder': excludeBorder, 'labels': labels, 'previews': previews,
+                                           'density': density, 'young': young, 'format': format, 'segment': segment,
+                                           'segmentH': segmentH})
+            state = _manifest.finished(outdir, runKey)
+            if state is not None:
+                out = _upToDate(outdir, state, time.perf_counter() - t0)
+                if progress:
+                    print('batch: %s is up to date (its inputs, options and files are those of its finished run): '
+                          'nothing to do\n%s' % (outdir, _report.summary(out, len(out.rows), density, young)),
+                          flush=True)
+                return out
+            _manifest.forget(outdir)
+        segmented = None
+        if segment or segmentH != 1.0:
+            segmentH = optionTable.check('batch', 'batch', 'segmentH', segmentH)
+            if not segment:
+                raise ValueError('batch: segmentH applies with segment (a binary scan to cut into grains)')
+            inputs, segmented = _segmented(inputs, outdir, segmentH, gen.get('memoryLimit'))
+        tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+        if segmented is not None:
+            key = _optionsKey(key, {'segment': segmentH})
+        if format == 'liggghts':
+            if len(tasks) > MAX_TEMPLATES:  # said before the grains are generated, not after
+                raise ValueError('batch: %d grains: LIGGGHTS templates are numbered by 32-bit seeds, at most %d'
+                                 % (len(tasks), MAX_TEMPLATES))
+        out = Batch()
+        out.segmented = segmented
+        if outdir is not None:
+            os.makedirs(os.path.join(outdir, 'grains'), exist_ok=True)
+            for k, row in skipped.items():
+                _store(outdir, k, row, None, key)
+        out.rows.update(skipped)
+        todo = []
+        for t in tasks:
+            prior = _done(outdir, t.key, key, t.digest) if outdir is not None else None
+            if prior is None:
+                todo.append(t)
+            else:
+                out.rows[t.key], r = prior
+                if r is not None:
+                    out.results[t.key] = r
+        total, already = len(tasks) + len(skipped), len(tasks) - len(todo)
+        bar = None
+        if progress and sys.stderr.isatty():
+            from tqdm import tqdm
+            bar = tqdm(total=len(todo), unit='grain', desc='mss batch')
+        elif progress:
+            print('batch: %d grains, %d done before, %d skipped, %d to generate'
+                  % (total, already, len(skipped), len(todo)), flush=True)
+        # no idle processes for few grains
+        run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
+        n = 0
+        digests = {t.key: t.digest for t in todo}
+        try:
+            for k, row, r in run(todo):
+                # a grain whose worker died is not the grain's failure: nothing is written for it (the pool's stop,
+                # an interrupted batch's workers ending before the batch, must not look like a finished grain)
+                if outdir is not None and not row['message'].startswith(WORKER_DIED):
+                    _store(outdir, k, row, r, key, digests[k])
+                out.rows[k] = row
+                if r is not None:
+                    out.results[k] = r
+                n += 1
+                if bar is not None:
+                    bar.update(1)
+                elif progress:
+                    print('[%*d/%d] %-12s %-7s %3s spheres  D %-8s %s' % (len(str(len(todo))), n, len(todo), k,
+                          row['status'], row['spheres'], '%.4f' % row['dice'] if row['dice'] != '' else '-',
+                          row['message'][:80]), flush=True)
+        finally:
+            close()
             if bar is not None:
-                bar.update(1)
-            elif progress:
-                print('[%*d/%d] %-12s %-7s %3s spheres  D %-8s %s' % (len(str(len(todo))), n, len(todo), k,
-                      row['status'], row['spheres'], '%.4f' % row['dice'] if row['dice'] != '' else '-',
-                      row['message'][:80]), flush=True)
-    finally:
-        close()
-        if bar is not None:
-            bar.close()
-    out.generated, out.reused = n, already
-    out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
-    out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
-    h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
-    _report.keptContacts(out, found, h)
-    _report.annotate(out, gen, density, young)
-    if outdir is not None:
-        if previews:
-            _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
+                bar.close()
+        out.generated, out.reused = n, already
+        out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
+        out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
+        h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
+        _report.keptContacts(out, found, h)
+        _report.annotate(out, gen, density, young)
+        if outdir is not None:
+            if previews:
+                _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
+            out.seconds = time.perf_counter() - t0
+            _report.writeOutputs(outdir, out, density, young)
+            if format is not None:
+                writeTemplates(outdir, out, format, density)
         out.seconds = time.perf_counter() - t0
-        _report.writeOutputs(outdir, out, density, young)
-        if format is not None:
-            writeTemplates(outdir, out, format, density)
-    out.seconds = time.perf_counter() - t0
-    if outdir is not None and not out.failed:
-        _manifest.write(outdir, runKey, _state(out), _atomic)
-    if progress:
-        print(_report.summary(out, total, density, young), flush=True)
-    return out
+        if outdir is not None and not out.failed:
+            _manifest.write(outdir, runKey, _state(out), _atomic)
+        if progress:
+            print(_report.summary(out, total, density, young), flush=True)
+        return out
+
+
+def _checkedInputs(inputs):
+    """*inputs* as a list of paths, or the integer array (one path alone is a list of one, not its characters)."""
+    if isinstance(inputs, np.ndarray):
+        if inputs.ndim != 3:
+            raise ValueError('batch: a labelled volume must be a 3-D array, got %d-D' % inputs.ndim)
+        return inputs
+    if isinstance(inputs, (str, bytes, os.PathLike)):
+        return [inputs]
+    if not isinstance(inputs, (list, tuple)) or not inputs:
+        raise TypeError('batch: inputs must be a file or folder path, a list of them, or a labelled volume (an '
+                        'integer array), got %r' % (inputs,))
+    for p in inputs:
+        if not isinstance(p, (str, bytes, os.PathLike)):
+            raise TypeError('batch: inputs must be file or folder paths, got %r' % (p,))
+    return list(inputs)
 
 
 OUTPUTS = ('labels.npy', 'grains.csv', 'assembly.txt', 'assembly.vtk', 'contacts.csv', 'report.html',
@@ -568,12 +637,35 @@ OUTPUTS = ('labels.npy', 'grains.csv', 'assembly.txt', 'assembly.vtk', 'contacts
 
 
 def _refuseOverInputs(inputs, outdir):
-    """Before any work: no output folder (or folder in it) that is a link, no output that is an input, no input
-    among the grains' files."""
+    """Before any work: no output folder (or folder in it) that is a link however the path is spelled, no output
+    or file in grains/ or templates/ that is a link or not a regular file, no output that is an input, no input
+    among the grains' files, no output folder that is an input folder."""
     outdir = os.fspath(outdir)
     refuseLinkedFolders('batch', [outdir] + [os.path.join(outdir, d) for d in ('grains', 'templates')])
+    for n in OUTPUTS:
+        path = os.path.join(outdir, n)
+        if os.path.lexists(path) and not stat.S_ISREG(os.lstat(path).st_mode):
+            raise ValueError('batch: OUT/%s (%s) exists and is not a regular file (a link, folder or device): the '
+                             'batch would not write it; remove it or name another output folder' % (n, path))
+    for d in ('grains', 'templates'):
+        folder = os.path.join(outdir, d)
+        if not os.path.lexists(folder):
+            continue
+        if not os.path.isdir(folder):
+            raise ValueError('batch: OUT/%s (%s) exists and is not a folder: remove it or name another output '
+                             'folder' % (d, folder))
+        with os.scandir(folder) as entries:
+            for e in entries:
+                if not e.is_file(follow_symlinks=False) and not e.name.startswith('.'):
+                    raise ValueError('batch: OUT/%s/%s is a link or not a regular file: the batch writes only its '
+                                     'own files there; remove it or name another output folder' % (d, e.name))
     if isinstance(inputs, np.ndarray):
         return
+    here = os.path.realpath(outdir)
+    for d in inputs:
+        if os.path.isdir(d) and os.path.realpath(d) == here:
+            raise ValueError('batch: the output folder %s is the input folder %s: its outputs would become inputs '
+                             'of the next run; name another output folder' % (outdir, os.fspath(d)))
     files = [os.fspath(f) for f in inputs if os.path.isfile(f)]
     for d in inputs:
         if os.path.isdir(d):

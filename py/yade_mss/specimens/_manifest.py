@@ -5,6 +5,8 @@ The inputs are known by their identity on disk (device, inode, size, modificatio
 nanoseconds; an array by a digest of its bytes), the options by their values, the outputs by their identity
 too: a file rewritten, replaced or removed since (a grain's result swapped in grains/, an input edited or
 touched) sends the rerun down the ordinary path, which reuses each grain only for the same input and options.
+The manifest holds the digest of its own content, so an edited one (its state rows, which a rerun would give
+back) is stale too, as is one too large, too deeply nested or unreadable.
 """
 
 import hashlib
@@ -14,7 +16,7 @@ import stat
 
 import numpy as np
 
-VERSION = 1
+VERSION = 2
 NAME = 'batch.json'
 MAX_BYTES = 1 << 30  # a manifest is rows and file identities: 10^5 grains take tens of MB
 
@@ -59,7 +61,8 @@ def forget(outdir):
 def write(outdir, key, state, atomic):
     """Writes the manifest of a finished batch: its *key* (inputs and options), the files in *outdir* now and
     *state* (what the summary and the Python API give back)."""
-    text = json.dumps({'version': VERSION, 'key': key, 'outputs': outputs(outdir), 'state': state})
+    body = {'version': VERSION, 'key': key, 'outputs': outputs(outdir), 'state': state}
+    text = json.dumps(dict(body, sum=_sum(body)))
 
     def put(p):
         with open(p, 'w') as f:
@@ -67,9 +70,15 @@ def write(outdir, key, state, atomic):
     atomic(os.path.join(outdir, NAME), put)
 
 
-def finished(outdir, key):
-    """The *state* of a finished batch in *outdir* made with the same *key*, whose every output is as it left
-    it; None otherwise (no manifest, another key, a file changed, added or gone, a manifest unreadable)."""
+def _sum(body):
+    """The digest of a manifest's content as read back from JSON."""
+    text = json.dumps(json.loads(json.dumps(body, default=str)), sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()
+
+
+def read(outdir):
+    """The manifest of *outdir* as its batch wrote it: None where there is none, or it is not a regular file, over
+    MAX_BYTES, nested too deep, unreadable, of another version, or edited since (its digest)."""
     path = os.path.join(outdir, NAME)
     try:
         st = os.lstat(path)
@@ -77,10 +86,24 @@ def finished(outdir, key):
             return None
         with open(path) as f:
             meta = json.load(f)
-        if not isinstance(meta, dict) or meta.get('version') != VERSION or meta.get('key') != key:
+        if not isinstance(meta, dict) or meta.get('version') != VERSION:
             return None
+        if meta.get('sum') != _sum({k: meta.get(k) for k in ('version', 'key', 'outputs', 'state')}):
+            return None  # edited since it was written
+        return meta
+    except (OSError, ValueError, TypeError, RecursionError):  # a nesting too deep for the parser: stale
+        return None
+
+
+def finished(outdir, key):
+    """The *state* of a finished batch in *outdir* made with the same *key*, whose every output is as it left
+    it; None otherwise (no manifest, another key, a file changed, added or gone, a manifest unreadable)."""
+    meta = read(outdir)
+    if meta is None or meta.get('key') != key:
+        return None
+    try:
         if outputs(outdir) != meta.get('outputs'):
             return None
-        return meta.get('state')
-    except (OSError, ValueError, TypeError):
+    except OSError:
         return None
+    return meta.get('state')

@@ -2,13 +2,13 @@
 ``mss batch`` folder, or another generator's sphere file with its grain) as grains, each generated at any
 sphere count (numpy and the generator only: no YADE here)."""
 
-import json
 import os
 
 import numpy as np
 
 from ..base import readNpy
 from ..grains import MssResult, generate, massProperties, readSpheres, regions
+from ..specimens import readManifest
 
 MESHES = ('.stl', '.obj', '.off', '.ply')
 VOLUMES = ('.npy', '.tif', '.tiff')
@@ -68,11 +68,11 @@ def _folderGrains(folder, gen):
 def _batchGrains(folder, gen):
     """A finished ``mss batch`` folder: the grains it generated (grains/*.npz), regenerated from its scan at
     each count with its voxel size and origin, in the scan's proportions (each grain once) and sizes."""
-    with open(os.path.join(folder, 'batch.json')) as f:
-        if os.fstat(f.fileno()).st_size > (64 << 20):
-            raise ValueError('triaxial: %s/batch.json is over 64 MB: not a batch manifest' % folder)
-        manifest = json.load(f)
-    key = manifest.get('key') if isinstance(manifest, dict) else None
+    manifest = readManifest(folder)
+    if manifest is None:
+        raise ValueError('triaxial: %s/batch.json is not the manifest its batch wrote (edited, unreadable or of an '
+                         'older version): run the batch again' % folder)
+    key = manifest.get('key')
     files = ((key or {}).get('inputs') or {}).get('files') if isinstance(key, dict) else None
     done = sorted(n[:-4] for n in os.listdir(os.path.join(folder, 'grains')) if n.endswith('.npz'))
     if not isinstance(files, list) or len(files) != 1 or not done:

@@ -12,8 +12,8 @@ import sys, time
 from yade_mss.base import exitStatus, stopOnce
 seen = []
 stopOnce(seen=seen)
-print('ready', flush=True)
 try:
+    print('ready', flush=True)
     time.sleep(60)
 except KeyboardInterrupt:
     print('cleaning', flush=True)

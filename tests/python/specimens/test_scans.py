@@ -1,10 +1,16 @@
 """Real segmentations in: contacts across watershed lines (a packing segmented as real pipelines do, a touching
 Voronoi specimen with lines), binary scans refused or segmented, a rerun of a finished batch that does nothing,
-honest counts where a specimen shows no contacts. Small sizes; bench/batch_scale.py runs the large ones. Run with
+honest counts where a specimen shows no contacts, reruns that check every file they reuse, one batch a folder,
+outputs refused before any work. Small sizes; bench/batch_scale.py runs the large ones. Run with
 /usr/bin/python3."""
+import csv
 import json
 import os
+import shutil
+import subprocess
+import sys
 import tempfile
+import time
 import unittest
 
 import numpy as np
@@ -12,6 +18,8 @@ import numpy as np
 from yade_mss import batch, findContacts, generate, packedSpecimen, voronoiBall
 from yade_mss.specimens._report import gapsText
 from yade_mss.grains import segmentBinary, separated
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'data')
 
 
 def bruteGaps(L):
@@ -173,7 +181,8 @@ class Reruns(unittest.TestCase):
             for top, _, names in os.walk(out):
                 for n in names:
                     p = os.path.join(top, n)
-                    files[p] = os.stat(p).st_mtime_ns
+                    if n != '.mss.lock':  # the folder's lock, taken by each run
+                        files[p] = os.stat(p).st_mtime_ns
             again = batch([path], out, workers=1, progress=False, nSpheres=5, minVoxels=10)
             self.assertTrue(again.upToDate)
             self.assertEqual(again.generated, 0)
@@ -206,7 +215,171 @@ class Reruns(unittest.TestCase):
             np.testing.assert_array_equal(swapped.results[keys[1]].radii, other.results[keys[1]].radii)
             with open(os.path.join(out, 'batch.json')) as f:
                 meta = json.load(f)
-            self.assertEqual(meta['version'], 1)
+            self.assertEqual(meta['version'], 2)
+
+    def test_a_rerun_checks_every_file_it_reuses(self):
+        """The attack: a grain's CSV copied over another's (or truncated), an edited grain record or manifest, a
+        manifest nested too deep: each was trusted, kept and recorded ("up to date" for ever after)."""
+        L = packedSpecimen((40, 40, 40), grains=12, size=(4, 6), seed=5)
+        with tempfile.TemporaryDirectory() as d:
+            path, out = os.path.join(d, 'labels.npy'), os.path.join(d, 'out')
+            np.save(path, L)
+            run = lambda: batch([path], out, workers=1, progress=False, nSpheres=5, minVoxels=10)  # noqa: E731
+            first = run()
+            g = os.path.join(out, 'grains')
+            keys = sorted(f[:-4] for f in os.listdir(g) if f.endswith('.npz'))
+            a, b = keys[0], keys[1]
+
+            def text(k, ext):
+                with open(os.path.join(g, k + '.' + ext), 'rb') as f:
+                    return f.read()
+            good = text(b, 'csv')
+            shutil.copy(os.path.join(g, a + '.csv'), os.path.join(g, b + '.csv'))
+            again = run()
+            self.assertEqual(again.generated, 1)
+            self.assertEqual(text(b, 'csv'), good)  # made again, the right file back
+            with open(os.path.join(g, a + '.csv'), 'r+b') as f:
+                f.truncate(10)
+            self.assertEqual(run().generated, 1)
+            # an edited record: its row is not copied into grains.csv
+            with open(os.path.join(g, a + '.json')) as f:
+                meta = json.load(f)
+            meta['row']['spheres'], meta['row']['dice'] = 99, 0
+            with open(os.path.join(g, a + '.json'), 'w') as f:
+                json.dump(meta, f)
+            edited = run()
+            self.assertEqual(edited.generated, 1)
+            self.assertEqual(int(edited.rows[a]['spheres']), int(first.rows[a]['spheres']))
+            self.assertNotIn('99', [r['spheres'] for r in rows(out) if r.get('label') == a[6:]])
+            # an edited manifest: not up to date, its state rows not given back
+            self.assertTrue(run().upToDate)
+            with open(os.path.join(out, 'batch.json')) as f:
+                meta = json.load(f)
+            meta['state']['rows'][a]['spheres'] = 99
+            meta['state']['seconds'] = 1234.5
+            with open(os.path.join(out, 'batch.json'), 'w') as f:
+                json.dump(meta, f)
+            after = run()
+            self.assertFalse(after.upToDate)
+            self.assertEqual(after.generated, 0)  # each grain checked, none made again
+            self.assertEqual(after.rows[a]['spheres'], first.rows[a]['spheres'])
+            self.assertNotEqual(after.seconds, 1234.5)
+            # a manifest nested too deep for the parser: stale, not "maximum recursion depth exceeded"
+            with open(os.path.join(out, 'batch.json'), 'w') as f:
+                f.write('[' * 100000 + ']' * 100000)
+            self.assertFalse(run().upToDate)
+            self.assertTrue(run().upToDate)
+
+
+def rows(outdir):
+    with open(os.path.join(outdir, 'grains.csv')) as f:
+        return list(csv.DictReader(f))
+
+
+class OneBatchAFolder(unittest.TestCase):
+    def test_a_second_batch_is_refused_at_once_and_a_stale_lock_taken_over(self):
+        from yade_mss.base import folderLock
+        L = packedSpecimen((30, 30, 30), grains=6, size=(4, 6), seed=6)
+        with tempfile.TemporaryDirectory() as d:
+            path, out = os.path.join(d, 'labels.npy'), os.path.join(d, 'out')
+            np.save(path, L)
+            holder = subprocess.Popen([sys.executable, '-c', 'import sys, time\nfrom yade_mss.base import '
+                                       'folderLock\nwith folderLock("test", sys.argv[1]):\n    print("held", '
+                                       'flush=True)\n    time.sleep(60)', out], stdout=subprocess.PIPE, text=True)
+            try:
+                self.assertEqual(holder.stdout.readline().strip(), 'held')
+                t = time.monotonic()
+                with self.assertRaises(RuntimeError) as e:
+                    batch([path], out, workers=1, progress=False, nSpheres=4)
+                self.assertLess(time.monotonic() - t, 5.0)  # at once, before any work
+                self.assertIn('in use by another job (process %d' % holder.pid, str(e.exception))
+                self.assertFalse(os.path.exists(os.path.join(out, 'grains')))
+            finally:
+                holder.kill()
+                holder.wait()
+            # the holder is gone (killed: its lock file stays): the lock is taken over
+            self.assertTrue(os.path.isfile(os.path.join(out, folderLock.NAME)))
+            self.assertEqual(len(batch([path], out, workers=1, progress=False, nSpheres=4).failed), 0)
+            # two at once from the command line: one runs, the other is refused
+            mss = os.environ.get('MSS_BINARY', 'mss')
+            out2 = os.path.join(d, 'two')
+            procs = [subprocess.Popen([mss, 'batch', path, '-o', out2, '--spheres', str(n), '--workers', '1'],
+                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for n in (8, 12)]
+            results = [p.communicate(timeout=300) + (p.returncode,) for p in procs]
+            codes = sorted(r[2] for r in results)
+            if codes == [0, 0]:  # the first ended before the second looked: then they ran one after the other
+                self.assertTrue(all('in use' not in r[1] for r in results))
+            else:
+                self.assertEqual(codes, [0, 1], results)
+                self.assertIn('in use by another job', ''.join(r[1] for r in results))
+
+
+class RefusedBeforeAnyWork(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.d = self.dir.name
+        self.path = os.path.join(self.d, 'labels.npy')
+        np.save(self.path, packedSpecimen((30, 30, 30), grains=6, size=(4, 6), seed=6))
+
+    def tearDown(self):
+        self.dir.cleanup()
+
+    def refused(self, out, words, inputs=None):
+        with self.assertRaises(ValueError) as e:
+            batch(inputs or [self.path], out, workers=1, progress=False, nSpheres=4)
+        self.assertIn(words, str(e.exception))
+        grains = os.path.join(out, 'grains')
+        self.assertFalse(os.path.isdir(grains) and any(n.endswith('.npz') for n in os.listdir(grains)))
+
+    def test_links_however_spelled(self):
+        real = os.path.join(self.d, 'real')
+        os.mkdir(real)
+        os.symlink(real, os.path.join(self.d, 'lnk'))
+        for spelled in ('lnk', 'lnk/', 'lnk/.', 'real/../lnk/'):
+            with self.subTest(spelled):
+                self.refused(os.path.join(self.d, spelled), 'symbolic link')
+        self.assertEqual(os.listdir(real), [])
+
+    def test_planted_outputs(self):
+        for name, plant in (('grains.csv', 'link'), ('grains/label_1.csv', 'link'), ('assembly.txt', 'folder'),
+                            ('grains', 'file')):
+            with self.subTest(name):
+                out = os.path.join(self.d, 'out_' + name.replace('/', '_'))
+                os.makedirs(os.path.dirname(os.path.join(out, name)), exist_ok=True)
+                target = os.path.join(self.d, 'victim')
+                if plant == 'link':
+                    os.symlink(target, os.path.join(out, name))
+                elif plant == 'folder':
+                    os.mkdir(os.path.join(out, name))
+                else:
+                    open(os.path.join(out, name), 'w').close()
+                self.refused(out, name.split('/')[0] if plant == 'file' else name)
+                self.assertFalse(os.path.exists(target))
+
+    def test_the_input_folder_as_output(self):
+        folder = os.path.join(self.d, 'grains_in')
+        os.mkdir(folder)
+        shutil.copy(os.path.join(DATA, 'octahedron.stl'), folder)
+        self.refused(folder, 'is the input folder', inputs=[folder])
+        self.refused(folder + '/', 'is the input folder', inputs=[folder])
+
+    def test_arguments_by_name(self):
+        for kw, kind in ((dict(segment='no'), TypeError), (dict(excludeBorder='no'), TypeError),
+                         (dict(minVoxels='5'), TypeError), (dict(voxelSize='abc'), TypeError),
+                         (dict(origin=(1, 2)), ValueError), (dict(labels=np.int64(2)), TypeError),
+                         (dict(labels=['x']), TypeError)):
+            with self.subTest(kw):
+                with self.assertRaises(kind) as e:
+                    batch([self.path], None, workers=1, progress=False, nSpheres=4, **kw)
+                self.assertIn(list(kw)[0], str(e.exception))
+        with self.assertRaises(TypeError):
+            batch(None, None, nSpheres=4, progress=False)
+        with self.assertRaises(ValueError) as e:
+            batch(np.array(1), None, nSpheres=4, progress=False)
+        self.assertIn('3-D', str(e.exception))
+        # one path alone is a list of one, not its characters
+        self.assertEqual(len(batch(self.path, None, workers=1, progress=False, nSpheres=4).rows),
+                         len(batch([self.path], None, workers=1, progress=False, nSpheres=4).rows))
 
 
 if __name__ == '__main__':
