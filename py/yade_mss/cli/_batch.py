@@ -9,7 +9,8 @@ from ..specimens import batch, clusterSecurity
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog='mss batch', description='a CT specimen or a folder of grains to a DEM '
+    p = argparse.ArgumentParser(prog='mss batch', allow_abbrev=False,
+                                description='a CT specimen or a folder of grains to a DEM '
                                 'assembly (yade-mss)')
     p.add_argument('inputs', nargs='+', help='a labelled volume (.npy, .tif; 0 is background), or mesh/volume '
                    'files, or directories of them')

@@ -27,7 +27,8 @@ def _result(source, gen):
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog='mss export', description='a clump as another DEM code\'s template, with the '
+    p = argparse.ArgumentParser(prog='mss export', allow_abbrev=False,
+                                description='a clump as another DEM code\'s template, with the '
                                 'grain\'s exact mass properties (yade-mss)')
     p.add_argument('input', help='a grain (mesh or voxel volume; generated with the options given) or a saved '
                    'result (.npz)')

@@ -10,7 +10,8 @@ from ..pictures import clumpOchart
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog='mss ochart', description='D, the simulation cost n / r_min and O = cost x D '
+    p = argparse.ArgumentParser(prog='mss ochart', allow_abbrev=False,
+                                description='D, the simulation cost n / r_min and O = cost x D '
                                 'over sphere counts and radius bounds (yade-mss)')
     p.add_argument('grain')
     optionTable.addArguments(p, 'ochart')

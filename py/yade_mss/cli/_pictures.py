@@ -11,14 +11,16 @@ from ..pictures import curve, preview
 
 def main(argv=None):
     """``mss preview`` and ``mss curve``."""
-    p = argparse.ArgumentParser(prog='mss', description='pictures of clumps (yade-mss)')
+    p = argparse.ArgumentParser(prog='mss', allow_abbrev=False,
+                                description='pictures of clumps (yade-mss)')
     sub = p.add_subparsers(dest='command', required=True)
-    pv = sub.add_parser('preview', help='a clump against its grain: three views and a section, as PNG')
+    pv = sub.add_parser('preview', allow_abbrev=False,
+                        help='a clump against its grain: three views and a section, as PNG')
     pv.add_argument('grain')
     pv.add_argument('spheres')
     pv.add_argument('--title', default=None, help=argparse.SUPPRESS)  # mss generate --preview: the output's name
     optionTable.addArguments(pv, 'preview')
-    cv = sub.add_parser('curve', help='D and time against the sphere count, as PNG and CSV')
+    cv = sub.add_parser('curve', allow_abbrev=False, help='D and time against the sphere count, as PNG and CSV')
     cv.add_argument('grain')
     optionTable.addArguments(cv, 'curve')
     cv.add_argument('--spheres', dest='oldSpheres', default=None, help=argparse.SUPPRESS)  # the name before --counts

@@ -13,7 +13,8 @@ from ..spheropolygons import ochart, previewSpheropolygon, readImage, spheropoly
 
 
 def main(argv=None):
-    p = argparse.ArgumentParser(prog='mss spheropolygon', description='2-D particle images to spheropolygons '
+    p = argparse.ArgumentParser(prog='mss spheropolygon', allow_abbrev=False,
+                                description='2-D particle images to spheropolygons '
                                 '(Dobrohotoff et al. 2012)')
     p.add_argument('image', help='.npy (non-zero: particle; labels: one spheropolygon each) or .png (dark: particle)')
     optionTable.addArguments(p, 'spheropolygon')

@@ -98,5 +98,25 @@ class CommandOutputs(unittest.TestCase):
                 self.assertEqual(f.read(), data)
 
 
+    def test_no_abbreviated_option_is_taken_for_another(self):
+        # the bug: `mss batch --label 1` was read as --labels 1 (argparse's abbreviations)
+        for args in (['batch', self_path(), '--label', '1', '-o', 'x'], ['triaxial', self_path(), '--confin', '1e5',
+                                                                            '-o', 'x'],
+                     ['preview', self_path(), 's.csv', '--voxel', '3', '-o', 'x.png'],
+                     ['curve', self_path(), '--count', '4', '-o', 'x.png'],
+                     ['export', self_path(), '--format', 'pfc', '--sph', '4', '-o', 'x.p3dat'],
+                     ['ochart', self_path(), '--count', '4', '-o', 'x.png'],
+                     ['spheropolygon', self_path(), '--vert', '4', '-o', 'x.json']):
+            with self.subTest(args[0]):
+                p = subprocess.run([sys.executable, '-m', 'yade_mss'] + args, capture_output=True, text=True,
+                                   timeout=60)
+                self.assertEqual(p.returncode, 2, p.stderr)
+                self.assertIn('unrecognized arguments', p.stderr)
+
+
+def self_path():
+    return os.path.join(DATA, 'octahedron.stl')
+
+
 if __name__ == '__main__':
     unittest.main()
