@@ -172,6 +172,26 @@ TEST(MeshIo, ObjOffPlyAscii) {
     }
 }
 
+TEST(MeshIo, OffHeaderPrefixes) {
+    // 4OFF: homogeneous coordinates (the bug: w was ignored, the mesh read twice its size); nOFF of another
+    // dimension and unknown prefixes refused; COFF's colours skipped
+    const std::string p = tempPath("pre.off");
+    const std::string faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+    writeText(p, "4OFF\n4 4 0\n0 0 0 2\n2 0 0 2\n0 2 0 2\n0 0 2 2\n" + faces);
+    EXPECT_NEAR(analyzeMesh(readMesh(p)).signedVolume, 1.0 / 6.0, 1e-12);
+    writeText(p, "COFF\n4 4 0\n0 0 0 1 0 0 1\n1 0 0 1 0 0 1\n0 1 0 1 0 0 1\n0 0 1 1 0 0 1\n" + faces);
+    EXPECT_NEAR(analyzeMesh(readMesh(p)).signedVolume, 1.0 / 6.0, 1e-12);
+    writeText(p, "nOFF 3\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" + faces);
+    EXPECT_NEAR(analyzeMesh(readMesh(p)).signedVolume, 1.0 / 6.0, 1e-12);
+    for (const std::string& bad : {std::string("4OFF\n4 4 0\n0 0 0 0\n1 0 0 1\n0 1 0 1\n0 0 1 1\n") + faces,
+                                   std::string("nOFF\n4\n4 4 0\n0 0 0 0\n") + faces,
+                                   std::string("XOFF\n4 4 0\n") + faces}) {
+        writeText(p, bad);
+        EXPECT_THROW(readMesh(p), std::invalid_argument) << bad;
+    }
+    std::remove(p.c_str());
+}
+
 TEST(MeshIo, ObjIndexFormsAndBinaryPly) {
     const std::string obj = tempPath("tet2.obj"), ply = tempPath("tet_bin.ply");
     // "i/t/n" and "i//n" forms and negative (relative) indices, a quad split into two triangles

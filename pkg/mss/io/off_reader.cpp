@@ -13,13 +13,14 @@
 
 namespace mss::detail {
 
-/// Object File Format: "OFF" (or COFF, NOFF, ...: extra per-vertex data is skipped), counts, vertex lines,
-/// face lines "n i1 ... in [colour]". Binary OFF is refused.
+/// Object File Format: "[ST][C][N][4][n]OFF", counts, vertex lines, face lines "n i1 ... in [colour]".
+/// ST, C and N add data after a vertex's coordinates (skipped); 4 makes them homogeneous (x y z w: the
+/// vertex is x/w, y/w, z/w); n gives the dimension next, and only 3 is a mesh of ours. Binary OFF is refused.
 TriangleMesh readOff(const std::string& path) {
     const FileBytes buf(path);
     TriangleMesh mesh;
     long long nv = -1, nf = -1, seenV = 0, seenF = 0;
-    bool magic = false;
+    bool magic = false, homogeneous = false, dimension = false;
     std::vector<long long> poly;
     forLines(buf, [&](std::string_view line, std::size_t no) {
         auto w = words(line);
@@ -28,8 +29,35 @@ TriangleMesh readOff(const std::string& path) {
         if (!magic) {
             if (w[0].size() < 3 || w[0].substr(w[0].size() - 3) != "OFF")
                 fail(path, "not an OFF file (it must start with OFF)");
+            const std::string_view prefix = w[0].substr(0, w[0].size() - 3);
+            std::string_view rest = prefix;
+            for (std::string_view p : {"ST", "C", "N", "4", "n"})
+                if (rest.substr(0, p.size()) == p) {
+                    rest.remove_prefix(p.size());
+                    homogeneous = homogeneous || p == "4";
+                    dimension = dimension || p == "n";
+                }
+            if (!rest.empty())
+                fail(path, "not an OFF file (unknown header " + std::string(w[0]) +
+                               ": [ST][C][N][4][n]OFF is read)");
             magic = true;
             if (w.size() > 1 && w[1] == "BINARY") fail(path, "binary OFF is not supported");
+            w.erase(w.begin());
+            if (dimension) { // nOFF: the dimension comes first
+                if (w.empty()) return true;
+                long long d = 0;
+                if (!parseInt(w[0], d) || d != 3)
+                    fail(path, at + ": an OFF of dimension " + std::string(w[0]) + " (only 3-D meshes are read)");
+                dimension = false;
+                w.erase(w.begin());
+            }
+            if (w.empty()) return true;
+        }
+        if (dimension) {
+            long long d = 0;
+            if (!parseInt(w[0], d) || d != 3)
+                fail(path, at + ": an OFF of dimension " + std::string(w[0]) + " (only 3-D meshes are read)");
+            dimension = false;
             w.erase(w.begin());
             if (w.empty()) return true;
         }
@@ -45,7 +73,17 @@ TriangleMesh readOff(const std::string& path) {
             return true;
         }
         if (seenV < nv) {
-            mesh.vertices.push_back(vertexOf(w, 0, path, at));
+            Vec3 v = vertexOf(w, 0, path, at);
+            if (homogeneous) { // 4OFF: x y z w
+                double h = 0.0;
+                if (w.size() < 4 || !parseDouble(w[3], h))
+                    fail(path, at + ": a 4OFF vertex is x y z w (homogeneous coordinates)");
+                if (!(std::isfinite(h) && h != 0.0))
+                    fail(path, at + ": a 4OFF vertex's w must be a finite nonzero number");
+                v /= h;
+                if (!v.allFinite()) fail(path, at + ": x/w, y/w, z/w is not finite");
+            }
+            mesh.vertices.push_back(v);
             ++seenV;
             return true;
         }

@@ -206,12 +206,13 @@ class folderLock(object):
     """An exclusive lock on an output folder for one job at a time (``with folderLock('batch', OUT): ...``): an
     ``fcntl`` lock on OUT/.mss.lock, taken at once or refused with whose it is (process, host, since when). The
     kernel drops the lock of a process that is gone, so a stale lock file is simply taken over. The folder is
-    made if it is missing; a lock file that is a link or not a regular file is refused."""
+    made if it is missing, and removed again if the job left nothing else in it (a job refused before any work
+    leaves no folder behind); a lock file that is a link or not a regular file is refused."""
 
     NAME = '.mss.lock'
 
     def __init__(self, where, folder):
-        self.where, self.folder, self.fd = where, os.fspath(folder), None
+        self.where, self.folder, self.fd, self.made = where, os.fspath(folder), None, False
 
     def __enter__(self):
         import fcntl
@@ -220,6 +221,7 @@ class folderLock(object):
         import time
         path = os.path.join(self.folder, self.NAME)
         try:
+            self.made = not os.path.lexists(self.folder)
             os.makedirs(self.folder, exist_ok=True)
             fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW | os.O_CLOEXEC | os.O_NONBLOCK,
                          0o666 & ~umask())  # non-blocking: a FIFO planted there does not hang the open
@@ -249,7 +251,15 @@ class folderLock(object):
         return self
 
     def __exit__(self, *exc):
-        if self.fd is not None:
-            os.close(self.fd)  # releases the lock; the file stays (removing it would race a job taking it)
+        if self.fd is None:
+            return False
+        try:
+            if self.made and os.listdir(self.folder) == [self.NAME]:  # made here, and nothing came of it
+                os.remove(os.path.join(self.folder, self.NAME))
+                os.rmdir(self.folder)
+        except OSError:
+            pass
+        finally:  # otherwise the file stays: removing it would race a job taking it
+            os.close(self.fd)
             self.fd = None
         return False
