@@ -484,6 +484,15 @@ class Grading(unittest.TestCase):
             relativeBreakage((np.array([0.5]), np.array([1.0])), before, 1.0)
         with self.assertRaisesRegex(ValueError, 'cutoff > 0'):
             breakagePotential([1.0], [1.0], 0.0)
+        # the attack: mismatched lengths and negative masses gave numbers
+        with self.assertRaisesRegex(ValueError, 'same length'):
+            breakagePotential([10.0, 1.0], [1.0], 1.0)
+        with self.assertRaisesRegex(ValueError, 'masses >= 0'):
+            breakagePotential([10.0, 2.0], [2.0, -1.0], 1.0)
+        with self.assertRaisesRegex(TypeError, 'cutoff'):
+            breakagePotential([10.0], [1.0], '1')
+        with self.assertRaisesRegex(TypeError, 'before must be'):
+            relativeBreakage([1.0], before, 1.0)
 
 
 class Engine(Base):

@@ -76,8 +76,15 @@ class MssResult(object):
     """
 
     def __init__(self, centers, radii, metrics=None, grid=None, targetMass=None, source=''):
-        self.centers = np.asarray(centers, dtype=float).reshape(-1, 3)
-        self.radii = np.asarray(radii, dtype=float).reshape(-1)
+        try:
+            c, r = np.asarray(centers, dtype=float), np.asarray(radii, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError('MssResult: centres must be an (n, 3) array of numbers and radii n numbers') from None
+        if not ((c.ndim == 2 and c.shape[1] == 3) or (c.ndim == 1 and c.size % 3 == 0)) or r.ndim > 1:
+            raise ValueError('MssResult: centres must be an (n, 3) array and radii n numbers, got shapes %s and %s'
+                             % (c.shape, r.shape))
+        self.centers = c.reshape(-1, 3)
+        self.radii = r.reshape(-1)
         if len(self.centers) != len(self.radii):
             raise ValueError('MssResult: %d centres but %d radii' % (len(self.centers), len(self.radii)))
         if not (np.all(np.isfinite(self.centers)) and np.all(np.isfinite(self.radii)) and np.all(self.radii > 0)):

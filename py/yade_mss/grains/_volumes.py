@@ -9,7 +9,7 @@ import os
 import numpy as np
 
 from .. import _mss
-from ..base import number, readNpy, readTiff
+from ..base import integer, number, readNpy, readTiff
 
 VOLUME_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'voxels')  # the format table's
 
@@ -89,7 +89,9 @@ def regions(labels, only=None, memoryLimit=None):
     if labels.min() < 0:
         raise ValueError('labels must be >= 0 (0 is background), found %d' % labels.min())
     top = int(labels.max()) if labels.size else 0
-    wanted = None if only is None else set(int(x) for x in only)
+    if only is not None and (isinstance(only, (str, bytes)) or not isinstance(only, (list, tuple, set, np.ndarray))):
+        raise TypeError('regions: only must be a list of integers, got %r' % (only,))  # '12' is not [1, 2]
+    wanted = None if only is None else set(integer('regions', 'only', x, 0, None) for x in only)
     out = []
     if top <= max(DENSE_LABELS, labels.size // 64) and labels.dtype.isnative and labels.flags.aligned:
         boxes = enumerate(ndimage.find_objects(labels), 1)

@@ -223,6 +223,8 @@ def checkLabelled(vol, name, segment=False, memoryLimit=None):
     of all its pieces. *segment*: the scan is meant to be binary; refused if it is not."""
     value = binaryValue(vol, memoryLimit)
     if segment:
+        if value is None and not np.any(vol):
+            raise ValueError('batch: %s holds no solid voxel: every voxel is 0 (the background)' % name)
         if value is None:
             raise ValueError('batch: %s: segment applies to a binary scan (0 and one other value); this volume holds '
                              'labels: give it without --segment' % name)
@@ -268,7 +270,12 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
         gap = options.get('contactGap', 1.0)
         found = scanContacts(vol, h, org, limit, gap) if options.get('contacts', True) else None
         points = contactsByLabel(found or [])
-        for reg in regions(vol, labels, limit):
+        found_regions = regions(vol, labels, limit)
+        if not found_regions:
+            raise ValueError('batch: %s holds no grain: %s' % (
+                files[0], 'none of the labels %s is in it' % labels if labels else
+                'every voxel is 0 (the background)'))
+        for reg in found_regions:
             k = 'label_%d' % reg.label
             base = dict(_blank(), label=reg.label, voxels=reg.voxels, touches_border=int(reg.touchesBorder))
             if reg.voxels < minVoxels:

@@ -654,7 +654,16 @@ def breakagePotential(sizes, masses, cutoff):
     :param masses: their masses
     :param float cutoff: the size below which grains count as broken as far as they can be
     """
-    sizes, masses = np.asarray(sizes, dtype=float), np.asarray(masses, dtype=float)
+    try:
+        sizes, masses = np.asarray(sizes, dtype=float), np.asarray(masses, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError('breakagePotential: sizes and masses must be lists of numbers') from None
+    cutoff = number('breakagePotential', 'cutoff', cutoff)
+    if sizes.ndim != 1 or masses.ndim != 1 or sizes.shape != masses.shape:
+        raise ValueError('breakagePotential: sizes and masses must be two lists of the same length, got %s and %s'
+                         % (sizes.shape, masses.shape))
+    if not (np.all(np.isfinite(sizes)) and np.all(np.isfinite(masses)) and np.all(masses >= 0)):
+        raise ValueError('breakagePotential: sizes and masses must be finite, masses >= 0')
     if not (cutoff > 0 and sizes.size and np.all(sizes > 0) and masses.sum() > 0):
         raise ValueError('breakagePotential: sizes and masses of at least one grain, and a cutoff > 0')
     return float((masses * np.maximum(0.0, np.log10(sizes / cutoff))).sum() / masses.sum())
@@ -668,6 +677,9 @@ def relativeBreakage(before, after, cutoff):
     :param after: (sizes, masses) after
     :param float cutoff: as in :func:`breakagePotential`
     """
+    for name, g in (('before', before), ('after', after)):
+        if isinstance(g, (str, bytes)) or not hasattr(g, '__len__') or len(g) != 2:
+            raise TypeError('relativeBreakage: %s must be (sizes, masses), as grainSizes gives, got %r' % (name, g))
     bp = breakagePotential(before[0], before[1], cutoff)
     if not bp > 0:
         raise ValueError('relativeBreakage: no grain above the cutoff before: no breakage potential')

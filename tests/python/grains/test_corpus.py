@@ -3,6 +3,8 @@ as the command line, never a crash."""
 import os
 import unittest
 
+import numpy as np
+
 import yade_mss
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -43,6 +45,29 @@ class Corpus(unittest.TestCase):
             self.assertAlmostEqual(r.radii[0] / scale, 1.0, delta=0.05)
         full = yade_mss.generate(os.path.join(CORPUS, 'files', 'full.npy'), nSpheres=1)  # solid up to its border
         self.assertEqual(len(full), 1)
+
+
+
+class Arguments(unittest.TestCase):
+    """The Python API's arguments by name (the attack: truthy strings, internal exceptions)."""
+
+    def test_regions_only_is_a_list(self):
+        from yade_mss import regions
+        L = np.zeros((5, 5, 5), int)
+        L[1, 1, 1], L[2, 2, 2], L[3, 3, 3] = 1, 2, 12
+        for only in ('12', 12, b'12'):
+            with self.assertRaisesRegex(TypeError, 'only must be a list'):
+                regions(L, only=only)
+        self.assertEqual([r.label for r in regions(L, only=[12])], [12])
+        self.assertEqual([r.label for r in regions(L, only=[1, 2])], [1, 2])
+
+    def test_a_result_of_the_wrong_shape_is_named(self):
+        from yade_mss import MssResult
+        with self.assertRaisesRegex(ValueError, r'MssResult: centres must be an \(n, 3\) array'):
+            MssResult(np.array(1.0), np.array(1.0))
+        with self.assertRaisesRegex(TypeError, 'MssResult'):
+            MssResult([['a', 'b', 'c']], [1.0])
+        self.assertEqual(len(MssResult([0, 0, 0], [1.0])), 1)
 
 
 if __name__ == '__main__':
