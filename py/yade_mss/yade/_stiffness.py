@@ -6,14 +6,18 @@ a clump pair grows with the sphere count (17x from 10 to 70 spheres, the literat
 over-stiffness: Kruggel-Emden et al. 2008, Kodam et al. 2009, Hoehner et al. 2011). With 'grain', a pass over the
 interactions every few steps (:func:`contactStiffnessEngine`) gives each pair of bodies one contact's stiffness
 of their grains: the same law with each grain's equivalent radius R = (3 M / (4 pi rho))^(1/3) in place of a
-sphere's (a wall's or facet's radius infinite, a plain sphere's its own), shared among the pair's member
-contacts: each member contact i gets kn_i = K d_max / sum_j d_j, so that the pair's
-normal force, sum_i kn_i d_i, is K d_max, d_max the deepest member overlap (the grains' overlap, as more
-spheres engage). The shear stiffness of each contact scales with its kn (YADE's ks / kn kept), and the
-Coulomb limit stays per contact, mu times its normal force, so the pair slides at mu times its normal force.
+sphere's (a wall's or facet's radius infinite, a plain sphere's its own), K = 2 E1 R1 E2 R2 / (E1 R1 + E2 R2),
+shared among the pair's member contacts as they come: the k-th gets K / k^3 (the first K, the second K / 8,
+...), so that a pair is K to 1.2 K stiff whatever the sphere count. The shear stiffness of each contact scales
+with its kn (YADE's ks / kn kept), and the Coulomb limit stays per contact, mu times its normal force, so the pair
+slides at mu times its normal force. (Sharing K by each contact's share of the overlap at every step, K d_max /
+sum d_j, is exact at each step but not conservative: a contact's stiffness changing under its overlap pumps
+energy into the motion, and a compaction never settled.)
 
-What it cannot fix: a concave contact (two lobes of one grain on another) is one pair here, with the deepest
-overlap of either lobe; and between passes a new member contact carries YADE's own stiffness.
+What it cannot fix: a concave contact (two lobes of one grain on another) is one pair here, so its second lobe
+gets K / 8 or less, not K; the stiffness of a pair does not grow as more of its surfaces engage (a pair is a
+linear spring of its first contact's stiffness, near enough); and between passes a new member contact carries
+YADE's own stiffness (a new contact starts at zero overlap, so for a few steps it carries little force).
 
 A clump asks for it through its members' material: a twin of the material whose label ends with MARK (saved
 with the scene, taken by the pieces of a clump that breaks; YADE reads nothing else of a label).
@@ -60,17 +64,19 @@ def grainMaterial(mat):
 
 
 class _Pass(object):
-    """Which members belong to clumps asking for it, with each clump's (id, R, E); made again when the bodies
-    change."""
+    """What the pass knows of its scene: which members belong to clumps asking for it, with each clump's (id, R,
+    E), made again when the bodies change; the step of its last look; the contacts it gave a stiffness, by pair
+    of bodies. A new or loaded scene starts afresh."""
 
     REFRESH = 100  # passes between two looks at the bodies, besides a change of their number
+    TAG = 'mss.stiffnessPass'  # a scene tag naming the pass that looked at it (a new or loaded scene: none)
 
     def __init__(self):
         self.key = None
         self.calls = 0
         self.members = {}
-
-    TAG = 'mss.stiffnessPass'  # a scene tag naming the pass that looked at it (a new or loaded scene: none)
+        self.last = None
+        self.pairs = {}
 
     def refresh(self, O):
         self.calls += 1
@@ -78,6 +84,8 @@ class _Pass(object):
         key = (len(O.bodies), tag)
         if key == self.key and self.calls % self.REFRESH:
             return
+        if self.key is None or tag != self.key[1]:  # another scene: nothing of the last one holds
+            self.last, self.pairs = None, {}
         token = '%d.%d' % (id(self), self.calls)
         O.tags[self.TAG] = token
         self.key = (len(O.bodies), token)
@@ -112,21 +120,41 @@ def _side(O, pass_, i):
 
 
 def contactStiffnessStep():
-    """The pass (what :func:`contactStiffnessEngine` runs): every pair of bodies of which one at least is a
-    'grain' clump gets one contact's stiffness of its grains, shared among its member contacts."""
+    """The pass (what :func:`contactStiffnessEngine` runs): each new contact of a pair of bodies of which one at
+    least is a 'grain' clump gets its share of one contact's stiffness of the pair's grains.
+
+    A contact's stiffness is set once, when it is new: the k-th contact of a pair (counting those it holds
+    already, the new ones by depth) gets K / k^3, so the pair's stiffness lies between K and 1.2 K however many
+    members touch, and each contact stays a linear spring (nothing is pumped into the motion). New means made
+    real since the last pass (``iterMadeReal``): one look at each real interaction, the rest only for the new
+    ones. On its first look at a scene (new, or loaded) the new contacts are those that still have the stiffness
+    YADE's Ip2 gave them."""
     utils, O = _yade()
     p = _PASS
     p.refresh(O)
-    if not p.members:
+    if not p.members or p.last == O.iter:
         return
     members = p.members
+    its = O.interactions.all(True)
+    first = p.last is None
+    if first:
+        fresh = [i for i in its if (i.id1 in members or i.id2 in members) and _isFresh(i, O)]
+        seen = set((i.id1, i.id2) for i in fresh)
+        for i in its:  # what a saved scene's contacts already had
+            if (i.id1 in members or i.id2 in members) and (i.id1, i.id2) not in seen:
+                a, b = _side(O, p, i.id1), _side(O, p, i.id2)
+                p.pairs.setdefault((a[0], b[0]), set()).add((i.id1, i.id2))
+    else:
+        last = p.last
+        fresh = [i for i in its if i.iterMadeReal > last and (i.id1 in members or i.id2 in members)]
+    p.last = O.iter
+    if not fresh:
+        return
     groups = {}
-    for i in O.interactions:
-        if not i.isReal or (i.id1 not in members and i.id2 not in members):
-            continue
+    for i in fresh:
         a, b = _side(O, p, i.id1), _side(O, p, i.id2)
         groups.setdefault((a, b), []).append(i)
-    for (a, b), its in groups.items():
+    for (a, b), new in groups.items():
         (ra, ea), (rb, eb) = a[1:], b[1:]
         if math.isinf(rb):
             K = 2.0 * ea * ra
@@ -134,19 +162,26 @@ def contactStiffnessStep():
             K = 2.0 * eb * rb
         else:
             K = 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb)
-        # a contact's stiffness is set once, when it is new (still YADE's own, from its spheres' radii): the
-        # k-th contact of the pair gets K / k^3, so the pair's stiffness lies between K and 1.2 K however many
-        # members touch, and each contact stays a linear spring (nothing is pumped into the motion)
-        fresh = [i for i in its if _isFresh(i, O)]
-        if not fresh:
-            continue
-        k = len(its) - len(fresh)
-        for i in sorted(fresh, key=lambda i: -i.geom.penetrationDepth):
+        held = p.pairs.setdefault((a[0], b[0]), set())
+        renewed = set((i.id1, i.id2) for i in new)
+        for ids in list(held):  # those that broke, or broke and came back (new again), are not held
+            if ids in renewed or not _real(O, ids):
+                held.discard(ids)
+        k = len(held)
+        for i in sorted(new, key=lambda i: -i.geom.penetrationDepth):
             k += 1
             ph = i.phys
             kn = K / k ** 3
             ph.ks *= kn / ph.kn
             ph.kn = kn
+            held.add((i.id1, i.id2))
+
+
+def _real(O, ids):
+    try:
+        return O.interactions.has(*ids) and O.interactions[ids].isReal
+    except (IndexError, KeyError, RuntimeError):
+        return False
 
 
 def _isFresh(i, O):
