@@ -242,9 +242,35 @@ bool isVoxelFile(const std::string& path) {
     return f != nullptr;
 }
 
+/// Refuses a --scale that makes a grain's coordinates too large (@p far: the farthest coordinate, scaled) or its
+/// size underflow (@p size, scaled: under 1e-290 a double has lost its digits, the grain voxelises to nothing
+/// and a good mesh reads as degenerate), naming --scale rather than a vertex or the triangles.
+std::string shortNumber(double x) {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+}
+
+void checkScaled(double scale, double size, double far, const std::string& what) {
+    const std::string hint = ": --scale is the unit conversion of the coordinates (1e-3 for millimetres to metres)";
+    std::ostringstream s;
+    s << "--scale " << scale << ": " << what;
+    if (!std::isfinite(size) || !(far <= 1e60))
+        throw std::invalid_argument(s.str() + " times the scale reaches " + shortNumber(far) +
+                                    ", beyond 1e60 (where a grain's inertia, as size^5, overflows)" + hint);
+    if (size < 1e-290) {
+        s << " times the scale is " << size << ", under 1e-290: the grain would vanish";
+        throw std::invalid_argument(s.str() + hint);
+    }
+}
+
 /// A voxel volume's voxel edge and origin as read, times --scale.
 double scaledVoxelSize(const mss::Settings& st) {
-    return (st.voxelSize > 0 ? st.voxelSize : 1.0) * st.scale;
+    const double h = (st.voxelSize > 0 ? st.voxelSize : 1.0);
+    if (st.scale != 1.0)
+        checkScaled(st.scale, h * st.scale, st.origin.cwiseAbs().maxCoeff() * st.scale,
+                    "the voxel edge " + shortNumber(h));
+    return h * st.scale;
 }
 
 mss::VoxelGrid readVoxels(const mss::Settings& st, const std::string& path) {
@@ -254,8 +280,18 @@ mss::VoxelGrid readVoxels(const mss::Settings& st, const std::string& path) {
 /// A mesh file with its vertices times --scale (a mesh in millimetres to metres).
 mss::TriangleMesh readScaledMesh(const mss::Settings& st, const std::string& path) {
     mss::TriangleMesh mesh = mss::readMesh(path);
-    if (st.scale != 1.0)
+    if (st.scale != 1.0 && !mesh.vertices.empty()) {
+        mss::Vec3 lo = mesh.vertices[0], hi = lo;
+        double far = 0.0;
+        for (const mss::Vec3& v : mesh.vertices) {
+            lo = lo.cwiseMin(v);
+            hi = hi.cwiseMax(v);
+            far = std::max(far, v.cwiseAbs().maxCoeff());
+        }
+        const double extent = (hi - lo).maxCoeff();
+        checkScaled(st.scale, extent * st.scale, far * st.scale, "the mesh's extent " + shortNumber(extent));
         for (mss::Vec3& v : mesh.vertices) v *= st.scale;
+    }
     return mesh;
 }
 

@@ -114,12 +114,37 @@ def readGrain(source, voxelSize=None, origin=None, label=None, scale=None):
     s = _unscaled(source, voxelSize, origin, label)
     if scale is None or float(scale) == 1.0:
         return s
+    k = float(scale)
     if isinstance(s, Mesh):
-        s.vertices = s.vertices * float(scale)
+        v = np.asarray(s.vertices, dtype=float)
+        extent = float(np.ptp(v, axis=0).max()) if v.size else 0.0
+        _checkScaled(k, extent * k, float(np.abs(v).max()) * k if v.size else 0.0, 'the mesh\'s extent %g' % extent)
+        s.vertices = v * k
     else:
-        s.voxelSize *= float(scale)
-        s.origin = [float(scale) * x for x in s.origin]
+        _checkScaled(k, s.voxelSize * k, max([abs(x) for x in s.origin] + [0.0]) * k,
+                     'the voxel edge %g' % s.voxelSize)
+        s.voxelSize *= k
+        s.origin = [k * x for x in s.origin]
     return s
+
+
+# below this, a length has lost its digits (a subnormal double has fewer than 52 bits): a grain that small
+# voxelises to nothing and its triangles read as degenerate
+TINY = 1e-290
+HUGE = 1e60  # the C++ core's bound on a coordinate
+
+
+def _checkScaled(scale, size, far, what):
+    """Refuses a scale that makes a grain's coordinates too large or its size underflow, naming the scale (not a
+    non-finite vertex or a degenerate mesh, which a good file is not)."""
+    if not np.isfinite(size) or not far <= HUGE:
+        raise ValueError('scale %g: %s times the scale reaches %g, beyond %g (where a grain\'s inertia, as size^5, '
+                         'overflows): scale is the unit conversion of the coordinates (1e-3 for millimetres to '
+                         'metres)' % (scale, what, far, HUGE))
+    if size < TINY:
+        raise ValueError('scale %g: %s times the scale is %g, under %g: the grain would vanish; scale is the '
+                         'unit conversion of the coordinates (1e-3 for millimetres to metres)'
+                         % (scale, what, size, TINY))
 
 
 def _unscaled(source, voxelSize=None, origin=None, label=None):
