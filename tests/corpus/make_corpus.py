@@ -150,3 +150,4 @@ w('one_sphere.csv', 'x,y,z,r\n0.5,0.5,0.5,0.5\n')
 _tet_faces = '3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n'
 w('homogeneous_zero_w.off', '4OFF\n4 4 0\n0 0 0 0\n1 0 0 1\n0 1 0 1\n0 0 1 1\n' + _tet_faces)
 w('dimension_four.off', 'nOFF\n4\n4 4 0\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n' + _tet_faces)
+w('tiny_on_unit.csv', 'x,y,z,r\n0,0,0,1\n1,0,0,1e-9\n')

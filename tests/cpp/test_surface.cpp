@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <cstdio>
 #include <functional>
 #include <random>
@@ -238,5 +239,22 @@ TEST(MeshWriters, ReadBackByTheReaders) {
     }
     expectError([&] { writeMesh(m, base + ".off"); },
                 "unknown extension '.off' (expected .stl, .obj or .ply)");
+    // what floats cannot hold (the bug: STLs with 696 to 279,921 unpaired edges, written without a word): a
+    // tiny sphere on a unit one, two unit spheres near 1e6; refused as STL, closed as OBJ and PLY
+    SphereSet tiny, far;
+    tiny.add(Vec3(0, 0, 0), 1.0);
+    tiny.add(Vec3(1, 0, 0), 1e-9);
+    far.add(Vec3(1e6, 1e6, 1e6), 1.0);
+    far.add(Vec3(1e6 + 1.5, 1e6, 1e6), 1.0);
+    for (const SphereSet* set : {&tiny, &far}) {
+        const TriangleMesh u = unionSurface(*set);
+        expectError([&] { writeMesh(u, base + ".stl"); }, "binary STL holds single-precision floats");
+        EXPECT_FALSE(std::ifstream(base + ".stl").good()); // nothing written
+        for (const std::string ext : {".obj", ".ply"}) {
+            writeMesh(u, base + ext);
+            EXPECT_TRUE(analyzeMesh(readMesh(base + ext)).closed) << ext;
+            std::remove((base + ext).c_str());
+        }
+    }
     expectError([&] { writeMesh(TriangleMesh{}, base + ".stl"); }, "writeMesh");
 }

@@ -3,11 +3,15 @@
 // its definition; PLY is written in doubles.
 #include "mss/io/mesh_writers.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <iomanip>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace mss::detail {
 
@@ -19,12 +23,47 @@ template <class T> void put(std::string& out, T v) {
     out.append(b, sizeof(T));
 }
 
+/// Refuses a mesh that binary STL's single-precision floats cannot hold: a reader merges the corners with the
+/// same coordinates, so two distinct vertices that round to the same floats (spheres far from the origin, a
+/// tiny sphere on a large one), or a triangle whose corners do, would read back as an open or broken mesh.
+void checkFloatsHold(const TriangleMesh& m) {
+    using F3 = std::array<float, 3>;
+    std::vector<std::pair<F3, std::size_t>> rounded(m.vertices.size());
+    for (std::size_t i = 0; i < m.vertices.size(); ++i) {
+        const Vec3& v = m.vertices[i];
+        rounded[i] = {{float(v[0]), float(v[1]), float(v[2])}, i};
+        for (float x : rounded[i].first)
+            if (!std::isfinite(x))
+                throw std::invalid_argument("writeMesh: vertex " + std::to_string(i) +
+                                            " is beyond single precision (3.4e38): binary STL cannot hold it; "
+                                            "write .obj or .ply (full precision)");
+    }
+    std::sort(rounded.begin(), rounded.end());
+    std::size_t merged = 0, example = 0;
+    for (std::size_t k = 1; k < rounded.size(); ++k)
+        if (rounded[k].first == rounded[k - 1].first &&
+            m.vertices[rounded[k].second] != m.vertices[rounded[k - 1].second]) {
+            if (merged++ == 0) example = rounded[k].second;
+        }
+    if (merged > 0) {
+        const Vec3& v = m.vertices[example];
+        std::ostringstream s;
+        s << std::setprecision(6) << "writeMesh: binary STL holds single-precision floats, and " << merged << " of "
+          << m.vertices.size() << " vertices would merge with another when rounded to them (vertex " << example
+          << " at " << v[0] << ", " << v[1] << ", " << v[2]
+          << "): read back, the surface would be open; write .obj or .ply (full precision), or move the spheres "
+             "nearer the origin";
+        throw std::invalid_argument(s.str());
+    }
+}
+
 } // namespace
 
 std::string formatStl(const TriangleMesh& m) {
     if (m.triangles.size() > 0xffffffffu)
         throw std::invalid_argument("writeMesh: " + std::to_string(m.triangles.size()) +
                                     " triangles do not fit binary STL's 32-bit count");
+    checkFloatsHold(m);
     std::string out(80, ' ');
     const char head[] = "binary STL written by yade-mss";
     std::memcpy(out.data(), head, sizeof(head) - 1);
