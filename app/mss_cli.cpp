@@ -588,7 +588,11 @@ int cmdInfo(const Args& a) {
     std::cout << "oriented      " << (i.consistentlyOriented ? "yes" : "no")
               << (i.signedVolume < 0 ? " (inside out)" : "") << "\n";
     std::cout << "degenerate    " << i.degenerateTriangles << "\n";
-    std::cout << "self_intersections " << mss::countSelfIntersections(mesh) << "\n";
+    try {
+        std::cout << "self_intersections " << mss::countSelfIntersections(mesh) << "\n";
+    } catch (const std::invalid_argument& e) { // the rest of the report still holds
+        std::cout << "not counted (" << e.what() << ")\n";
+    }
     std::cout << "volume        " << std::abs(i.signedVolume) << "\n";
     std::cout << "bbox_min      " << i.lower.x() << " " << i.lower.y() << " " << i.lower.z() << "\n";
     std::cout << "bbox_max      " << i.upper.x() << " " << i.upper.y() << " " << i.upper.z() << "\n";

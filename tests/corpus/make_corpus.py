@@ -151,3 +151,6 @@ _tet_faces = '3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n'
 w('homogeneous_zero_w.off', '4OFF\n4 4 0\n0 0 0 0\n1 0 0 1\n0 1 0 1\n0 0 1 1\n' + _tet_faces)
 w('dimension_four.off', 'nOFF\n4\n4 4 0\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n' + _tet_faces)
 w('tiny_on_unit.csv', 'x,y,z,r\n0,0,0,1\n1,0,0,1e-9\n')
+_cube8 = ''.join('v %d %d %d\n' % (i & 1, (i >> 1) & 1, (i >> 2) & 1) for i in range(8))
+w('polygon_repeats.obj', _cube8 + 'f ' + ' '.join(str(1 + i % 8) for i in range(24)) + '\n')
+w('repeated_faces.obj', 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' + 'f 2 3 4\n' * 50)

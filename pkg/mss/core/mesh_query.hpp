@@ -54,7 +54,9 @@ private:
 };
 
 /// Number of pairs of triangles that intersect without sharing a vertex (self-intersections), through an AABB
-/// tree: O(T log T) typical. Stops counting at @p limit.
+/// tree: O(T log T) typical. Stops counting at @p limit. Triangles piled on each other (a face repeated
+/// thousands of times) make every query meet them all: past 20,000,000 candidate pairs it throws
+/// std::invalid_argument saying so, rather than run for hours.
 std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t limit = 1000000);
 
 } // namespace mss

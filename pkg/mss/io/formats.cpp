@@ -10,9 +10,12 @@
 #include "mss/io/sphere_writers.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <fstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace mss {
 
@@ -74,6 +77,33 @@ std::string formatList(FileKind kind, bool writable) {
     return out;
 }
 
+namespace {
+
+/// A face repeated (the same three corners, in any order) counts twice in every winding number and meets all
+/// its copies in every query: 10^5 copies of one face ran for hours. A mesh's faces are distinct.
+void refuseRepeatedFaces(const TriangleMesh& mesh, const std::string& path) {
+    std::vector<std::pair<std::array<int, 3>, std::size_t>> keys(mesh.triangles.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        std::array<int, 3> t = mesh.triangles[i];
+        std::sort(t.begin(), t.end());
+        keys[i] = {t, i};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::size_t repeated = 0, first = 0, again = 0;
+    for (std::size_t k = 1; k < keys.size(); ++k)
+        if (keys[k].first == keys[k - 1].first && keys[k].first[0] != keys[k].first[1] &&
+            keys[k].first[1] != keys[k].first[2] && repeated++ == 0) {
+            first = keys[k - 1].second;
+            again = keys[k].second;
+        }
+    if (repeated > 0)
+        detail::fail(path, std::to_string(repeated) + " faces repeat another (face " + std::to_string(again) +
+                               " has the corners of face " + std::to_string(first) +
+                               "): a mesh's faces are distinct; remove the copies (MeshLab: Remove Duplicate Faces)");
+}
+
+} // namespace
+
 TriangleMesh readMesh(const std::string& path) {
     detail::requireRegularFile("readMesh", path); // first: a directory or device says what it is
     const FileFormat* f = findFormat(path, FileKind::Mesh);
@@ -86,6 +116,7 @@ TriangleMesh readMesh(const std::string& path) {
     probe.close();
     TriangleMesh mesh = f->readMesh(path);
     validateMesh(mesh, "readMesh: " + path);
+    refuseRepeatedFaces(mesh, path);
     return mesh;
 }
 

@@ -17,6 +17,15 @@ void addPolygon(TriangleMesh& mesh, const std::vector<long long>& poly, const st
         if (c < 0 || c >= static_cast<long long>(mesh.vertices.size()))
             fail(path, where + ": a face refers to vertex " + std::to_string(c) + " of " +
                            std::to_string(mesh.vertices.size()));
+    if (poly.size() > 3) { // a polygon visits each corner once: one that repeats them piles its fan's
+        // triangles on each other (10^5 repeated indices: hours in the queries that meet them all)
+        std::vector<long long> sorted(poly);
+        std::sort(sorted.begin(), sorted.end());
+        const auto twice = std::adjacent_find(sorted.begin(), sorted.end());
+        if (twice != sorted.end())
+            fail(path, where + ": a face of " + std::to_string(poly.size()) + " corners visits vertex " +
+                           std::to_string(*twice) + " more than once (a polygon's corners are distinct)");
+    }
     for (std::size_t c = 2; c < poly.size(); ++c)
         mesh.triangles.push_back(
             {static_cast<int>(poly[0]), static_cast<int>(poly[c - 1]), static_cast<int>(poly[c])});
