@@ -2,6 +2,7 @@
 (a Voronoi ball, packed balls cut by a marker watershed, separated balls)."""
 
 import math
+import warnings
 
 import numpy as np
 
@@ -96,8 +97,9 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
     :param size: range of the ellipsoids' semi-axes, voxels
     :param int seed: random seed
     :param int gap: least number of empty voxels between two grains
-    :param int maxTries: placements tried before giving up on more grains
-    :return: int32 array, labels 1..n (n may fall short of *grains* if they do not fit)
+    :param int maxTries: placements tried before giving up on more grains (it gives up sooner, with a warning,
+        after PATIENCE tries in a row fail: the volume is full)
+    :return: int32 array, labels 1..n (n may fall short of *grains* if they do not fit: then a warning says so)
     """
     func = 'syntheticSpecimen'
     if isinstance(shape, (str, bytes)) or not hasattr(shape, '__len__') or len(shape) != 3:
@@ -116,10 +118,11 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
     rng = np.random.default_rng(integer(func, 'seed', seed, 0, INT64_MAX))
     labels = np.zeros(shape, dtype=np.int32)
     grown = np.zeros(shape, dtype=bool)  # grains dilated by the gap: where no new grain may go
-    placed = 0
+    placed, missed = 0, 0
     for _ in range(maxTries):
-        if placed == grains:
+        if placed == grains or missed >= PATIENCE:
             break
+        missed += 1
         R = randomRotation(rng)
         parts = [(np.zeros(3), rng.uniform(lo, hi, 3))]
         for _ in range(rng.integers(1, 3)):
@@ -129,6 +132,8 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
         box = [slice(max(0, int(centre[d]) - reach), min(shape[d], int(centre[d]) + reach + 1)) for d in range(3)]
         if any(s.stop - s.start < 2 for s in box):
             continue
+        if grown[tuple(min(shape[d] - 1, int(centre[d])) for d in range(3))]:
+            continue  # its centre is in a grain's reach: it cannot fit (the test below, at a glance)
         grid = np.stack(np.meshgrid(*[np.arange(s.start, s.stop) for s in box], indexing='ij'), axis=-1) - centre
         local = grid.dot(R)  # coordinates in the grain's frame
         inside = np.zeros(grid.shape[:3], dtype=bool)
@@ -140,6 +145,15 @@ def syntheticSpecimen(shape=(160, 160, 160), grains=40, size=(7, 14), seed=1, ga
         if inside.sum() < 50 or (grown[tuple(box)] & near).any():
             continue
         placed += 1
+        missed = 0
         labels[tuple(box)][inside] = placed
         grown[tuple(box)] |= near
+    if placed < grains:
+        warnings.warn('syntheticSpecimen: %d of %d grains placed: the rest do not fit (%s in a %s volume, %d '
+                      'voxels apart; %d tries in a row failed): a larger shape, fewer or smaller grains, or a '
+                      'smaller gap' % (placed, grains, 'semi-axes %g to %g' % (lo, hi), 'x'.join(map(str, shape)),
+                                       gap, missed), stacklevel=2)
     return labels
+
+
+PATIENCE = 300  # placements failing in a row before syntheticSpecimen gives up (the volume is as full as it gets)

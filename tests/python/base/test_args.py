@@ -185,6 +185,18 @@ class Archives(unittest.TestCase):
                 syntheticSpecimen(**dict({'shape': (30, 30, 30), 'grains': 2}, **kw))
             self.assertIn(fragment, str(ctx.exception))
 
+    def test_grains_that_cannot_fit_give_up_with_a_warning(self):
+        # the bug: 60 grains of 8 to 14 voxels in 40^3 ran past 60 s, then returned fewer without a word
+        import warnings
+        from yade_mss import syntheticSpecimen
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter('always')
+            L = syntheticSpecimen(shape=(40, 40, 40), grains=60, size=(8, 14))
+        said = [str(w.message) for w in caught if 'syntheticSpecimen' in str(w.message)]
+        self.assertEqual(len(said), 1)
+        self.assertIn('%d of 60 grains placed: the rest do not fit' % L.max(), said[0])
+        self.assertLess(L.max(), 60)
+
 
 class Checks(unittest.TestCase):
     def test_integer(self):
