@@ -154,3 +154,6 @@ w('tiny_on_unit.csv', 'x,y,z,r\n0,0,0,1\n1,0,0,1e-9\n')
 _cube8 = ''.join('v %d %d %d\n' % (i & 1, (i >> 1) & 1, (i >> 2) & 1) for i in range(8))
 w('polygon_repeats.obj', _cube8 + 'f ' + ' '.join(str(1 + i % 8) for i in range(24)) + '\n')
 w('repeated_faces.obj', 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n' + 'f 2 3 4\n' * 50)
+_disc = np.zeros((20, 20), dtype=np.uint8)
+_disc[5:15, 5:15] = 1
+np.save(os.path.join(D, 'square_2d.npy'), _disc)

@@ -92,6 +92,7 @@ def clumpOchart(grain, output, counts=None, radii='0.05:0.6', points=6, radiusPo
     if rhi > 1:
         raise ValueError('ochart: radii are fractions of the largest inscribed radius, at most 1, got %s:%s'
                          % (rlo, rhi))
+    _refuseForeignTable(os.path.splitext(os.fspath(output))[0] + '.csv')
     s = readGrain(grain, voxelSize, origin, label, scale)
     mesh = isinstance(s, Mesh)
     kw = {'resolution': resolution} if mesh else {'voxelSize': s.voxelSize, 'origin': s.origin}
@@ -155,6 +156,21 @@ def clumpOchart(grain, output, counts=None, radii='0.05:0.6', points=6, radiusPo
         best['result'].save(base + '_best.csv')
     _figure(rows, ns, rs, output, getattr(s, 'name', 'grain'), dice, best, mesh, scoreResolution)
     return rows, best
+
+
+def _refuseForeignTable(path):
+    """Before any work: OUT.csv, which the chart writes beside its PNG, is replaced only when it is an O-chart
+    table already (a rerun); any other file there is the user's (the bug: ``-o s.png`` wrote over s.csv)."""
+    if not os.path.lexists(path):
+        return
+    try:
+        with open(path, 'rb') as f:
+            first = f.read(4096).split(b'\n', 1)[0].strip()
+    except OSError as e:
+        raise ValueError('ochart: %s (its table, beside the PNG): %s' % (path, e))
+    if first.decode('utf-8', 'replace') != ','.join(_COLUMNS):
+        raise ValueError('ochart: %s exists and is not an O-chart table: the chart writes its table there; not '
+                         'overwritten: name another -o, or move the file' % path)
 
 
 def _figure(rows, ns, rs, path, name, dice, best, mesh, scoreResolution):

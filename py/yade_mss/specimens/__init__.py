@@ -6,8 +6,9 @@ functions); synthetic specimens made as real pipelines make them, for tests and 
 from ._assembly import Assembly, mssAssembly
 from ._batch import Batch, GrainTask, batch, checkLabelled, grainRecord, makeTasks, runGrain
 from ._manifest import read as readManifest
-from ._pools import clusterSecurity, freeCores
+from ._pools import checkScheduler, clusterSecurity, freeCores
 from ._synthetic import packedSpecimen, syntheticSpecimen, voronoiBall
 
-__all__ = ['Assembly', 'mssAssembly', 'Batch', 'GrainTask', 'batch', 'checkLabelled', 'clusterSecurity', 'freeCores',
+__all__ = ['Assembly', 'mssAssembly', 'Batch', 'GrainTask', 'batch', 'checkLabelled', 'checkScheduler',
+           'clusterSecurity', 'freeCores',
            'grainRecord', 'makeTasks', 'readManifest', 'runGrain', 'packedSpecimen', 'syntheticSpecimen', 'voronoiBall']

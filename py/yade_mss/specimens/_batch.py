@@ -28,7 +28,7 @@ from ..exports import MAX_TEMPLATES, writeTemplates
 from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, MssResult, binaryValue, contactsByLabel, generateWith,
                       optionTable, pieces, readVolume, regions, scanContacts, segmentBinary)
 from . import _manifest, _report
-from ._pools import WORKER_DIED, executor, freeCores
+from ._pools import WORKER_DIED, checkScheduler, executor, freeCores
 from ._report import COLUMNS
 
 TOO_SMALL = 'exceeds the largest inscribed radius'  # the core's message when rMin leaves a grain no sphere
@@ -498,6 +498,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
                                                                              'threads')])
     inputs = _checkedInputs(inputs)
+    checkScheduler('batch', scheduler, security)
     segment, excludeBorder, previews, progress = (flag('batch', n, v) for n, v in (
         ('segment', segment), ('excludeBorder', excludeBorder), ('previews', previews), ('progress', progress)))
     minVoxels = integer('batch', 'minVoxels', minVoxels, 0, None)

@@ -57,6 +57,34 @@ def clusterSecurity(security=None, caFile=None, cert=None, key=None):
     return Security(tls_ca_file=caFile, tls_client_cert=cert, tls_client_key=key, require_encryption=True)
 
 
+def checkScheduler(where, scheduler, security=None):
+    """Before any work: a Dask scheduler's address is SCHEME://HOST:PORT (tcp, tls, ws, wss; no spaces or control
+    characters, a port in 1..65535), and a tls:// one comes with TLS (the files, a Security, or Dask's own
+    configuration): Dask's own errors for these were a traceback or "invalid literal for int()"."""
+    if scheduler is None:
+        return None
+    from urllib.parse import urlsplit
+    if not isinstance(scheduler, str):
+        raise TypeError('%s: the scheduler is an address SCHEME://HOST:PORT, got %r' % (where, scheduler))
+    bad = [c for c in scheduler if c.isspace() or ord(c) < 32 or ord(c) == 127]
+    try:
+        u = urlsplit(scheduler)
+        port = u.port
+    except ValueError:
+        port = None
+    if bad or not scheduler.isprintable() or u.scheme not in ('tcp', 'tls', 'ws', 'wss') or not u.hostname \
+            or port is None or not 1 <= port <= 65535 or u.path not in ('', '/'):
+        raise ValueError('%s: the scheduler address must be SCHEME://HOST:PORT (scheme tcp, tls, ws or wss, a '
+                         'port in 1..65535, no spaces or control characters), got %r' % (where, scheduler))
+    if u.scheme == 'tls' and security is None:
+        import dask
+        if not dask.config.get('distributed.comm.tls.ca-file', None):
+            raise ValueError('%s: a tls:// scheduler needs TLS: the CA file, certificate and key (--tls-ca-file, '
+                             '--tls-cert, --tls-key; security= in Python) or Dask\'s configuration '
+                             '(distributed.comm.tls.*)' % where)
+    return scheduler
+
+
 def executor(workers, scheduler, runOne, runMany, failed, security=None, connectTimeout=5.0):
     """(submit-all function yielding results as they finish, closer): *runOne* (a task) runs a grain,
     *runMany* (a list of tasks) several, as Dask's tasks; *failed* (task, message) is the row of a grain whose

@@ -25,6 +25,9 @@ def readImage(path, threshold=None):
     ext = os.path.splitext(path)[1].lower()
     requireRegularFile('readImage', path)
     if ext == '.npy':
+        if threshold is not None:  # said, not ignored: a .npy image is particles (non-zero) and background
+            raise ValueError('%s: threshold applies to a PNG\'s grey levels; a .npy image is already particles '
+                             '(non-zero) and background (0): give it without threshold' % path)
         a = readNpy('readImage', path)
         if a.ndim != 2:
             raise ValueError('%s: the image must be 2-D, got %d-D' % (path, a.ndim))

@@ -24,7 +24,7 @@ import numpy as np
 
 from ..base import atomicWrite, integer, number, refuseLinkedFolders, restoreSignals, split, stopOnce
 from ..grains import GENERATE_OPTIONS, MssResult, optionTable
-from ..specimens import clusterSecurity, freeCores
+from ..specimens import checkScheduler, clusterSecurity, freeCores
 from ._analysis import COLUMNS, derived
 from ._inputs import resolve
 from ._report import writeReport
@@ -334,6 +334,7 @@ def triaxialStudy(inputs, outdir, nSpheres=None, grain=None, workers=None, sched
         raise ValueError('triaxial: %s exists and is not a folder' % outdir)
     refuseLinkedFolders('triaxial', [outdir])
     security = clusterSecurity(security)
+    checkScheduler('triaxial', scheduler, security)
     results, tasks = _prepare(grains, counts, gen, o, outdir)
     weights = [g.weight for g in grains]
     todo = [t for t in tasks if _finished(outdir, t) is None]

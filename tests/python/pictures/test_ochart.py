@@ -73,6 +73,25 @@ class Ochart(unittest.TestCase):
                 self.assertEqual(p.returncode, 1, args)
                 self.assertIn(message, p.stderr, args)
 
+    def test_a_table_of_the_users_beside_the_png_is_kept(self):
+        # the bug: -o s.png wrote over the user's s.csv; a rerun still replaces the chart's own table
+        with tempfile.TemporaryDirectory() as d:
+            mine = os.path.join(d, 's.csv')
+            with open(mine, 'w') as f:
+                f.write('my,data\n1,2\n')
+            args = [BINARY, 'ochart', os.path.join(DATA, 'octahedron.stl'), '-o', os.path.join(d, 's.png'),
+                    '--counts', '2:4', '--points', '2', '--radius-points', '2', '--resolution', '30']
+            p = subprocess.run(args, capture_output=True, text=True)
+            self.assertEqual(p.returncode, 1)
+            self.assertIn('is not an O-chart table', p.stderr)
+            with open(mine) as f:
+                self.assertEqual(f.read(), 'my,data\n1,2\n')
+            self.assertFalse(os.path.exists(os.path.join(d, 's.png')))
+            os.remove(mine)
+            for _ in range(2):
+                p = subprocess.run(args, capture_output=True, text=True)
+                self.assertEqual(p.returncode, 0, p.stderr)
+
     def test_pareto_and_cheapest(self):
         pts = [(1.0, 0.5), (2.0, 0.3), (2.0, 0.4), (3.0, 0.3), (2.0, 0.3), (5.0, 0.1)]
         self.assertEqual(pareto(pts), [0, 1, 5])

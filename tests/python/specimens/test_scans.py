@@ -372,6 +372,10 @@ class RefusedBeforeAnyWork(unittest.TestCase):
                 with self.assertRaises(kind) as e:
                     batch([self.path], None, workers=1, progress=False, nSpheres=4, **kw)
                 self.assertIn(list(kw)[0], str(e.exception))
+        for address in ('tcp://127.0.0.1:87\n86', 'tcp://127.0.0.1', 'http://127.0.0.1:8786', 'tcp://h:99999'):
+            with self.assertRaises(ValueError) as e:
+                batch([self.path], None, workers=1, progress=False, nSpheres=4, scheduler=address)
+            self.assertIn('SCHEME://HOST:PORT', str(e.exception))
         with self.assertRaises(TypeError):
             batch(None, None, nSpheres=4, progress=False)
         with self.assertRaises(ValueError) as e:
