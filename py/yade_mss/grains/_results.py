@@ -199,6 +199,9 @@ class MssResult(object):
         :param bool compress: ``.npz``: compressed
         """
         path = os.fspath(path)
+        if os.path.isdir(path) or path.endswith(os.sep):
+            raise ValueError('MssResult.save: %s is a folder: give a file name in it (clump.csv, clump.npz, ...)'
+                             % path)
         ext = os.path.splitext(path)[1].lower()
         if ext in ('.csv', '.txt', '.vtk'):
             _mss.writeSpheres(self.centers.ravel().tolist(), self.radii.tolist(), path)

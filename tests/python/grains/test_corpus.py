@@ -61,6 +61,14 @@ class Arguments(unittest.TestCase):
         self.assertEqual([r.label for r in regions(L, only=[12])], [12])
         self.assertEqual([r.label for r in regions(L, only=[1, 2])], [1, 2])
 
+    def test_a_result_saved_to_a_folder_is_named(self):
+        import tempfile
+        from yade_mss import MssResult
+        with tempfile.TemporaryDirectory() as d:
+            for path in (d, d + os.sep):
+                with self.assertRaisesRegex(ValueError, 'is a folder: give a file name'):
+                    MssResult([0, 0, 0], [1.0]).save(path)
+
     def test_a_result_of_the_wrong_shape_is_named(self):
         from yade_mss import MssResult
         with self.assertRaisesRegex(ValueError, r'MssResult: centres must be an \(n, 3\) array'):
