@@ -19,6 +19,7 @@ from yade_mss import (generate, mssClump, mssTemplate, mssClumpCloud, mssReplace
 
 O = Omega()
 LABELS = os.path.join(DATA, 'two_grains_labels.npy')
+GRAIN = os.path.join(DATA, 'grain_voxels_155x157x167.npy')
 
 
 def smallestGap(clumps):
@@ -91,11 +92,23 @@ class BadInput(Base):
     def test_labelled_volume_needs_a_label(self):
         for src in (LABELS, np.load(LABELS)):
             with self.assertRaises(ValueError) as ctx:
-                mssClump(src, nSpheres=4)
+                mssClump(src, nSpheres=4, voxelSize=1e-3)
             self.assertIn('labels (1, 2)', str(ctx.exception))
         self.assertEqual(len(O.bodies), 0)
-        cid, ids = mssClump(LABELS, label=2, nSpheres=4)
+        cid, ids = mssClump(LABELS, label=2, nSpheres=4, voxelSize=1e-3)
         self.assertEqual(len(ids), 4)
+
+    def test_a_volume_without_its_voxel_size_is_refused(self):
+        # the bug: a voxel was taken as 1 m: mssClump of the bundled CT grain made a 3.06e9 kg grain without a word
+        from yade_mss import mssAssembly
+        for call in (lambda: mssClump(GRAIN, nSpheres=4), lambda: mssClump(np.load(LABELS), label=1, nSpheres=4),
+                     lambda: mssTemplate(GRAIN, nSpheres=4), lambda: mssAssembly(LABELS, nSpheres=4)):
+            with self.assertRaises(ValueError) as ctx:
+                call()
+            self.assertIn('give its voxel edge in metres, voxelSize=', str(ctx.exception))
+        self.assertEqual(len(O.bodies), 0)
+        cid, ids = mssClump(GRAIN, nSpheres=4, voxelSize=1.25e-5)
+        self.assertLess(O.bodies[cid].state.mass, 1e-3)  # a sand grain: milligrams
 
     def test_eta_range(self):
         for eta in (-0.1, 1.0, 2.0, float('nan')):
@@ -159,7 +172,7 @@ class StrictArguments(Base):
         a[2:10, 3:9, 2:10] = 1
         with tempfile.TemporaryDirectory() as d:
             tifffile.imwrite(os.path.join(d, 'g.tif'), a)
-            cid, ids = mssClump(os.path.join(d, 'g.tif'), nSpheres=3)
+            cid, ids = mssClump(os.path.join(d, 'g.tif'), nSpheres=3, voxelSize=1e-4)
         self.assertGreaterEqual(len(ids), 1)
 
 

@@ -8,7 +8,7 @@ import numpy as np
 
 from ..base import split
 from ..grains import GENERATE_OPTIONS
-from ..yade import bodyOptions, buildClump, yadeModules
+from ..yade import bodyOptions, buildClump, requireVoxelSize, yadeModules
 from . import _manifest
 from ._batch import batch, grainRecord
 
@@ -155,6 +155,7 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
                 contacts = list(csv.DictReader(f))
         tolerance = _tolerance(os.fspath(source))
     else:
+        requireVoxelSize('mssAssembly', source, dict(voxelSize=voxelSize))
         b = batch(source if isinstance(source, np.ndarray) else [source], None, workers=1,
                   minVoxels=minVoxels, excludeBorder=excludeBorder, labels=labels, voxelSize=voxelSize,
                   origin=origin, progress=False, **gen)

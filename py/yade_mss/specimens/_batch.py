@@ -315,7 +315,7 @@ class Batch(object):
     """What a batch did: rows (one per grain, in key order) and the results of the grains that are ok.
 
     :ivar seconds: this run's wall time
-    :ivar generated: grains generated in this run
+    :ivar generated: grains generated in this run (ok: a grain that failed is not generated)
     :ivar reused: grains whose results an earlier run of the same input and options had written
     :ivar upToDate: True where the output folder already held this very batch, finished: nothing was done
     :ivar timeStep: the assembly's critical time step (the least a grain allows), or None without a grain
@@ -499,6 +499,10 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                                                                              'threads')])
     inputs = _checkedInputs(inputs)
     checkScheduler('batch', scheduler, security)
+    if not any(gen.get(k) for k in ('nSpheres', 'eta', 'dice', 'rMin', 'rMinVoxels')):
+        raise ValueError('batch: give at least one termination criterion (--spheres, --eta, --dice, --rmin or '
+                         '--rmin-voxels; nSpheres, eta, dice, rMin or rMinVoxels in Python): without one every '
+                         'grain would fail')
     segment, excludeBorder, previews, progress = (flag('batch', n, v) for n, v in (
         ('segment', segment), ('excludeBorder', excludeBorder), ('previews', previews), ('progress', progress)))
     minVoxels = integer('batch', 'minVoxels', minVoxels, 0, None)
@@ -580,7 +584,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                   % (total, already, len(skipped), len(todo)), flush=True)
         # no idle processes for few grains
         run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
-        n = 0
+        n = made = 0  # made: the grains this run generated (ok), not those it tried
         digests = {t.key: t.digest for t in todo}
         try:
             for k, row, r in run(todo):
@@ -592,6 +596,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                 if r is not None:
                     out.results[k] = r
                 n += 1
+                made += row['status'] == 'ok'
                 if bar is not None:
                     bar.update(1)
                 elif progress:
@@ -602,7 +607,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
             close()
             if bar is not None:
                 bar.close()
-        out.generated, out.reused = n, already
+        out.generated, out.reused = made, already
         out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
         out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
         h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it

@@ -27,13 +27,14 @@ frame) is checked before they are applied.
 
 import inspect
 import math
+import os
 import random
 import warnings
 
 import numpy as np
 
 from ..base import INT64_MAX, flag, integer, number, quaternionMatrix, randomRotation, split, vector3
-from ..grains import GENERATE_OPTIONS, Mesh, MssResult, generate, readGrain
+from ..grains import GENERATE_OPTIONS, VOLUME_EXT, Mesh, MssResult, generate, readGrain
 from ._loads import memberLoads
 from ._records import attach, encodeGrain, encodeParts, recordParts
 from ._stiffness import checkStiffness, grainMaterial
@@ -550,9 +551,22 @@ def mssClump(source, center=None, orientation=None, scale=1.0, mass='target', se
                              % ', '.join(sorted(gen)))
         r = source
     else:
+        requireVoxelSize('mssClump', source, gen)
         r = generate(source, **gen)
     plans = _plans('mssClump', r, mass, [(C, R, s)])
     return _build('mssClump', plans, members, _offsetWarning, grainsOf('mssClump', [r], plans, breakable))[0]
+
+
+def requireVoxelSize(func, source, gen):
+    """Inside YADE, lengths are metres: a voxel volume (an array, or a .npy or .tif file) without its voxel edge
+    would be taken as 1 m a voxel (a sand grain of 3e9 kg, without a word), so it is refused, saying how to
+    give it."""
+    path = os.fspath(source) if isinstance(source, (str, os.PathLike)) else None
+    volume = isinstance(source, np.ndarray) or (path is not None and os.path.splitext(path)[1].lower() in VOLUME_EXT)
+    if volume and gen.get('voxelSize') is None:
+        raise ValueError('%s: %s is a voxel volume: give its voxel edge in metres, voxelSize=1.25e-5 for 12.5 um '
+                         'voxels (YADE\'s lengths are metres; without it a voxel would be 1 m)'
+                         % (func, path if path is not None else 'the array'))
 
 
 def _clumpIds(O):

@@ -7,8 +7,9 @@ over-stiffness: Kruggel-Emden et al. 2008, Kodam et al. 2009, Hoehner et al. 201
 interactions every few steps (:func:`contactStiffnessEngine`) gives each pair of bodies one contact's stiffness
 of their grains: the same law with each grain's equivalent radius R = (3 M / (4 pi rho))^(1/3) in place of a
 sphere's (a wall's or facet's radius infinite, a plain sphere's its own), K = 2 E1 R1 E2 R2 / (E1 R1 + E2 R2),
-shared among the pair's member contacts as they come: the k-th gets K / k^3 (the first K, the second K / 8,
-...), so that a pair is K to 1.2 K stiff whatever the sphere count. The shear stiffness of each contact scales
+shared among the pair's member contacts as they come: each takes the lowest rank k free among the pair's contacts
+and gets K / k^3 (the first K, the second K / 8, ...), so that a pair is K to 1.2 K stiff whatever the sphere
+count, and stays so as contacts break and form. The shear stiffness of each contact scales
 with its kn (YADE's ks / kn kept), and the Coulomb limit stays per contact, mu times its normal force, so the pair
 slides at mu times its normal force. (Sharing K by each contact's share of the overlap at every step, K d_max /
 sum d_j, is exact at each step but not conservative: a contact's stiffness changing under its overlap pumps
@@ -119,16 +120,27 @@ def _side(O, pass_, i):
     return (i, r, getattr(b.material, 'young', math.nan))
 
 
+def _pairStiffness(a, b):
+    """One contact's stiffness of two sides (group id, radius, young): YADE's law with the grains' radii."""
+    (ra, ea), (rb, eb) = a[1:], b[1:]
+    if math.isinf(rb):
+        return 2.0 * ea * ra
+    if math.isinf(ra):
+        return 2.0 * eb * rb
+    return 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb)
+
+
 def contactStiffnessStep():
     """The pass (what :func:`contactStiffnessEngine` runs): each new contact of a pair of bodies of which one at
     least is a 'grain' clump gets its share of one contact's stiffness of the pair's grains.
 
-    A contact's stiffness is set once, when it is new: the k-th contact of a pair (counting those it holds
-    already, the new ones by depth) gets K / k^3, so the pair's stiffness lies between K and 1.2 K however many
-    members touch, and each contact stays a linear spring (nothing is pumped into the motion). New means made
-    real since the last pass (``iterMadeReal``): one look at each real interaction, the rest only for the new
-    ones. On its first look at a scene (new, or loaded) the new contacts are those that still have the stiffness
-    YADE's Ip2 gave them."""
+    A contact's stiffness is set once, when it is new: it takes the lowest rank k that none of the pair's
+    contacts holds now (the new ones by depth) and gets K / k^3, so the pair's stiffness lies between K and 1.2 K
+    however many members touch, and stays there as contacts break and others form (the first contact gone, the
+    next new one takes its rank); each contact stays a linear spring (nothing is pumped into the motion). New
+    means made real since the last pass (``iterMadeReal``): one look at each real interaction, the rest only for
+    the new ones. On its first look at a scene (new, or loaded) the new contacts are those that still have the
+    stiffness YADE's Ip2 gave them; the others keep theirs, their rank read back from it."""
     utils, O = _yade()
     p = _PASS
     p.refresh(O)
@@ -136,14 +148,14 @@ def contactStiffnessStep():
         return
     members = p.members
     its = O.interactions.all(True)
-    first = p.last is None
-    if first:
+    if p.last is None:
         fresh = [i for i in its if (i.id1 in members or i.id2 in members) and _isFresh(i, O)]
         seen = set((i.id1, i.id2) for i in fresh)
-        for i in its:  # what a saved scene's contacts already had
+        for i in its:  # what a saved scene's contacts already had: their ranks, from K / k^3
             if (i.id1 in members or i.id2 in members) and (i.id1, i.id2) not in seen:
                 a, b = _side(O, p, i.id1), _side(O, p, i.id2)
-                p.pairs.setdefault((a[0], b[0]), set()).add((i.id1, i.id2))
+                k = max(1, int(round((_pairStiffness(a, b) / i.phys.kn) ** (1.0 / 3.0))))
+                p.pairs.setdefault((a[0], b[0]), {})[(i.id1, i.id2)] = k
     else:
         last = p.last
         fresh = [i for i in its if i.iterMadeReal > last and (i.id1 in members or i.id2 in members)]
@@ -155,26 +167,21 @@ def contactStiffnessStep():
         a, b = _side(O, p, i.id1), _side(O, p, i.id2)
         groups.setdefault((a, b), []).append(i)
     for (a, b), new in groups.items():
-        (ra, ea), (rb, eb) = a[1:], b[1:]
-        if math.isinf(rb):
-            K = 2.0 * ea * ra
-        elif math.isinf(ra):
-            K = 2.0 * eb * rb
-        else:
-            K = 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb)
-        held = p.pairs.setdefault((a[0], b[0]), set())
+        K = _pairStiffness(a, b)
+        held = p.pairs.setdefault((a[0], b[0]), {})
         renewed = set((i.id1, i.id2) for i in new)
-        for ids in list(held):  # those that broke, or broke and came back (new again), are not held
+        for ids in list(held):  # those that broke, or broke and came back (new again), hold no rank
             if ids in renewed or not _real(O, ids):
-                held.discard(ids)
-        k = len(held)
+                del held[ids]
+        taken = set(held.values())
+        free = (k for k in range(1, len(held) + len(new) + 1) if k not in taken)
         for i in sorted(new, key=lambda i: -i.geom.penetrationDepth):
-            k += 1
+            k = next(free)
             ph = i.phys
             kn = K / k ** 3
             ph.ks *= kn / ph.kn
             ph.kn = kn
-            held.add((i.id1, i.id2))
+            held[(i.id1, i.id2)] = k
 
 
 def _real(O, ids):

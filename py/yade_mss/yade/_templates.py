@@ -9,7 +9,7 @@ import numpy as np
 from ..base import flag as _flag, randomRotation, split, vector3
 from ..grains import GENERATE_OPTIONS, MssResult, generate
 from ._clumps import (_Members, _basePlan, _build, _mass, _offsetWarning, _plans, _scale, _seed, bodyOptions, grainsOf,
-                      yadeModules)
+                      requireVoxelSize, yadeModules)
 
 
 class MssTemplate(object):
@@ -109,6 +109,8 @@ def mssTemplate(source, scale=1.0, **options):
     scale = _scale('mssTemplate', scale)
     if isinstance(source, MssResult) and gen:
         raise ValueError('mssTemplate: %s: generation options do nothing for an MssResult' % ', '.join(sorted(gen)))
+    if not isinstance(source, MssResult):
+        requireVoxelSize('mssTemplate', source, gen)
     return MssTemplate(generate(source, **gen), float(scale))
 
 

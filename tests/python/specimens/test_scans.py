@@ -363,6 +363,26 @@ class RefusedBeforeAnyWork(unittest.TestCase):
         self.refused(folder, 'is the input folder', inputs=[folder])
         self.refused(folder + '/', 'is the input folder', inputs=[folder])
 
+    def test_no_criterion_before_the_volume_is_read_and_failures_are_not_generated(self):
+        # the bugs: no criterion read the volume, then failed every grain; the summary said they were generated
+        bad = os.path.join(self.d, 'bad.npy')
+        with open(bad, 'wb') as f:
+            f.write(b'not a volume')
+        with self.assertRaises(ValueError) as e:
+            batch([bad], os.path.join(self.d, 'none'), workers=1, progress=False)
+        self.assertIn('give at least one termination criterion', str(e.exception))
+        self.assertFalse(os.path.exists(os.path.join(self.d, 'none')))
+        folder = os.path.join(self.d, 'meshes')
+        os.mkdir(folder)
+        shutil.copy(os.path.join(DATA, 'octahedron.stl'), folder)
+        with open(os.path.join(folder, 'broken.stl'), 'w') as f:
+            f.write('solid x\nhello\n')
+        mss = os.environ.get('MSS_BINARY', 'mss')
+        p = subprocess.run([mss, 'batch', folder, '-o', os.path.join(self.d, 'out'), '--spheres', '4'],
+                           capture_output=True, text=True, timeout=300)
+        self.assertIn('1 ok, 0 skipped, 1 failed of 2 grains', p.stdout)
+        self.assertIn('(1 grain generated in this run', p.stdout)
+
     def test_arguments_by_name(self):
         for kw, kind in ((dict(segment='no'), TypeError), (dict(excludeBorder='no'), TypeError),
                          (dict(minVoxels='5'), TypeError), (dict(voxelSize='abc'), TypeError),
