@@ -871,6 +871,7 @@ int main(int argc, char** argv) {
     }
     CLI::App app{"mss: multi-sphere shape generator (MSS) for DEM clumps"};
     app.require_subcommand(1, 1);
+    app.set_version_flag("--version", std::string("mss (yade-mss) ") + mss::version());
     Args a;
     CLI::App* gen = generateCommand(app, a);
     CLI::App* cmp = compareCommand(app, a);

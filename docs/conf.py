@@ -4,6 +4,17 @@ import sys
 
 project = 'yade-mss'
 author = 'the yade-mss developers'
+
+
+def _version():
+    """The CMake project's version (CMakeLists.txt): the one place it is written."""
+    import re
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'CMakeLists.txt')) as f:
+        return re.search(r'project\(yade_mss VERSION ([0-9.]+)', f.read()).group(1)
+
+
+version = release = _version()
+html_title = 'yade-mss %s manual' % version
 copyright = '2026, ' + author
 extensions = ['sphinx.ext.autodoc', 'sphinx.ext.mathjax']
 xml = os.environ.get('MSS_DOXYGEN_XML')

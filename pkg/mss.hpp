@@ -17,5 +17,6 @@
 #include "mss/spheres.hpp"       // sphere sets
 #include "mss/spheropolygon.hpp" // 2-D: spheropolygons from particle images (the second paper)
 #include "mss/surface.hpp"       // the surface of a clump: its spheres' union as a mesh
+#include "mss/version.hpp"       // this library's version
 #include "mss/voxelize.hpp"      // voxelisation (section 2.2) and grid resolution
 #include "mss/work.hpp"          // heavy requests: work estimates, progress, stopping

@@ -51,6 +51,8 @@ from .specimens import batch, mssAssembly, packedSpecimen, syntheticSpecimen, vo
 from .studies import TriaxialResult, triaxial, triaxialStudy  # noqa: E402
 from . import _mss  # noqa: E402,F401 (the C++ module, for tests and advanced use)
 
+__version__ = _mss.version()  # one version, the CMake project's: the library's, mss --version's, the manual's
+
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties',
            'mssClump', 'restoreClumpProperties', 'totalMass', 'porosity', 'writeClumps', 'readClumps',
            'mssTemplate', 'MssTemplate', 'mssClumpCloud', 'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions',

@@ -556,17 +556,14 @@ std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t limit) 
         ids.push_back(t);
     }
     Tree tree(tris.begin(), tris.end());
-    std::size_t count = 0, candidates = 0;
-    constexpr std::size_t kCandidates = 20000000; // a few seconds of triangle-triangle tests
+    std::size_t count = 0, candidates = 0; // candidates: a few seconds of triangle-triangle tests at most
     std::vector<Tree::Primitive_id> hits;
     for (std::size_t i = 0; i < tris.size() && count < limit; ++i) {
         hits.clear();
         tree.all_intersected_primitives(tris[i], std::back_inserter(hits));
-        candidates += hits.size();
-        if (candidates > kCandidates)
-            throw std::invalid_argument(
-                "countSelfIntersections: over " + std::to_string(kCandidates) + " pairs of triangles overlap " +
-                "(triangles piled on each other: repeated or degenerate faces); not counted");
+        if ((candidates += hits.size()) > 20000000)
+            throw std::invalid_argument("countSelfIntersections: over 20000000 pairs of triangles overlap (triangles "
+                                        "piled on each other: repeated or degenerate faces); not counted");
         for (const auto& h : hits) {
             const std::size_t j = static_cast<std::size_t>(h - tris.begin());
             if (j <= i) continue;
