@@ -269,20 +269,26 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
         limit = options.get('memoryLimit')  # the volume is read by slabs under it: a CT larger than it is fine
         gap = options.get('contactGap', 1.0)
         found = scanContacts(vol, h, org, limit, gap) if options.get('contacts', True) else None
-        points = contactsByLabel(found or [])
         found_regions = regions(vol, labels, limit)
         if not found_regions:
             raise ValueError('batch: %s holds no grain: %s' % (
                 files[0], 'none of the labels %s is in it' % labels if labels else
                 'every voxel is 0 (the background)'))
+        why = {}  # the grains not generated, and why
+        for reg in found_regions:
+            if reg.voxels < minVoxels:
+                why[reg.label] = '%d voxels, under --min-voxels %d' % (reg.voxels, minVoxels)
+            elif excludeBorder and reg.touchesBorder:
+                why[reg.label] = 'cut by the volume\'s border (--exclude-border)'
+        # no contact balls toward grains the batch skips (specks under --min-voxels, grains the border cuts with
+        # --exclude-border): they are not in the assembly. A grain left out by labels= is another run's: its
+        # neighbours keep their balls toward it, as each would alone (generate(volume, label=...))
+        points = contactsByLabel([c for c in found or [] if c['a'] not in why and c['b'] not in why])
         for reg in found_regions:
             k = 'label_%d' % reg.label
             base = dict(_blank(), label=reg.label, voxels=reg.voxels, touches_border=int(reg.touchesBorder))
-            if reg.voxels < minVoxels:
-                skipped[k] = dict(base, status='skipped', message='%d voxels, under --min-voxels %d'
-                                  % (reg.voxels, minVoxels))
-            elif excludeBorder and reg.touchesBorder:
-                skipped[k] = dict(base, status='skipped', message='cut by the volume\'s border (--exclude-border)')
+            if reg.label in why:
+                skipped[k] = dict(base, status='skipped', message=why[reg.label])
             else:
                 start = np.array([s.start for s in reg.box]) - 2  # the crop's voxel (0, 0, 0), as reg.crop says
                 crop = (lambda reg=reg: reg.crop(vol)[0])

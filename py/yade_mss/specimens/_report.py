@@ -15,8 +15,8 @@ from ..grains import NEARBY_GAP
 from ..pictures import preview
 
 COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
-           'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_assembly',
-           'contact_spheres', 'seconds', 'touches_border', 'message']
+           'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_not_generated',
+           'contacts_assembly', 'contact_spheres', 'seconds', 'touches_border', 'message']
 DICE_FLAG = 0.1  # D above this (or above a --dice target) flags a grain
 THIN_VOXELS = 2.5  # a largest inscribed radius under this (grains at most 4 voxels thick): thin, hard to fill
 STEP_MARGIN = 1.1  # grains whose time step is within 10% of the least "set" the assembly's
@@ -73,13 +73,16 @@ def keptContacts(b, found, h):
         return
     tolerance = float(getattr(found, 'gap', 0.0))
     byLabel = {b.rows[k]['label']: k for k in b.results}
-    ct, kept, near = {}, {}, {}
+    ct, kept, near, other = {}, {}, {}, {}
     both, keptPairs, overlap = 0, 0, 0.0
     for c in found:
         for lab in (c['a'], c['b']):
             ct[lab] = ct.get(lab, 0) + 1
         ka, kb = byLabel.get(c['a']), byLabel.get(c['b'])
-        if ka is None or kb is None:
+        if ka is None or kb is None:  # a contact with a grain not generated (skipped, failed): not lost
+            for lab, mine in ((c['a'], ka), (c['b'], kb)):
+                if mine is not None:
+                    other[lab] = other.get(lab, 0) + 1
             continue
         both += 1
         g = _gap(b.results[ka], b.results[kb]) / h
@@ -97,6 +100,7 @@ def keptContacts(b, found, h):
         if lab != '':
             row['contacts_ct'] = ct.get(lab, 0)
             row['contacts_kept'] = kept.get(lab, 0) if k in b.results else ''
+            row['contacts_not_generated'] = other.get(lab, 0) if k in b.results else ''
             row['contacts_assembly'] = near.get(k, 0) if k in b.results else ''
     n = max(1, len(b.results))
     b.contacts = {'pairs': len(found), 'between': both, 'kept': keptPairs, 'overlap': overlap, 'gap': tolerance,
@@ -161,9 +165,11 @@ def annotate(b, options, density, young):
             # fewer spheres than asked is a problem only where D is poor too (a ball needs one)
             if asked and int(row['spheres']) < asked and d is not None and d > flagAt / 2:
                 reasons.append('%s of the %d spheres asked' % (row['spheres'], asked))
-            lost = _number(row.get('contacts_ct')), _number(row.get('contacts_kept'))
-            if lost[0] is not None and lost[1] is not None and lost[1] < lost[0]:
-                reasons.append('%d of its %d contacts in the scan lost' % (lost[0] - lost[1], lost[0]))
+            ct, kept = _number(row.get('contacts_ct')), _number(row.get('contacts_kept'))
+            other = _number(row.get('contacts_not_generated')) or 0
+            if ct is not None and kept is not None and kept + other < ct:
+                reasons.append('%d of its %d contacts in the scan lost%s' % (
+                    ct - other - kept, ct, ' (%d more with grains not generated)' % other if other else ''))
             if k in b.setBy:
                 reasons.append('sets the time step (smallest radius %.3g voxels)' % _number(row['r_min_voxels'])
                                if _number(row.get('r_min_voxels')) is not None else 'sets the time step')
