@@ -606,9 +606,12 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                 if bar is not None:
                     bar.update(1)
                 elif progress:
-                    print('[%*d/%d] %-12s %-7s %3s spheres  D %-8s %s' % (len(str(len(todo))), n, len(todo), k,
-                          row['status'], row['spheres'], '%.4f' % row['dice'] if row['dice'] != '' else '-',
-                          row['message'][:80]), flush=True)
+                    balls = row.get('contact_spheres') or 0  # --spheres N is N: the contact balls said apart
+                    print('[%*d/%d] %-12s %-7s %3s spheres%s  D %-8s %s' % (
+                        len(str(len(todo))), n, len(todo), k, row['status'],
+                        row['spheres'] - balls if balls else row['spheres'],
+                        ' + %d contact ball%s' % (balls, '' if balls == 1 else 's') if balls else '',
+                        '%.4f' % row['dice'] if row['dice'] != '' else '-', row['message'][:80]), flush=True)
         finally:
             close()
             if bar is not None:
