@@ -1,5 +1,5 @@
-"""The option table (pkg/mss/generation/options.cpp, through the binding) as the Python front ends use it: the checks of
-keyword arguments, the ``mss batch`` / ``preview`` / ``curve`` parsers and the ``:param`` lines of the public
+"""The option table (pkg/mss/generation/option_table.cpp, through the binding) as the Python front ends use it: the
+checks of keyword arguments, the ``mss batch`` / ``preview`` / ``curve`` parsers and the ``:param`` lines of the public
 functions' docstrings are all made from it, so they cannot drift from the command line's."""
 
 import argparse
