@@ -242,9 +242,9 @@ bool isVoxelFile(const std::string& path) {
     return f != nullptr;
 }
 
-/// Refuses a --scale that makes a grain's coordinates too large (@p far: the farthest coordinate, scaled) or its
-/// size underflow (@p size, scaled: under 1e-290 a double has lost its digits, the grain voxelises to nothing
-/// and a good mesh reads as degenerate), naming --scale rather than a vertex or the triangles.
+/// Refuses a --scale that makes a grain's coordinates too large (@p far: the farthest coordinate, scaled) or
+/// its size underflow (@p size, scaled: under 1e-290 a double has lost its digits, the grain voxelises to
+/// nothing and a good mesh reads as degenerate), naming --scale rather than a vertex or the triangles.
 std::string shortNumber(double x) {
     std::ostringstream s;
     s << x;
@@ -252,7 +252,8 @@ std::string shortNumber(double x) {
 }
 
 void checkScaled(double scale, double size, double far, const std::string& what) {
-    const std::string hint = ": --scale is the unit conversion of the coordinates (1e-3 for millimetres to metres)";
+    const std::string hint =
+        ": --scale is the unit conversion of the coordinates (1e-3 for millimetres to metres)";
     std::ostringstream s;
     s << "--scale " << scale << ": " << what;
     if (!std::isfinite(size) || !(far <= 1e60))
@@ -490,24 +491,33 @@ void printComparison(const mss::Comparison& c) {
 }
 
 /// One table (text, and CSV with --csv) for several sphere files.
+/// The table of several files; a file whose comparison failed (@p errors non-empty) is a row with its error.
 void printTable(const std::vector<std::string>& files, const std::vector<mss::Comparison>& rows,
-                const std::string& csv) {
+                const std::vector<std::string>& errors, const std::string& csv) {
+    const bool exact =
+        std::any_of(rows.begin(), rows.end(), [](const mss::Comparison& c) { return c.exact.samples > 0; });
     std::size_t w = 4;
     for (const std::string& f : files) w = std::max(w, f.size());
     w = std::min<std::size_t>(w, 48);
     std::cout << std::left << std::setw(int(w)) << "file" << std::right << std::setw(6) << "n" << std::setw(9)
               << "D" << std::setw(9) << "eta" << std::setw(9) << "vol" << std::setw(11) << "protr"
               << std::setw(10) << "r_min" << std::setw(11) << "mass" << std::setw(11) << "centroid"
-              << std::setw(11) << "inertia"
-              << (rows.empty() || rows[0].exact.samples == 0 ? "" : "   D_exact +- se") << "\n";
+              << std::setw(11) << "inertia" << (exact ? "   D_exact +- se" : "") << "\n";
     std::ostringstream out;
     out << std::setprecision(10)
         << "file,n,dice,eta,volume_ratio,protrusion,smallest_radius,mass_error,centroid_error,inertia_"
-           "error,dice_exact,dice_exact_se\n";
+           "error,dice_exact,dice_exact_se,error\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const mss::Comparison& c = rows[i];
         std::string name = files[i];
         if (name.size() > w) name = "..." + name.substr(name.size() - w + 3);
+        if (!errors[i].empty()) { // one bad file is a row, not the end of the table
+            std::cout << std::left << std::setw(int(w)) << name << "  error: " << errors[i] << "\n";
+            std::string quoted;
+            for (char ch : errors[i]) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+            out << '"' << files[i] << "\",,,,,,,,,,,,\"" << quoted << "\"\n";
+            continue;
+        }
         std::cout << std::left << std::setw(int(w)) << name << std::right << std::setw(6) << c.spheres
                   << std::fixed << std::setprecision(4) << std::setw(9) << c.score.dice << std::setw(9)
                   << c.score.eta << std::setw(9) << c.score.volumeRatio << std::defaultfloat
@@ -525,13 +535,11 @@ void printTable(const std::vector<std::string>& files, const std::vector<mss::Co
             out << c.exact.dice << ',' << c.exact.diceError;
         else
             out << ',';
-        out << '\n';
+        out << ",\n";
     }
     std::cout << "D: Dice mismatch (eq. 27) on the scoring grid; vol: |spheres| / |grain|; protr: largest "
                  "protrusion (world units); mass, centroid, inertia: the union's errors against the grain"
-              << (rows.empty() || rows[0].exact.samples == 0
-                      ? ""
-                      : "; D_exact: on the exact shapes by Monte Carlo, +- one standard error")
+              << (exact ? "; D_exact: on the exact shapes by Monte Carlo, +- one standard error" : "")
               << "\n";
     if (!csv.empty()) writeTextAtomically(csv, out.str());
 }
@@ -550,16 +558,42 @@ int cmdCompare(const Args& a) {
     if (!voxels) voxelOptionsOnly(a, in, {"voxelSize", "origin", "label"});
     const mss::VoxelGrid v = voxels ? readVoxels(st, in) : mss::VoxelGrid();
     const mss::TriangleMesh mesh = voxels ? mss::TriangleMesh() : readScaledMesh(st, in);
+    // the grain's own faults first, named by the grain (a flat mesh): what fails below is the sphere file's
+    if (!voxels) namingInput(in, [&] { return mss::meshMassProperties(mesh); });
     std::vector<mss::Comparison> rows;
+    std::vector<std::string> errors;
     for (const std::string& f : files) {
-        const mss::SphereSet s = mss::readSpheres(f, st.clumpId);
-        rows.push_back(namingInput(
-            in, [&] { return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o); }));
+        // the error names the file at fault (a sphere file in another frame), not the grain
+        auto one = [&] {
+            const mss::SphereSet s = mss::readSpheres(f, st.clumpId);
+            return namingInput(
+                f, [&] { return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o); });
+        };
+        if (files.size() == 1) {
+            rows.push_back(one());
+            errors.emplace_back();
+            continue;
+        }
+        try {
+            rows.push_back(one());
+            errors.emplace_back();
+        } catch (const std::invalid_argument& e) {
+            rows.emplace_back();
+            errors.emplace_back(e.what());
+        }
     }
     if (rows.size() == 1 && !a.has("csv"))
         printComparison(rows[0]);
     else
-        printTable(files, rows, a.has("csv") ? a.text("csv") : "");
+        printTable(files, rows, errors, a.has("csv") ? a.text("csv") : "");
+    const auto failed =
+        std::count_if(errors.begin(), errors.end(), [](const std::string& e) { return !e.empty(); });
+    if (failed > 0) {
+        std::cerr << "mss compare: " << failed << " of " << files.size()
+                  << " files could not be compared (their rows "
+                  << "say why)\n";
+        return 1;
+    }
     return 0;
 }
 

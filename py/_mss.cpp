@@ -905,7 +905,9 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("checkWork", checkWork,
             (py::arg("where"), py::arg("what"), py::arg("seconds"), py::arg("maxWork"), py::arg("lighter")),
             "Refuses (ValueError) an estimate over maxWork seconds.");
-    py::def("version", +[]() { return std::string(mss::version()); }, "This library's version (the CMake project's).");
+    py::def(
+        "version", +[]() { return std::string(mss::version()); },
+        "This library's version (the CMake project's).");
     py::def("setOmpThreads", setOmpThreads, (py::arg("n")), "OpenMP threads of this process from now on.");
     py::def("readMesh", readMesh, (py::arg("path")), "Mesh file -> (flat vertices, flat triangles).");
     py::def("readNpy", readNpy, (py::arg("path"), py::arg("label") = -1));

@@ -31,6 +31,8 @@ struct CompareOptions {
     double offset = 0.37; ///< its shift, in voxels
     int supersample = 1;
     std::vector<Plane> planes; ///< the target is the grain's part on their allowed side
+    /// Registration of a set in another frame (under half its volume inside the grain's bounding box); a set
+    /// in the grain's frame is scored as written whatever this says.
     Align align = Align::None;
     /// Without alignment: refuse a set most of whose volume lies outside the grain's bounding box (another
     /// frame). Off: score it as written all the same ("--align none").

@@ -90,6 +90,19 @@ tail -n +2 "$C/FA_ellipsoid_N10_min.txt" | awk -F, '{printf "%10f,%10f,%10f,%10f
 check "one table, one row per file (3 rows + header)" [ "$(wc -l < "$TMP/table.csv")" -eq 4 ]
 check "CLUMP's MATLAB form reads as its Python form (same D)" \
   bash -c "[ \"\$(sed -n 2p $TMP/table.csv | cut -d, -f3)\" = \"\$(sed -n 3p $TMP/table.csv | cut -d, -f3)\" ]"
+# one file in another frame is a row with its error (naming it), the others are scored; the status says it
+"$MSS" compare "$DATA/human_femur.stl" "$C/EU_femur_N70_div150_rMin4_ov0.95.txt" "$C/FA_femur_N70_min.txt" \
+  --resolution 40 --csv "$TMP/mixed.csv" > "$TMP/mixed.log" 2> "$TMP/mixed.err"
+rc=$?
+check "a table with one file in another frame: status 1 ($rc)" [ "$rc" -eq 1 ]
+check "its row names the file at fault" grep -q "error: $C/EU_femur_N70_div150_rMin4_ov0.95.txt: compare:" "$TMP/mixed.log"
+check "the other file is scored" grep -qE 'FA_femur_N70_min.txt +70 +0\.[0-9]+' "$TMP/mixed.log"
+check "the CSV has both rows, the error in its column" grep -q 'another frame' "$TMP/mixed.csv"
+# --align registers only what lies in another frame: our own file keeps its D
+"$MSS" generate "$DATA/human_femur.stl" --spheres 20 --resolution 40 -o "$TMP/ours20.csv" > /dev/null
+d1=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/ours20.csv" --resolution 40 | awk '/^dice/{print $2}')
+d2=$("$MSS" compare "$DATA/human_femur.stl" "$TMP/ours20.csv" --resolution 40 --align principal | awk '/^dice/{print $2}')
+check "--align principal leaves a file in the grain's frame as it is ($d1 = $d2)" [ "$d1" = "$d2" ]
 expect_error "bad --align" "--align must be one of centroid, bbox, principal, none" "$MSS" compare "$DATA/ellipsoid_2_1_1.stl" "$C/FA_ellipsoid_N10_min.txt" --align box
 
 # batch: a labelled volume to an assembly, through the mss command

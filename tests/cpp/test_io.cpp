@@ -183,9 +183,9 @@ TEST(MeshIo, OffHeaderPrefixes) {
     EXPECT_NEAR(analyzeMesh(readMesh(p)).signedVolume, 1.0 / 6.0, 1e-12);
     writeText(p, "nOFF 3\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n" + faces);
     EXPECT_NEAR(analyzeMesh(readMesh(p)).signedVolume, 1.0 / 6.0, 1e-12);
-    for (const std::string& bad : {std::string("4OFF\n4 4 0\n0 0 0 0\n1 0 0 1\n0 1 0 1\n0 0 1 1\n") + faces,
-                                   std::string("nOFF\n4\n4 4 0\n0 0 0 0\n") + faces,
-                                   std::string("XOFF\n4 4 0\n") + faces}) {
+    for (const std::string& bad :
+         {std::string("4OFF\n4 4 0\n0 0 0 0\n1 0 0 1\n0 1 0 1\n0 0 1 1\n") + faces,
+          std::string("nOFF\n4\n4 4 0\n0 0 0 0\n") + faces, std::string("XOFF\n4 4 0\n") + faces}) {
         writeText(p, bad);
         EXPECT_THROW(readMesh(p), std::invalid_argument) << bad;
     }

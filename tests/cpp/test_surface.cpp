@@ -11,8 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <cstdio>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <stdexcept>

@@ -562,8 +562,8 @@ std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t limit) 
         hits.clear();
         tree.all_intersected_primitives(tris[i], std::back_inserter(hits));
         if ((candidates += hits.size()) > 20000000)
-            throw std::invalid_argument("countSelfIntersections: over 20000000 pairs of triangles overlap (triangles "
-                                        "piled on each other: repeated or degenerate faces); not counted");
+            throw std::invalid_argument("countSelfIntersections: over 20000000 overlapping pairs (triangles "
+                                        "piled on each other: repeated faces?); not counted");
         for (const auto& h : hits) {
             const std::size_t j = static_cast<std::size_t>(h - tris.begin());
             if (j <= i) continue;

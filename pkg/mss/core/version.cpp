@@ -6,6 +6,8 @@
 
 namespace mss {
 
-const char* version() { return MSS_VERSION; }
+const char* version() {
+    return MSS_VERSION;
+}
 
 } // namespace mss

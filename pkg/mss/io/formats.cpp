@@ -97,9 +97,10 @@ void refuseRepeatedFaces(const TriangleMesh& mesh, const std::string& path) {
             again = keys[k].second;
         }
     if (repeated > 0)
-        detail::fail(path, std::to_string(repeated) + " faces repeat another (face " + std::to_string(again) +
-                               " has the corners of face " + std::to_string(first) +
-                               "): a mesh's faces are distinct; remove the copies (MeshLab: Remove Duplicate Faces)");
+        detail::fail(
+            path, std::to_string(repeated) + " faces repeat another (face " + std::to_string(again) +
+                      " has the corners of face " + std::to_string(first) +
+                      "): a mesh's faces are distinct; remove the copies (MeshLab: Remove Duplicate Faces)");
 }
 
 } // namespace

@@ -34,9 +34,10 @@ void checkFloatsHold(const TriangleMesh& m) {
         rounded[i] = {{float(v[0]), float(v[1]), float(v[2])}, i};
         for (float x : rounded[i].first)
             if (!std::isfinite(x))
-                throw std::invalid_argument("writeMesh: vertex " + std::to_string(i) +
-                                            " is beyond single precision (3.4e38): binary STL cannot hold it; "
-                                            "write .obj or .ply (full precision)");
+                throw std::invalid_argument(
+                    "writeMesh: vertex " + std::to_string(i) +
+                    " is beyond single precision (3.4e38): binary STL cannot hold it; "
+                    "write .obj or .ply (full precision)");
     }
     std::sort(rounded.begin(), rounded.end());
     std::size_t merged = 0, example = 0;
@@ -48,10 +49,11 @@ void checkFloatsHold(const TriangleMesh& m) {
     if (merged > 0) {
         const Vec3& v = m.vertices[example];
         std::ostringstream s;
-        s << std::setprecision(6) << "writeMesh: binary STL holds single-precision floats, and " << merged << " of "
-          << m.vertices.size() << " vertices would merge with another when rounded to them (vertex " << example
-          << " at " << v[0] << ", " << v[1] << ", " << v[2]
-          << "): read back, the surface would be open; write .obj or .ply (full precision), or move the spheres "
+        s << std::setprecision(6) << "writeMesh: binary STL holds single-precision floats, and " << merged
+          << " of " << m.vertices.size() << " vertices would merge with another when rounded to them (vertex "
+          << example << " at " << v[0] << ", " << v[1] << ", " << v[2]
+          << "): read back, the surface would be open; write .obj or .ply (full precision), or move the "
+             "spheres "
              "nearer the origin";
         throw std::invalid_argument(s.str());
     }

@@ -47,7 +47,8 @@ TriangleMesh readOff(const std::string& path) {
                 if (w.empty()) return true;
                 long long d = 0;
                 if (!parseInt(w[0], d) || d != 3)
-                    fail(path, at + ": an OFF of dimension " + std::string(w[0]) + " (only 3-D meshes are read)");
+                    fail(path,
+                         at + ": an OFF of dimension " + std::string(w[0]) + " (only 3-D meshes are read)");
                 dimension = false;
                 w.erase(w.begin());
             }

@@ -10,7 +10,7 @@ from .. import _mss
 from . import _options
 from ._contacts import contactPoints as pointsOf, findContacts
 from ._results import MassProperties, MssResult, readSpheres
-from ._sources import Mesh, flatArray, readGrain
+from ._sources import Mesh, flatArray, massProperties, readGrain
 from ._volumes import readVolume
 
 
@@ -117,9 +117,12 @@ def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes
     :param spheres: a list of sphere files (CLUMP's ``x,y,z,r`` in its Python or MATLAB form, legacy VTK, YADE
         text clumps with ``clumpId``, ours) or results
     OPTIONS
-    :return: list of dicts: file, spheres, dice, eta, volumeRatio, coverage, outside, protrusion (largest, world
-        units), smallestRadius, massError, centroidError, inertiaError (the union against the grain), rotation
-        (3x3) and translation of the registration applied; with *exact* also exact (as :func:`score` gives it)
+    :return: list of dicts: file (a result: "result K (its grain's file)"), spheres, dice, eta, volumeRatio,
+        coverage, outside, protrusion (largest, world units), smallestRadius, massError, centroidError,
+        inertiaError (the union against the grain), rotation (3x3) and translation of the registration applied
+        (*align* registers only a set in another frame: under half its volume inside the grain's bounding box),
+        error ('' or, with several, the one file's error: that row has only file and error); with *exact* also
+        exact (as :func:`score` gives it)
     """
     items = list(spheres) if isinstance(spheres, (list, tuple)) else [spheres]
     opts = _options.collect('compareMany', 'compare', dict(resolution=resolution, offset=offset, align=align,
@@ -131,14 +134,30 @@ def compareMany(target, spheres, resolution=100, offset=0.37, align=None, planes
     if isinstance(s, Mesh) and (voxelSize is not None or origin is not None or label is not None):
         raise ValueError('compareMany: %s: voxelSize, origin and label apply to voxel volumes; this is a mesh '
                          '(resolution sets the scoring grid)' % s.name)
+    if isinstance(s, Mesh) and len(items) > 1:  # the grain's own faults first, named by it (a flat mesh)
+        try:
+            massProperties((s.vertices, s.triangles))
+        except ValueError as e:
+            raise ValueError('%s: %s' % (s.name, e)) from None
     rows = []
-    for item in items:
-        sp = item if isinstance(item, MssResult) else readSpheres(item, clumpId)
-        if isinstance(s, Mesh):
-            row = _mss.compareMesh(*s.args(), flatArray(sp.centers), sp.radii.tolist(), opts)
-        else:
-            row = _mss.compareVoxels(*s.args(), flatArray(sp.centers), sp.radii.tolist(), opts)
-        row['file'] = sp.source if isinstance(item, MssResult) else str(item)
+    for k, item in enumerate(items):
+        # an in-memory result is labelled as one (its grain's file name would read as a sphere file's)
+        name = ('result %d (%s)' % (k + 1, os.path.basename(item.source) or 'in memory')
+                if isinstance(item, MssResult) else str(item))
+        try:
+            sp = item if isinstance(item, MssResult) else readSpheres(item, clumpId)
+            if isinstance(s, Mesh):
+                row = _mss.compareMesh(*s.args(), flatArray(sp.centers), sp.radii.tolist(), opts)
+            else:
+                row = _mss.compareVoxels(*s.args(), flatArray(sp.centers), sp.radii.tolist(), opts)
+        except ValueError as e:
+            message = str(e) if name in str(e) else '%s: %s' % (name, e)  # the file at fault, not the grain
+            if len(items) == 1:
+                raise ValueError(message) from None
+            rows.append({'file': name, 'error': message})  # one bad file is a row, not the end of the table
+            continue
+        row['file'] = name
+        row['error'] = ''
         row['rotation'] = [row['rotation'][3 * i:3 * i + 3] for i in range(3)]
         rows.append(row)
     return rows

@@ -504,6 +504,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     gen, = split('batch', options, [o for o in GENERATE_OPTIONS if o not in ('voxelSize', 'origin', 'label',
                                                                              'threads')])
     inputs = _checkedInputs(inputs)
+    if outdir is not None and not isinstance(outdir, (str, bytes, os.PathLike)):
+        raise TypeError('batch: outdir must be a folder path, got %s' % type(outdir).__name__)
     checkScheduler('batch', scheduler, security)
     if not any(gen.get(k) for k in ('nSpheres', 'eta', 'dice', 'rMin', 'rMinVoxels')):
         raise ValueError('batch: give at least one termination criterion (--spheres, --eta, --dice, --rmin or '
@@ -530,8 +532,6 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         if outdir is None:
             raise ValueError('batch: format %r writes templates into the output folder: give outdir' % format)
     t0 = time.perf_counter()
-    if outdir is not None and not isinstance(outdir, (str, bytes, os.PathLike)):
-        raise TypeError('batch: outdir must be a folder path, got %s' % type(outdir).__name__)
     if outdir is not None:
         _refuseOverInputs(inputs, outdir)
     # one batch a folder: a second is refused at once, not left to mix its grains with the first's

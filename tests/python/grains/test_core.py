@@ -267,6 +267,26 @@ class Comparisons(unittest.TestCase):
         self.assertLessEqual(row['dice'], 0.085)
         self.assertGreater(np.linalg.norm(row['translation']), 100)
         self.assertEqual(compareMany(FEMUR, [eu], align='none')[0]['dice'], 1.0)  # as written: no overlap
+        self.assertIn(eu, str(ctx.exception))  # the file at fault named, not the grain
+
+    def test_align_registers_only_a_file_in_another_frame_and_a_bad_file_is_a_row(self):
+        # the bugs: --align principal re-registered our own file too (D 0.0278 -> 0.0305); one Euclidean file
+        # aborted the whole table; an in-memory result was labelled with the grain's file name
+        from yade_mss import compareMany
+        eu = os.path.join(DATA, 'clump', 'EU_femur_N70_div150_rMin4_ov0.95.txt')
+        ours = generate(FEMUR, nSpheres=20, resolution=40)
+        plain, aligned = compareMany(FEMUR, [ours], resolution=40)[0], \
+            compareMany(FEMUR, [ours, eu], resolution=40, align='principal')
+        self.assertEqual(aligned[0]['dice'], plain['dice'])  # in the grain's frame: scored as written
+        np.testing.assert_array_equal(aligned[0]['translation'], [0, 0, 0])
+        self.assertGreater(np.linalg.norm(aligned[1]['translation']), 100)  # the other frame: registered
+        self.assertEqual(aligned[0]['file'], 'result 1 (human_femur.stl)')
+        rows = compareMany(FEMUR, [eu, ours], resolution=40)
+        self.assertEqual(len(rows), 2)
+        self.assertIn('another frame', rows[0]['error'])
+        self.assertTrue(rows[0]['error'].startswith(eu))
+        self.assertEqual(rows[1]['error'], '')
+        self.assertEqual(rows[1]['dice'], plain['dice'])
 
 
 class Scoring(unittest.TestCase):

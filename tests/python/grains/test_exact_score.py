@@ -100,7 +100,7 @@ class ExactScore(unittest.TestCase):
             self.assertIn('D_exact +- se', p.stdout)
             with open(csv) as f:
                 head, first = f.readline().strip().split(','), f.readline().strip().split(',')
-            self.assertEqual(head[-2:], ['dice_exact', 'dice_exact_se'])
+            self.assertEqual(head[-3:], ['dice_exact', 'dice_exact_se', 'error'])
             self.assertEqual(len(first), len(head))
             p = subprocess.run([MSS, 'compare', tet, out, '--exact', '--samples', '10'], capture_output=True,
                                text=True, timeout=600)
