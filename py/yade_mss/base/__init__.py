@@ -11,9 +11,9 @@ from ._files import (atomicWrite, cppPath, folderLock, memoryBytes, readNpy, rea
 from ._keywords import split
 from ._rotations import quaternionMatrix, randomRotation
 from ._signals import exitStatus, restore as restoreSignals, stopOnce
-from ._work import bar as progressBar, check as checkWork, checkSweep
+from ._work import bar as progressBar, check as checkWork, checkSweep, slowPhase
 
 __all__ = ['INT64_MAX', 'INT_MAX', 'flag', 'integer', 'number', 'vector3', 'atomicWrite', 'cppPath', 'folderLock',
            'memoryBytes', 'readNpy', 'readTiff', 'refuseLinkedFolders', 'refuseOverInputs', 'requireRegularFile',
            'umask', 'split', 'quaternionMatrix', 'randomRotation', 'progressBar', 'checkWork', 'checkSweep',
-           'exitStatus', 'restoreSignals', 'stopOnce']
+           'exitStatus', 'restoreSignals', 'stopOnce', 'slowPhase']

@@ -31,3 +31,35 @@ def bar(total, where, seconds):
     """A progress bar (tqdm, on standard error) for *total* steps, shown where they should take over 2 s."""
     from tqdm import tqdm
     return tqdm(total=total, desc=where, file=sys.stderr, leave=False, disable=seconds < 2.0)
+
+
+class slowPhase(object):
+    """``with slowPhase('batch: writing the assembly', enabled):`` says what a phase is doing once it has run
+    for *after* seconds (then, when it ends, how long it took), so that no wait over a second is silent, while
+    a quick phase prints nothing (the console shown in the manual stays as it is)."""
+
+    def __init__(self, text, enabled=True, after=1.0):
+        self.text, self.enabled, self.after, self.timer, self.said = text, enabled, after, None, False
+
+    def _say(self):
+        self.said = True
+        print('%s ...' % self.text, flush=True)
+
+    def __enter__(self):
+        import threading
+        import time
+        self.t0 = time.perf_counter()
+        if self.enabled:
+            self.timer = threading.Timer(self.after, self._say)
+            self.timer.daemon = True
+            self.timer.start()
+        return self
+
+    def __exit__(self, *exc):
+        import time
+        if self.timer is not None:
+            self.timer.cancel()
+            self.timer.join()
+        if self.said and exc[0] is None:
+            print('%s: done in %.1f s' % (self.text, time.perf_counter() - self.t0), flush=True)
+        return False

@@ -23,7 +23,7 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..base import (atomicWrite, flag, folderLock, integer, number, refuseLinkedFolders, refuseOverInputs,
-                    requireRegularFile, split, vector3)
+                    requireRegularFile, slowPhase, split, vector3)
 from ..exports import MAX_TEMPLATES, writeTemplates
 from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, MssResult, binaryValue, contactsByLabel, generateWith,
                       optionTable, pieces, readVolume, regions, scanContacts, segmentBinary)
@@ -620,15 +620,18 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
         out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
         h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
-        _report.keptContacts(out, found, h)
-        _report.annotate(out, gen, density, young)
+        with slowPhase('batch: the contacts of %d grains in the assembly' % len(out.results), progress):
+            _report.keptContacts(out, found, h)
+            _report.annotate(out, gen, density, young)
         if outdir is not None:
             if previews:
-                _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
+                with slowPhase('batch: drawing the previews', progress):
+                    _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
             out.seconds = time.perf_counter() - t0
-            _report.writeOutputs(outdir, out, density, young)
-            if format is not None:
-                writeTemplates(outdir, out, format, density)
+            with slowPhase('batch: writing the assembly, grains.csv and the report', progress):
+                _report.writeOutputs(outdir, out, density, young)
+                if format is not None:
+                    writeTemplates(outdir, out, format, density)
         out.seconds = time.perf_counter() - t0
         if outdir is not None and not out.failed:
             _manifest.write(outdir, runKey, _state(out), _atomic)

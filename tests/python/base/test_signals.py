@@ -66,3 +66,26 @@ class StopOnce(unittest.TestCase):
 
 if __name__ == '__main__':
     unittest.main()
+
+
+class SlowPhase(unittest.TestCase):
+    """No wait over a second is silent (the bug: 141 s without a word after a batch's last grain), and a quick
+    phase prints nothing."""
+
+    def test_a_slow_phase_says_so_a_quick_one_does_not(self):
+        import contextlib
+        import io
+        import time
+        from yade_mss.base import slowPhase
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            with slowPhase('quick', after=0.5):
+                pass
+            with slowPhase('disabled', enabled=False, after=0.05):
+                time.sleep(0.2)
+            with slowPhase('slow', after=0.1):
+                time.sleep(0.4)
+        lines = out.getvalue().splitlines()
+        self.assertEqual(lines[0], 'slow ...')
+        self.assertRegex(lines[1], r'^slow: done in 0\.[3-9] s$')
+        self.assertEqual(len(lines), 2)
