@@ -374,7 +374,7 @@ class _StoredResults(Mapping):
         return len(self._keys)
 
 
-_STATE = ('timeStep', 'setBy', 'contacts', 'ranked', 'kinds', 'flagAt', 'previewed')
+_STATE = ('timeStep', 'setBy', 'contacts', 'ranked', 'kinds', 'flagAt', 'previewed', 'voxelSize', 'voxelSizeGiven')
 
 
 def _state(b):
@@ -620,6 +620,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
         out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
         h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
+        if found is not None:  # a labelled volume: its voxel edge, said in the summary with its unit
+            out.voxelSize, out.voxelSizeGiven = h, voxelSize is not None or gen.get('scale') not in (None, 1.0)
         with slowPhase('batch: the contacts of %d grains in the assembly' % len(out.results), progress):
             _report.keptContacts(out, found, h)
             _report.annotate(out, gen, density, young)

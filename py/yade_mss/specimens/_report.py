@@ -218,6 +218,11 @@ def summary(b, total, density, young):
             % (ok, sum(1 for r in rows if r['status'] == 'skipped'), len(b.failed), grains(total), b.seconds,
                grains(b.generated), b.generated / b.seconds if b.seconds > 0 else 0.0,
                '; %s reused from an earlier run' % grains(b.reused) if getattr(b, 'reused', 0) else ''))
+    h = getattr(b, 'voxelSize', None)
+    if h is not None:
+        text += ('\nbatch: voxel edge %g m (--voxel-size, --scale)' % h if getattr(b, 'voxelSizeGiven', False) else
+                 '\nbatch: voxel edge 1 (no --voxel-size): lengths, masses and the time step are in voxels, not '
+                 'metres; give --voxel-size, the voxel edge in metres, for YADE')
     if b.timeStep is not None:
         text += '\nbatch: time step %.3g s (density %g, young %g), set by %s' % (
             b.timeStep, density, young, ', '.join(b.setBy[:5]) + (' and %d more' % (len(b.setBy) - 5)
@@ -392,6 +397,11 @@ def _report(outdir, b, density, young):
     rows = list(b.rows.values())
     counts = {s: sum(1 for r in rows if r['status'] == s) for s in ('ok', 'skipped', 'failed')}
     notes = []
+    h = getattr(b, 'voxelSize', None)
+    if h is not None:
+        notes.append('Voxel edge %g m (--voxel-size, --scale).' % h if getattr(b, 'voxelSizeGiven', False) else
+                     'Voxel edge 1: no --voxel-size was given, so lengths, masses and the time step are in voxels, '
+                     'not metres. Give --voxel-size, the voxel edge in metres, for YADE.')
     cut = sum(1 for r in rows if int(r.get('touches_border') or 0))
     if cut:
         notes.append('%d of %s are cut by the volume\'s border: their clumps end where the scan does '

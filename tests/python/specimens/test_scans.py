@@ -409,6 +409,20 @@ class RefusedBeforeAnyWork(unittest.TestCase):
         self.assertIn('1 ok, 0 skipped, 1 failed of 2 grains', p.stdout)
         self.assertIn('(1 grain generated in this run', p.stdout)
 
+    def test_the_voxel_edge_and_its_unit_are_said(self):
+        # the bug: without --voxel-size a voxel was 1 m without a word (a batch reported a 0.016 s time step)
+        mss = os.environ.get('MSS_BINARY', 'mss')
+        for extra, said, page in (([], 'voxel edge 1 (no --voxel-size): lengths, masses and the time step are in '
+                                    'voxels', 'Voxel edge 1: no --voxel-size was given'),
+                                  (['--voxel-size', '2e-5'], 'voxel edge 2e-05 m', 'Voxel edge 2e-05 m')):
+            out = os.path.join(self.d, 'v%d' % len(extra))
+            p = subprocess.run([mss, 'batch', self.path, '-o', out, '--spheres', '4'] + extra, capture_output=True,
+                               text=True, timeout=300)
+            self.assertEqual(p.returncode, 0, p.stderr)
+            self.assertIn('batch: ' + said, p.stdout)
+            with open(os.path.join(out, 'report.html')) as f:
+                self.assertIn(page, f.read())
+
     def test_arguments_by_name(self):
         for kw, kind in ((dict(segment='no'), TypeError), (dict(excludeBorder='no'), TypeError),
                          (dict(minVoxels='5'), TypeError), (dict(voxelSize='abc'), TypeError),
