@@ -669,6 +669,8 @@ def _refuseOverInputs(inputs, outdir):
     among the grains' files, no output folder that is an input folder."""
     outdir = os.fspath(outdir)
     refuseLinkedFolders('batch', [outdir] + [os.path.join(outdir, d) for d in ('grains', 'templates')])
+    if os.path.lexists(outdir) and not os.path.isdir(outdir):
+        raise ValueError('batch: the output folder %s exists and is not a folder' % outdir)
     for n in OUTPUTS:
         path = os.path.join(outdir, n)
         if os.path.lexists(path) and not stat.S_ISREG(os.lstat(path).st_mode):

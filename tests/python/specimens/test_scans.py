@@ -382,6 +382,11 @@ class RefusedBeforeAnyWork(unittest.TestCase):
                 self.refused(out, name.split('/')[0] if plant == 'file' else name)
                 self.assertFalse(os.path.exists(target))
 
+    def test_an_output_folder_that_is_a_file(self):
+        out = os.path.join(self.d, 'afile')
+        open(out, 'w').close()
+        self.refused(out, 'exists and is not a folder')
+
     def test_the_input_folder_as_output(self):
         folder = os.path.join(self.d, 'grains_in')
         os.mkdir(folder)
