@@ -824,8 +824,9 @@ bool chooseOpenMp(int argc, char** argv) {
     if (threads <= u.free) {
         setenv("OMP_WAIT_POLICY", "ACTIVE", 1);
         setenv("GOMP_SPINCOUNT", "10000", 0);
-        // on a machine nobody else is using, each thread on a core of its own (mss::spreadThreads)
-        if (u.free == u.cores && threads > 1) setenv(kSpread, std::to_string(threads).c_str(), 1);
+        // the threads are not pinned to cores of their own (mss::spreadThreads, MSS_SPREAD_THREADS=N asks for
+        // it): pinned, an idle machine's default run took one thread's time (femur 70: 0.18-0.23 s against
+        // 0.14-0.16 s unpinned, --threads 2 0.13-0.16 s; bench/threads.sh)
     } else {
         setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
         if (u.known && u.threadsAsked <= 0 && !std::getenv("OMP_NUM_THREADS"))
