@@ -27,7 +27,9 @@ class Version(unittest.TestCase):
         self.assertEqual(yade_mss.__version__, v)
         self.assertEqual(yade_mss._mss.version(), v)
         self.assertIn('\nversion: %s\n' % v, read('CITATION.cff'))
-        self.assertEqual(re.search(r'^## (\S+)', read('CHANGELOG.md'), re.M).group(1), v)
+        # the newest numbered section (an "Unreleased" one may come above it, for what is not released yet)
+        self.assertEqual(re.search(r'^## ([0-9]+\.[0-9]+\.[0-9]+) \(\d{4}-\d\d-\d\d\)$', read('CHANGELOG.md'),
+                                   re.M).group(1), v)
         self.assertRegex(read('CITATION.cff'), r'\ndate-released: \d{4}-\d\d-\d\d\n')
         sys.path.insert(0, os.path.join(ROOT, 'docs'))
         try:
