@@ -135,6 +135,27 @@ class StrictArguments(Base):
         self.assertIn(fragment, str(ctx.exception))
         self.assertEqual(len(O.bodies), 0)
 
+    def test_clump_ids_by_name(self):
+        # the attack: grainSizes(np.array([id])) and writeClumps(clumpIds=np.int64(id)) raised internal errors
+        import tempfile
+        from yade_mss import grainSizes, writeClumps
+        cid, ids = mssClump(ELL, nSpheres=4, resolution=30)
+        sizes, masses = grainSizes(np.array([cid]))
+        self.assertEqual(len(sizes), 1)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'c.txt')
+            self.assertEqual(writeClumps(path, np.array([cid]))[0], 1)
+            for kind, fragment, f in (
+                    (TypeError, 'clumpIds must be a list', lambda: grainSizes(np.int64(cid))),
+                    (TypeError, 'clumpIds must be a list', lambda: writeClumps(path, clumpIds=np.int64(cid))),
+                    (TypeError, 'clump ids must be integers', lambda: grainSizes(['x'])),
+                    (TypeError, 'clump ids must be integers', lambda: writeClumps(path, [True])),
+                    (ValueError, 'is not a clump', lambda: grainSizes([ids[0]])),
+                    (ValueError, 'is not a clump', lambda: writeClumps(path, [10 ** 6]))):
+                with self.assertRaises(kind) as ctx:
+                    f()
+                self.assertIn(fragment, str(ctx.exception))
+
     def test_own_parameters_are_suggested(self):
         r = generate(ELL, nSpheres=4, resolution=30)
         self.refused(TypeError, "did you mean 'orientation'", lambda: mssClump(r, orientaton='random'))

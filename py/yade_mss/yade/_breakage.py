@@ -25,7 +25,8 @@ import numpy as np
 from .. import _mss
 from ..base import integer, number, split as splitKeywords, vector3
 from ..grains import GENERATE_OPTIONS, flatArray, generate, generateWith
-from ._clumps import _Members, _Plan, _build, _offsetWarning, bodyOptions, matrix, stateTensor, yadeModules
+from ._clumps import (_Members, _Plan, _build, _offsetWarning, bodyOptions, clumpIdList, matrix, stateTensor,
+                      yadeModules)
 from ._loads import memberLoads
 from ._records import encodeGrain, grainOf, labelOf, matchMembers, quaternionMatrices, recordOf
 
@@ -634,8 +635,7 @@ def grainSizes(clumpIds=None):
     :param clumpIds: the clumps to measure (default None: every clump of the scene)
     """
     utils, O, me = yadeModules()
-    if clumpIds is None:
-        clumpIds = [b.id for b in O.bodies if b is not None and b.isClump]
+    clumpIds = clumpIdList('grainSizes', clumpIds, O)
     masses, sizes = [], []
     for c in clumpIds:
         b = O.bodies[c]

@@ -7,7 +7,7 @@ import numpy as np
 from .. import _mss
 from ..base import atomicWrite, split
 from ..exports import HEADER, parseClumps
-from ._clumps import _clumpIds, bodyOptions, buildClump, stateTensor, yadeModules
+from ._clumps import bodyOptions, buildClump, clumpIdList, stateTensor, yadeModules
 
 def writeClumps(path, clumpIds=None):
     """Writes clumps of spheres to a text file: YADE's ``x y z r clumpId`` lines (what ``export.textClumps``
@@ -20,7 +20,7 @@ def writeClumps(path, clumpIds=None):
     """
     utils, O, me = yadeModules()
     from yade.wrapper import Sphere
-    ids = _clumpIds(O) if clumpIds is None else [int(i) for i in clumpIds]
+    ids = clumpIdList('writeClumps', clumpIds, O)
     lines = [HEADER]
     spheres = 0
     for cid in ids:

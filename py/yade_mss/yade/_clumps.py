@@ -569,6 +569,27 @@ def requireVoxelSize(func, source, gen):
                          % (func, path if path is not None else 'the array'))
 
 
+def clumpIdList(func, clumpIds, O, existing=True):
+    """*clumpIds* as a list of ints: None is every clump of the scene; otherwise a list (tuple, array) of integers
+    (numpy's too), each a clump of the scene with *existing* (a scalar, a string, a bool or a body that is not a
+    clump is refused by name)."""
+    if clumpIds is None:
+        return _clumpIds(O)
+    if isinstance(clumpIds, (str, bytes)) or not hasattr(clumpIds, '__iter__'):
+        raise TypeError('%s: clumpIds must be a list of clump ids, got %r' % (func, clumpIds))
+    ids = list(clumpIds)
+    for i in ids:
+        if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
+            raise TypeError('%s: clump ids must be integers, got %r' % (func, i))
+    ids = [int(i) for i in ids]
+    if existing:
+        for cid in ids:
+            body = O.bodies[cid] if 0 <= cid < len(O.bodies) else None
+            if body is None or not body.isClump:
+                raise ValueError('%s: body %d is not a clump' % (func, cid))
+    return ids
+
+
 def _clumpIds(O):
     return [b.id for b in O.bodies if b is not None and b.isClump]
 

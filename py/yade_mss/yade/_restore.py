@@ -6,7 +6,7 @@ import warnings
 import numpy as np
 
 from .. import _mss
-from ._clumps import _Plan, _checkMany, _clumpIds, _sphereMass, _withLoads, yadeModules
+from ._clumps import _Plan, _checkMany, _clumpIds, _sphereMass, _withLoads, clumpIdList, yadeModules
 from ._records import OLD_TAG, attach, drop, encodeMany, matchMembers, quaternionMatrices, recordOf
 
 
@@ -20,13 +20,7 @@ def _ids(func, clumpIds, O):
                 if rec is not None:
                     recs[b.id] = rec
         return list(recs), False, recs
-    if isinstance(clumpIds, (str, bytes)) or not hasattr(clumpIds, '__iter__'):
-        raise TypeError('%s: clumpIds must be a list of clump ids, got %r' % (func, clumpIds))
-    ids = list(clumpIds)
-    for i in ids:
-        if isinstance(i, (bool, np.bool_)) or not isinstance(i, (int, np.integer)):
-            raise TypeError('%s: clump ids must be integers, got %r' % (func, i))
-    return [int(i) for i in ids], True, {}
+    return clumpIdList(func, clumpIds, O, existing=False), True, {}
 
 
 def restoreClumpProperties(clumpIds=None, resolution=200):
