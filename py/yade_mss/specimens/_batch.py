@@ -412,12 +412,6 @@ def _runKey(inputs, options, extra):
 META_BYTES = 1 << 24  # a grain's record is its row and digests: a few KB
 
 
-def _rowSum(row):
-    """The digest of a row as its record holds it (read back from JSON: the same text on both sides)."""
-    text = json.dumps(json.loads(json.dumps(row, default=str)), sort_keys=True)
-    return hashlib.sha256(text.encode()).hexdigest()
-
-
 def grainRecord(outdir, key):
     """(record, result) of the grain KEY that a batch wrote to *outdir*, checked: the record (grains/KEY.json,
     bounded) must hold the digest of its own row, and every file the grain wrote (.npz, .csv, .png) the digest
@@ -434,7 +428,7 @@ def grainRecord(outdir, key):
         if not isinstance(meta, dict) or not isinstance(meta.get('row'), dict):
             return None
         row, files = meta['row'], meta.get('files')
-        if meta.get('rowSum') != _rowSum(row) or not isinstance(files, dict):
+        if meta.get('rowSum') != _manifest.contentDigest(row) or not isinstance(files, dict):
             return None
         for ext, sum_ in files.items():
             if ext not in ('npz', 'csv', 'png') or _fileDigest(os.path.join(g, key + '.' + ext)) != sum_:
@@ -480,7 +474,7 @@ def _store(outdir, key, row, result, optionsKey, digest=None):
         digested('npz', lambda p: result.save(p, compress=False))
         digested('csv', result.save)
     _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({
-        'options': optionsKey, 'input': digest, 'files': sums, 'row': row, 'rowSum': _rowSum(row)})))
+        'options': optionsKey, 'input': digest, 'files': sums, 'row': row, 'rowSum': _manifest.contentDigest(row)})))
 
 
 @optionTable.documented('batch')

@@ -62,7 +62,7 @@ def write(outdir, key, state, atomic):
     """Writes the manifest of a finished batch: its *key* (inputs and options), the files in *outdir* now and
     *state* (what the summary and the Python API give back)."""
     body = {'version': VERSION, 'key': key, 'outputs': outputs(outdir), 'state': state}
-    text = json.dumps(dict(body, sum=_sum(body)))
+    text = json.dumps(dict(body, sum=contentDigest(body)))
 
     def put(p):
         with open(p, 'w') as f:
@@ -70,9 +70,10 @@ def write(outdir, key, state, atomic):
     atomic(os.path.join(outdir, NAME), put)
 
 
-def _sum(body):
-    """The digest of a manifest's content as read back from JSON."""
-    text = json.dumps(json.loads(json.dumps(body, default=str)), sort_keys=True)
+def contentDigest(data):
+    """The digest of JSON-able *data* as read back from JSON (the same text before writing and after reading):
+    the manifest's own, a grain record's row."""
+    text = json.dumps(json.loads(json.dumps(data, default=str)), sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()
 
 
@@ -88,7 +89,7 @@ def read(outdir):
             meta = json.load(f)
         if not isinstance(meta, dict) or meta.get('version') != VERSION:
             return None
-        if meta.get('sum') != _sum({k: meta.get(k) for k in ('version', 'key', 'outputs', 'state')}):
+        if meta.get('sum') != contentDigest({k: meta.get(k) for k in ('version', 'key', 'outputs', 'state')}):
             return None  # edited since it was written
         return meta
     except (OSError, ValueError, TypeError, RecursionError):  # a nesting too deep for the parser: stale

@@ -66,13 +66,12 @@ def checkScheduler(where, scheduler, security=None):
     from urllib.parse import urlsplit
     if not isinstance(scheduler, str):
         raise TypeError('%s: the scheduler is an address SCHEME://HOST:PORT, got %r' % (where, scheduler))
-    bad = [c for c in scheduler if c.isspace() or ord(c) < 32 or ord(c) == 127]
     try:
         u = urlsplit(scheduler)
         port = u.port
     except ValueError:
         port = None
-    if bad or not scheduler.isprintable() or u.scheme not in ('tcp', 'tls', 'ws', 'wss') or not u.hostname \
+    if not scheduler.isprintable() or ' ' in scheduler or u.scheme not in ('tcp', 'tls', 'ws', 'wss') or not u.hostname \
             or port is None or not 1 <= port <= 65535 or u.path not in ('', '/'):
         raise ValueError('%s: the scheduler address must be SCHEME://HOST:PORT (scheme tcp, tls, ws or wss, a '
                          'port in 1..65535, no spaces or control characters), got %r' % (where, scheduler))

@@ -9,6 +9,7 @@ import numpy as np
 from ..base import readNpy
 from ..grains import MssResult, generate, massProperties, readSpheres, regions
 from ..specimens import readManifest
+from ..yade import requireVoxelSize
 
 MESHES = ('.stl', '.obj', '.off', '.ply')
 VOLUMES = ('.npy', '.tif', '.tiff')
@@ -35,15 +36,9 @@ def _isVolume(path):
     return os.path.splitext(path)[1].lower() in VOLUMES
 
 
-def _requireVoxelSize(path, gen):
-    if gen.get('voxelSize') is None:
-        raise ValueError('triaxial: %s is a voxel volume: give its voxel edge in metres (voxelSize=1.25e-5, '
-                         '--voxel-size 1.25e-5); without it a voxel would be 1 m' % path)
-
-
 def _volumeGrains(path, gen):
     """A volume file: one grain, or each label of a labelled one (the scan's grains, each once)."""
-    _requireVoxelSize(path, gen)
+    requireVoxelSize('triaxial', path, gen)
     if path.lower().endswith('.npy'):
         a = readNpy('triaxial', path, mmap=True)
         if a.dtype != bool and a.ndim == 3:
@@ -86,7 +81,7 @@ def _batchGrains(folder, gen):
     for k in ('voxelSize', 'origin'):
         if b.get(k) is not None and gen.get(k) is None:
             gen[k] = b[k]
-    _requireVoxelSize(volume, gen)
+    requireVoxelSize('triaxial', volume, gen)
     out = []
     for name in done:
         if not name.startswith('label_') or not name[6:].isdigit():
@@ -103,7 +98,7 @@ def _sphereFileGrain(path, grain, gen):
     r = readSpheres(path)
     s = gen.get('scale') or 1.0
     if _isVolume(grain):
-        _requireVoxelSize(grain, gen)
+        requireVoxelSize('triaxial', grain, gen)
     m = massProperties(grain, voxelSize=gen.get('voxelSize'), origin=gen.get('origin'))
     fixed = MssResult(r.centers * s, r.radii * s, metrics=dict(spheres=len(r.radii)),
                       targetMass=m.transformed(scale=s),

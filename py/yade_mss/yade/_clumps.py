@@ -565,8 +565,8 @@ def requireVoxelSize(func, source, gen):
     volume = isinstance(source, np.ndarray) or (path is not None and os.path.splitext(path)[1].lower() in VOLUME_EXT)
     if volume and gen.get('voxelSize') is None:
         raise ValueError('%s: %s is a voxel volume: give its voxel edge in metres, voxelSize=1.25e-5 for 12.5 um '
-                         'voxels (YADE\'s lengths are metres; without it a voxel would be 1 m)'
-                         % (func, path if path is not None else 'the array'))
+                         'voxels (--voxel-size on the command line; YADE\'s lengths are metres: without it a voxel '
+                         'would be 1 m)' % (func, path if path is not None else 'the array'))
 
 
 def clumpIdList(func, clumpIds, O, existing=True):
