@@ -623,9 +623,12 @@ int cmdInfo(const Args& a) {
               << (i.signedVolume < 0 ? " (inside out)" : "") << "\n";
     std::cout << "degenerate    " << i.degenerateTriangles << "\n";
     try {
-        std::cout << "self_intersections " << mss::countSelfIntersections(mesh) << "\n";
+        // the count stops at its limit (within one triangle's pairs of it): past it, "at least"
+        constexpr std::size_t kLimit = 1000000;
+        const std::size_t n = mss::countSelfIntersections(mesh, kLimit);
+        std::cout << "self_intersections " << (n >= kLimit ? "at least " : "") << n << "\n";
     } catch (const std::invalid_argument& e) { // the rest of the report still holds
-        std::cout << "not counted (" << e.what() << ")\n";
+        std::cout << "self_intersections not counted (" << e.what() << ")\n";
     }
     std::cout << "volume        " << std::abs(i.signedVolume) << "\n";
     std::cout << "bbox_min      " << i.lower.x() << " " << i.lower.y() << " " << i.lower.z() << "\n";

@@ -4,6 +4,7 @@
 #include "mss/grid.hpp"
 #include "mss/mesh.hpp"
 #include "mss/spheres.hpp"
+#include "mss/work.hpp"
 
 namespace mss {
 
@@ -35,9 +36,11 @@ GridSpec gridForBox(const Vec3& lower, const Vec3& upper, const Resolution& res,
 VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int supersample = 1,
                        std::vector<std::string>* warnings = nullptr);
 
-/// Grid from @p res around the mesh bounding box, then voxelizeMesh. Checks the mesh first.
+/// Grid from @p res around the mesh bounding box, then voxelizeMesh. Checks the mesh first. Refused before
+/// the rays are cast (std::invalid_argument, naming why): crossings that would not fit @p res.memoryLimit (a
+/// triangle soup), and for an open mesh winding-number queries estimated over @p maxWork seconds (work.hpp).
 VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supersample = 1,
-                       std::vector<std::string>* warnings = nullptr);
+                       std::vector<std::string>* warnings = nullptr, double maxWork = kDefaultMaxWork);
 
 /// Voxelises the union of spheres (eq. 1) on @p grid: a voxel is set when its centre lies in a sphere
 /// (distance <= radius). O(sum of sphere volumes in voxels); parallel over z slices.

@@ -47,7 +47,7 @@ from .yade import (MssBreakage, MssTemplate, breakageLog, breakagePotential, con
                    grainSizes, mssClump,
                    mssClumpCloud, mssReplaceByClumps, mssSplit, mssTemplate, porosity, readClumps, relativeBreakage,
                    restoreClumpProperties, totalMass, writeClumps)
-from .specimens import batch, mssAssembly, packedSpecimen, syntheticSpecimen, voronoiBall  # noqa: E402
+from .specimens import batch, mssAssembly, packedSpecimen, porousScan, syntheticSpecimen, voronoiBall  # noqa: E402
 from .studies import TriaxialResult, triaxial, triaxialStudy  # noqa: E402
 from . import _mss  # noqa: E402,F401 (the C++ module, for tests and advanced use)
 
@@ -56,6 +56,6 @@ __version__ = _mss.version()  # one version, the CMake project's: the library's,
 __all__ = ['MassProperties', 'MssResult', 'generate', 'readSpheres', 'score', 'compareMany', 'massProperties',
            'mssClump', 'restoreClumpProperties', 'totalMass', 'porosity', 'writeClumps', 'readClumps',
            'mssTemplate', 'MssTemplate', 'mssClumpCloud', 'mssReplaceByClumps', 'batch', 'mssAssembly', 'regions',
-           'syntheticSpecimen', 'packedSpecimen', 'voronoiBall', 'findContacts', 'spheropolygon', 'spheropolygons',
+           'syntheticSpecimen', 'packedSpecimen', 'porousScan', 'voronoiBall', 'findContacts', 'spheropolygon', 'spheropolygons',
            'boundaryRegions', 'ochart', 'clumpOchart', 'mssSplit', 'MssBreakage', 'breakageLog', 'grainSizes',
            'breakagePotential', 'relativeBreakage', 'contactStiffnessEngine', 'triaxial', 'triaxialStudy', 'TriaxialResult']

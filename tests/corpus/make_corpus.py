@@ -157,3 +157,7 @@ w('repeated_faces.obj', 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf
 _disc = np.zeros((20, 20), dtype=np.uint8)
 _disc[5:15, 5:15] = 1
 np.save(os.path.join(D, 'square_2d.npy'), _disc)
+# a triangle soup: 2000 triangles of random corners in a cube, every ray of a grid crossing hundreds of them
+_rng = np.random.default_rng(7)
+w('triangle_soup.obj', ''.join('v %.4f %.4f %.4f\n' % tuple(v) for v in _rng.random((6000, 3)))
+  + ''.join('f %d %d %d\n' % (3 * i + 1, 3 * i + 2, 3 * i + 3) for i in range(2000)))

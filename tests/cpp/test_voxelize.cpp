@@ -137,3 +137,51 @@ TEST(Voxelize, SpheresFarOutsideTheGridAreIgnored) {
     s.add(Vec3(1e300, 0, 0), 1.0); // would overflow any index maths: outside the range of sphere sets
     EXPECT_THROW(voxelizeSpheres(s, g), std::invalid_argument);
 }
+
+namespace {
+/// @p n triangles with random corners in the unit cube: a soup, every triangle spanning much of the grid.
+TriangleMesh triangleSoup(int n) {
+    TriangleMesh m;
+    unsigned state = 12345u;
+    auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        return double(state >> 8) / double(1u << 24);
+    };
+    for (int i = 0; i < 3 * n; ++i) m.vertices.emplace_back(next(), next(), next());
+    for (int i = 0; i < n; ++i) m.triangles.push_back({3 * i, 3 * i + 1, 3 * i + 2});
+    return m;
+}
+} // namespace
+
+TEST(Voxelize, TriangleSoupIsRefusedBeforeItsCrossingsAreStored) {
+    // every ray meets a fair share of the soup's triangles: 2000 triangles at 100 voxels, about 5e6
+    // crossings (a surface's rays meet a few each); under a 16 MiB limit refused at once, naming the soup
+    const TriangleMesh soup = triangleSoup(2000);
+    Resolution res;
+    res.resolution = 100;
+    res.memoryLimit = std::size_t(16) << 20;
+    try {
+        voxelizeMesh(soup, res);
+        FAIL() << "a soup over the memory limit was voxelised";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("triangle soup"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("memory limit"), std::string::npos) << e.what();
+    }
+    // the same limit leaves a real surface alone: the ball's rays cross it twice
+    const TriangleMesh ball = readMesh(kData + "/sphere_r1.stl");
+    EXPECT_GT(countSolid(voxelizeMesh(ball, res)), 0u);
+}
+
+TEST(Voxelize, OpenMeshWindingWorkIsEstimatedBeforeItStarts) {
+    // an open soup's inside is a winding number a run: refused past maxWork with the estimate, not run
+    const TriangleMesh soup = triangleSoup(2000);
+    Resolution res;
+    res.resolution = 100;
+    try {
+        voxelizeMesh(soup, res, 1, nullptr, 1.0);
+        FAIL() << "an open soup's winding numbers were computed past the work limit";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("winding number"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("work limit of 1 s"), std::string::npos) << e.what();
+    }
+}

@@ -1,6 +1,7 @@
 """YADE's clump API on mssClump clumps, side by side with a plain appendClumped clump of the same spheres.
 Run: yade -n -x tests/yade/test_clump_api.py"""
 import glob
+import inspect
 import math
 import os
 import sys
@@ -17,6 +18,7 @@ from yade import utils, export, ymport  # noqa: E402
 from yade.wrapper import *  # noqa: F401,F403,E402
 import yade.minieigenHP as me  # noqa: E402
 
+import yade_mss  # noqa: E402
 from yade_mss import generate, mssClump, restoreClumpProperties, readClumps, writeClumps  # noqa: E402
 
 O = Omega()
@@ -391,6 +393,62 @@ class SideBySide(Base):
         self.assertGreater(st.pos[0], C[0] + 350)
         self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
         self.assertLess(abs(O.bodies[cid].state.mass - M) / M, 1e-9)
+
+
+class EveryName(unittest.TestCase):
+    """Every public name that needs YADE, every keyword argument of it given a value of the wrong kind: a
+    TypeError or ValueError naming the argument (the names without YADE: tests/python/base/test_every_name.py)."""
+
+    def setUp(self):
+        O.reset()
+        O.materials.append(FrictMat(density=RHO, young=1e7, poisson=0.3, frictionAngle=0.5))
+        yade_mss.mssClump(ELL, nSpheres=4, resolution=20)
+
+    def test_every_keyword_of_the_wrong_kind_is_refused_by_name(self):
+        d = tempfile.mkdtemp()
+        template = yade_mss.mssTemplate(ELL, nSpheres=3, resolution=20)
+        labels = os.path.join(os.path.dirname(ELL), 'two_grains_labels.npy')
+        calls = {  # a valid call's arguments (made in a fresh scene) and keywords
+            'mssClump': (lambda: (ELL,), dict(nSpheres=3, resolution=20)),
+            'restoreClumpProperties': (lambda: (), {}),
+            'porosity': (lambda: (), {}),
+            'writeClumps': (lambda: (os.path.join(d, 'c.txt'),), {}),
+            'mssTemplate': (lambda: (ELL,), dict(nSpheres=3, resolution=20)),
+            'mssClumpCloud': (lambda: ([template], (0, 0, 0), (10, 10, 10)), dict(num=2, seed=1)),
+            'mssReplaceByClumps': (lambda: ([template], [1.0]), {}),
+            'mssAssembly': (lambda: (labels,), dict(nSpheres=3, voxelSize=1e-3)),
+            'grainSizes': (lambda: (), {}),
+            'contactStiffnessEngine': (lambda: (), {}),
+            'MssBreakage': (lambda: (), dict(sigma0=1e6, d0=1e-3)),
+            'mssSplit': (lambda: (yade_mss.mssClump(ELL, nSpheres=4, resolution=20, breakable=True)[0],
+                                  ((0, 0, 0), (1, 0, 0))), dict(nSpheres=2)),
+            'triaxial': (lambda: ([template],), dict(grains=10, strain=0.001)),
+        }
+        # the names of tests/python/base/test_every_name.py's YADE set: each called here, or taking no keyword
+        # with a default (totalMass, breakageLog; readClumps: YADE's body keywords), or checked by its own
+        # test before any work (triaxialStudy: tests/python/studies)
+        self.assertEqual(set(calls) | {'totalMass', 'breakageLog', 'readClumps', 'triaxialStudy'},
+                         {'mssClump', 'restoreClumpProperties', 'totalMass', 'porosity', 'writeClumps', 'readClumps',
+                          'mssTemplate', 'mssClumpCloud', 'mssReplaceByClumps', 'mssAssembly', 'mssSplit',
+                          'MssBreakage', 'breakageLog', 'grainSizes', 'contactStiffnessEngine', 'triaxial',
+                          'triaxialStudy'})
+        for name, (args, kw) in calls.items():
+            f = getattr(yade_mss, name)
+            for p in inspect.signature(f).parameters.values():
+                if p.default is inspect.Parameter.empty or p.kind in (p.VAR_KEYWORD, p.VAR_POSITIONAL):
+                    continue
+                bads = (['no', 1.5] if isinstance(p.default, bool) else ['abc', [1]]
+                        if isinstance(p.default, (int, float)) else [object()])
+                for bad in bads:
+                    with self.subTest('%s(%s=%r)' % (name, p.name, bad)):
+                        self.setUp()
+                        if name == 'triaxial':
+                            O.reset()  # it builds its own specimen
+                        if name == 'mssReplaceByClumps':
+                            O.bodies.append(utils.sphere((0, 0, 0), 1.0))
+                        with self.assertRaises((TypeError, ValueError)) as ctx:
+                            f(*args(), **dict(kw, **{p.name: bad}))
+                        self.assertIn(p.name, str(ctx.exception))
 
 
 if __name__ == '__main__':

@@ -352,6 +352,26 @@ class Assembly(Base):
         with self.assertRaises(ValueError):
             porosity(volume=-1.0)
 
+    def test_porosity_of_a_scan_s_specimen_is_counted_in_the_scan_s_box(self):
+        # the issue: the default box was the spheres' (1.5 voxels beyond the scan), so a CT specimen's porosity
+        # differed from the scan's without a word
+        from yade_mss import mssAssembly, porosity
+        import tempfile
+        L = np.load('tests/data/two_grains_labels.npy')
+        h = 1e-3
+        scan = 1 - np.count_nonzero(L) / L.size  # the scan's own porosity, voxels counted
+        a = mssAssembly(L, nSpheres=20, voxelSize=h, material='grain')
+        solid = sum(O.bodies[cid].state.mass for cid, _ in a.values()) / O.materials['grain'].density
+        self.assertAlmostEqual(porosity(), 1 - solid / (L.size * h ** 3), delta=1e-12)  # the scan's box
+        self.assertAlmostEqual(porosity(), scan, delta=0.01)  # the grains' exact volumes are their voxels'
+        with tempfile.TemporaryDirectory() as d:  # a finished batch's folder: its manifest keeps the box
+            from yade_mss import batch
+            batch(L, os.path.join(d, 'b'), workers=1, progress=False, nSpheres=20, voxelSize=h)
+            O.reset()
+            O.materials.append(FrictMat(density=2650, label='grain'))
+            mssAssembly(os.path.join(d, 'b'), material='grain')
+            self.assertAlmostEqual(porosity(), 1 - solid / (L.size * h ** 3), delta=1e-9)
+
 
 if __name__ == '__main__':
     result = unittest.main(exit=False, verbosity=2).result

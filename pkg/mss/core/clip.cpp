@@ -544,38 +544,6 @@ double MeshQuery::windingExact(const Vec3& p) const {
     return omega / kFourPi;
 }
 
-std::size_t countSelfIntersections(const TriangleMesh& mesh, std::size_t limit) {
-    validateMesh(mesh, "countSelfIntersections");
-    std::vector<Tri> tris;
-    std::vector<std::array<int, 3>> ids;
-    for (const auto& t : mesh.triangles) {
-        const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
-        if ((b - a).cross(c - a).squaredNorm() == 0.0) continue;
-        tris.emplace_back(K::Point_3(a.x(), a.y(), a.z()), K::Point_3(b.x(), b.y(), b.z()),
-                          K::Point_3(c.x(), c.y(), c.z()));
-        ids.push_back(t);
-    }
-    Tree tree(tris.begin(), tris.end());
-    std::size_t count = 0, candidates = 0; // candidates: a few seconds of triangle-triangle tests at most
-    std::vector<Tree::Primitive_id> hits;
-    for (std::size_t i = 0; i < tris.size() && count < limit; ++i) {
-        hits.clear();
-        tree.all_intersected_primitives(tris[i], std::back_inserter(hits));
-        if ((candidates += hits.size()) > 20000000)
-            throw std::invalid_argument("countSelfIntersections: over 20000000 overlapping pairs (triangles "
-                                        "piled on each other: repeated faces?); not counted");
-        for (const auto& h : hits) {
-            const std::size_t j = static_cast<std::size_t>(h - tris.begin());
-            if (j <= i) continue;
-            bool shared = false;
-            for (int a : ids[i])
-                for (int b : ids[j]) shared = shared || a == b;
-            if (!shared) ++count;
-        }
-    }
-    return count;
-}
-
 SphereSet clipSpheres(const SphereSet& spheres, const TriangleMesh* mesh, const std::vector<Plane>& planes,
                       double rMin, std::size_t* changed) {
     validateSpheres(spheres, "clipSpheres");

@@ -1,5 +1,6 @@
 #include "mss/grid.hpp"
 
+#include <algorithm>
 #include <numeric>
 #include <sstream>
 
@@ -44,8 +45,10 @@ void checkGridSize(const char* where, const std::array<long long, 3>& dims, std:
                << " GiB";
         else
             os << " and has over 2^31 - 1 voxels, more than a grid can index";
-        os << "; choose a coarser resolution (about "
-           << static_cast<double>(std::cbrt(static_cast<double>(memoryLimit) / bytesPerVoxel / voxels))
+        // the fraction of the voxels along each edge that would fit both bounds (under 1)
+        const long double fits =
+            std::min(static_cast<long double>(memoryLimit) / bytesPerVoxel, 2147483647.0L);
+        os << "; choose a coarser resolution (about " << static_cast<double>(std::cbrt(fits / voxels))
            << " times the voxel count along each edge would fit)";
         throw std::invalid_argument(os.str());
     }

@@ -1,6 +1,7 @@
 #include "mss/voxelize.hpp"
 #include "mss/core/ball_rows.hpp"
 #include "mss/core/mesh_query.hpp"
+#include "mss/work.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -176,9 +177,28 @@ std::vector<Hit> rayHits(const TriangleMesh& mesh, const std::vector<Vec3>& v, i
     return sorted;
 }
 
+/// An upper bound on the crossings rayHits finds: the sub-sample columns in each triangle's (y, z) box (about
+/// twice the count for a surface's triangles). O(triangles), so that a triangle soup, whose every triangle
+/// spans the grid, is refused before gigabytes of crossings are stored.
+double crossingBound(const TriangleMesh& mesh, const std::vector<Vec3>& v, int s, int NY, int NZ) {
+    double bound = 0.0;
+    for (const auto& t : mesh.triangles) {
+        const Vec3 &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+        const double ylo = std::min({a.y(), b.y(), c.y()}), yhi = std::max({a.y(), b.y(), c.y()});
+        const double zlo = std::min({a.z(), b.z(), c.z()}), zhi = std::max({a.z(), b.z(), c.z()});
+        const double J0 = std::max(0.0, std::ceil((ylo + 0.5) * s - 0.5));
+        const double J1 = std::min(double(NY - 1), std::floor((yhi + 0.5) * s - 0.5));
+        const double K0 = std::max(0.0, std::ceil((zlo + 0.5) * s - 0.5));
+        const double K1 = std::min(double(NZ - 1), std::floor((zhi + 0.5) * s - 0.5));
+        if (J1 >= J0 && K1 >= K0) bound += (J1 - J0 + 1.0) * (K1 - K0 + 1.0);
+    }
+    return bound;
+}
+
 /// voxelizeMesh of a valid @p mesh whose analyzeMesh() is @p info.
 VoxelGrid voxelizeAnalysed(const TriangleMesh& mesh, const MeshInfo& info, const GridSpec& grid,
-                           int supersample, std::vector<std::string>* warnings) {
+                           int supersample, std::vector<std::string>* warnings,
+                           std::size_t memoryLimit = kDefaultMemoryLimit, double maxWork = kDefaultMaxWork) {
     if (supersample < 1 || supersample > 8)
         throw std::invalid_argument("voxelizeMesh: supersample must be 1..8, got " +
                                     std::to_string(supersample));
@@ -207,6 +227,28 @@ VoxelGrid voxelizeAnalysed(const TriangleMesh& mesh, const MeshInfo& info, const
     std::vector<Vec3> v(mesh.vertices.size());
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = grid.toVoxel(mesh.vertices[i]);
 
+    // the crossings are held twice (by triangle, then by column), 12 bytes each
+    const double bound = crossingBound(mesh, v, s, NY, NZ);
+    const double bytes = 2.0 * sizeof(Hit) * bound;
+    if (bytes > static_cast<double>(memoryLimit)) {
+        std::ostringstream os;
+        os.precision(3);
+        os << "voxelizeMesh: the grid's rays along x may cross the " << mesh.triangles.size()
+           << " triangles up to " << bound << " times (" << bytes / 1073741824.0
+           << " GiB to hold the crossings), over the memory limit of " << double(memoryLimit) / 1073741824.0
+           << " GiB: the triangles overlap far more than a surface's do (a triangle soup? `mss info` counts "
+              "its "
+              "self-intersections); repair the mesh, or choose a coarser resolution";
+        throw std::invalid_argument(os.str());
+    }
+    if (winding) { // a winding number at each run between two crossings: a tree query each (exactScoreWork's)
+        std::ostringstream what;
+        what.precision(3);
+        what << "an open mesh's inside by the winding number of its " << mesh.triangles.size()
+             << " triangles at up to " << bound << " crossings of the grid's rays";
+        checkWork("voxelizeMesh", {what.str(), bound * 1.0e-6 * (1.0 + double(mesh.triangles.size()) / 1e5)},
+                  maxWork, "close the mesh (`mss info` shows its holes) or choose a coarser resolution");
+    }
     std::vector<std::uint32_t> start;
     std::vector<Hit> sorted = rayHits(mesh, v, s, NY, NZ, start);
 
@@ -283,11 +325,11 @@ VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const GridSpec& grid, int super
 }
 
 VoxelGrid voxelizeMesh(const TriangleMesh& mesh, const Resolution& res, int supersample,
-                       std::vector<std::string>* warnings) {
+                       std::vector<std::string>* warnings, double maxWork) {
     validateMesh(mesh, "voxelizeMesh");
     const MeshInfo info = analyzeMesh(mesh); // once: it walks every edge
     return voxelizeAnalysed(mesh, info, gridForBox(info.lower, info.upper, res, "voxelizeMesh"), supersample,
-                            warnings);
+                            warnings, res.memoryLimit, maxWork);
 }
 
 VoxelGrid voxelizeSpheres(const SphereSet& spheres, const GridSpec& grid) {

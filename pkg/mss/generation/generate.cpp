@@ -544,7 +544,7 @@ Result generate(const TriangleMesh& mesh, const Resolution& resolution, const Ge
     const auto start = Clock::now();
     Metrics m;
     auto t0 = Clock::now();
-    const VoxelGrid S = voxelizeMesh(mesh, resolution, supersample, &m.warnings);
+    const VoxelGrid S = voxelizeMesh(mesh, resolution, supersample, &m.warnings, options.maxWork);
     m.secondsVoxelize = secondsSince(t0);
     if (countSolid(S) == 0)
         throw std::invalid_argument(

@@ -232,14 +232,18 @@ const std::vector<OptionSpec> kTable = {
     {"excludeBorder", "--exclude-border", true, T::Flag, "false", 0, 0, false, false, "", "", "",
      "skip grains cut by the volume's border", c::Batch},
     {"segment", "--segment", true, T::Flag, "false", 0, 0, false, false, "", "", "",
-     "the volume is a binary scan (two values): segment it into grains first, as the field does (its "
-     "distance "
-     "transform, markers at its maxima higher than segmentH, a marker watershed); the labels are written to "
-     "OUT/labels.npy to inspect or correct",
+     "the volume is a binary scan (two values): segment it into grains first (specks dropped, pores filled "
+     "for its distance transform, a marker watershed of the transform's maxima, neighbours joined where the "
+     "pass between them nears their peaks: nothing in voxels to tune); segments under --min-voxels are "
+     "dropped; the labels are written to OUT/labels.npy to inspect or correct",
      c::Batch},
-    {"segmentH", "--segment-h", true, T::Number, "1", 0, 1000, true, false, "", "voxels", "H",
-     "with segment: a maximum of the distance transform is a grain's marker when it stands this much above "
-     "the saddles around it (larger: fewer, larger grains)",
+    {"segmentH", "--segment-h", true, T::Number, "", 0, 1000, true, false, "", "voxels", "H",
+     "with segment: instead of the default, a maximum of the distance transform is a grain's marker when it "
+     "stands this much above the saddles around it (larger: fewer, larger grains)",
+     c::Batch},
+    {"segmentMarkers", "--segment-markers", true, T::Text, "", 0, 0, false, false, "", "", "NPY",
+     "with segment: a label volume of markers of your own (the scan's shape; non-zero voxels seed a grain "
+     "each label), grown by the watershed instead of the transform's maxima",
      c::Batch},
     // the time step each grain allows (YADE's PWaveTimeStep: the smallest radius times sqrt(density / young))
     {"density", "--density", true, T::Number, "1000", 0, kInf, true, true, "", "mass / world unit^3", "RHO",

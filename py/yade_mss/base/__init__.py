@@ -5,7 +5,7 @@ module (``yade_mss._mss``).
 Every layer above may use these names; they are not part of the user's API (:mod:`yade_mss` is).
 """
 
-from ._args import INT64_MAX, INT_MAX, flag, integer, number, vector3
+from ._args import INT64_MAX, INT_MAX, choice, flag, integer, number, numberList, optional, vector, vector3
 from ._files import (atomicWrite, cppPath, folderLock, memoryBytes, readNpy, readTiff, refuseLinkedFolders,
                      refuseOverInputs, requireRegularFile, umask)
 from ._keywords import split
@@ -13,7 +13,8 @@ from ._rotations import quaternionMatrix, randomRotation
 from ._signals import exitStatus, restore as restoreSignals, stopOnce
 from ._work import bar as progressBar, check as checkWork, checkSweep, slowPhase
 
-__all__ = ['INT64_MAX', 'INT_MAX', 'flag', 'integer', 'number', 'vector3', 'atomicWrite', 'cppPath', 'folderLock',
+__all__ = ['INT64_MAX', 'INT_MAX', 'choice', 'flag', 'integer', 'number', 'numberList', 'optional', 'vector',
+           'vector3', 'atomicWrite', 'cppPath', 'folderLock',
            'memoryBytes', 'readNpy', 'readTiff', 'refuseLinkedFolders', 'refuseOverInputs', 'requireRegularFile',
            'umask', 'split', 'quaternionMatrix', 'randomRotation', 'progressBar', 'checkWork', 'checkSweep',
            'exitStatus', 'restoreSignals', 'stopOnce', 'slowPhase']

@@ -63,14 +63,40 @@ def flag(func, name, value):
     return bool(value)
 
 
-def vector3(func, name, value):
-    """Three finite numbers (a list, tuple, numpy array or YADE Vector3) as a numpy array."""
+def vector(func, name, value, n=3):
+    """*n* finite numbers (a list, tuple, numpy array or YADE Vector3) as a numpy array."""
     if isinstance(value, (str, bytes)):
-        raise TypeError('%s: %s must be 3 numbers, got the string %r' % (func, name, value))
+        raise TypeError('%s: %s must be %d numbers, got the string %r' % (func, name, n, value))
     try:
         items = [value[i] for i in range(len(value))]
-    except TypeError:
-        raise TypeError('%s: %s must be 3 numbers, got %r' % (func, name, value))
-    if len(items) != 3:
-        raise ValueError('%s: %s must be 3 numbers, got %d' % (func, name, len(items)))
+    except (TypeError, KeyError):
+        raise TypeError('%s: %s must be %d numbers, got %r' % (func, name, n, value))
+    if len(items) != n:
+        raise ValueError('%s: %s must be %d numbers, got %d' % (func, name, n, len(items)))
     return np.array([number(func, name, x) for x in items])
+
+
+def vector3(func, name, value):
+    """Three finite numbers (a list, tuple, numpy array or YADE Vector3) as a numpy array."""
+    return vector(func, name, value, 3)
+
+
+def numberList(func, name, value, low=None, high=None):
+    """A list of numbers (a list, tuple or 1-D array; not a string, not one number), each as :func:`number`."""
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, '__iter__'):
+        raise TypeError('%s: %s must be a list of numbers, got %r' % (func, name, value))
+    return [number(func, name, x, low, high) for x in value]
+
+
+def choice(func, name, value, allowed):
+    """One of the strings *allowed*."""
+    if not isinstance(value, str):
+        raise TypeError('%s: %s must be one of %s, got %r' % (func, name, ', '.join(map(repr, allowed)), value))
+    if value not in allowed:
+        raise ValueError('%s: %s must be one of %s, got %r' % (func, name, ', '.join(map(repr, allowed)), value))
+    return value
+
+
+def optional(check, func, name, value, *args, **kw):
+    """None, or *value* as *check* (one of the checkers above) takes it."""
+    return None if value is None else check(func, name, value, *args, **kw)

@@ -22,6 +22,7 @@ def main(argv=None):
         v = optionTable.parsed('batch', a)
         own = ('output', 'workers', 'scheduler', 'tlsCaFile', 'tlsCert', 'tlsKey', 'minVoxels', 'excludeBorder',
                'labels', 'previews', 'voxelSize', 'origin', 'density', 'young', 'format', 'segment', 'segmentH',
+               'segmentMarkers',
                'connectTimeout')
         gen = {k: x for k, x in v.items() if k not in own}
         labels = [int(x) for x in v['labels'].split(',')] if v.get('labels') else None
@@ -31,7 +32,8 @@ def main(argv=None):
                   excludeBorder=v.get('excludeBorder', False), labels=labels, voxelSize=v.get('voxelSize'),
                   origin=v.get('origin'), previews=v.get('previews', False), density=v.get('density', 1000.0),
                   young=v.get('young', 1e9), format=v.get('format'), segment=v.get('segment', False),
-                  segmentH=v.get('segmentH', 1.0), connectTimeout=v.get('connectTimeout', 5.0), **gen)
+                  segmentH=v.get('segmentH'), segmentMarkers=v.get('segmentMarkers'),
+                  connectTimeout=v.get('connectTimeout', 5.0), **gen)
     except KeyboardInterrupt:
         print('mss batch: interrupted; what was done is kept: run the same command again to continue',
               file=sys.stderr)

@@ -10,11 +10,13 @@ from ._contacts import NEARBY_GAP, ScanContacts, contactPoints, contactsByLabel,
 from ._generate import GENERATE_OPTIONS, compareMany, generate, generateWith, score
 from ._results import TEMPLATE_EXTENSIONS, ClumpSurface, MassProperties, MssResult, readSpheres
 from ._sources import MESH_EXT, Mesh, checkedPlane, flatArray, massProperties, readGrain
-from ._volumes import (VOLUME_EXT, Region, binaryValue, pieces, readVolume, regions, segmentBinary, separated,
-                       slabVoxels)
+from ._segment import SPECK_VOXELS, segmentBinary, segmentScan
+from ._volumes import (VOLUME_EXT, Region, binaryValue, pieces, readVolume, regions, separated, slabVoxels,
+                       valueRange)
 
 __all__ = ['optionTable', 'NEARBY_GAP', 'ScanContacts', 'contactPoints', 'contactsByLabel', 'findContacts',
            'scanContacts', 'GENERATE_OPTIONS', 'compareMany', 'generate', 'generateWith', 'score',
            'TEMPLATE_EXTENSIONS', 'ClumpSurface', 'MassProperties', 'MssResult', 'readSpheres', 'MESH_EXT', 'Mesh',
            'checkedPlane', 'flatArray', 'massProperties', 'readGrain', 'VOLUME_EXT', 'Region', 'binaryValue',
-           'pieces', 'readVolume', 'regions', 'segmentBinary', 'separated', 'slabVoxels']
+           'pieces', 'readVolume', 'regions', 'SPECK_VOXELS', 'segmentBinary', 'segmentScan', 'separated',
+           'slabVoxels', 'valueRange']

@@ -4,8 +4,8 @@ point and a normal for each, the points a grain's spheres must keep reaching whe
 import numpy as np
 
 from .. import _mss
-from ..base import number
-from ._volumes import slabVoxels
+from ..base import number, optional, vector3
+from ._volumes import slab, slabVoxels
 
 
 def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None, gap=1.0):
@@ -28,10 +28,15 @@ def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None
     if a.ndim != 3 or not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
         raise ValueError('findContacts: labels must be a 3-D array of integers, got %s of %s' % (a.shape, a.dtype))
     gap = number('findContacts', 'gap', gap, 0.0, 8.0)
+    voxelSize = number('findContacts', 'voxelSize', voxelSize)
+    if not voxelSize > 0:
+        raise ValueError('findContacts: voxelSize must be > 0, got %r' % (voxelSize,))
+    origin = vector3('findContacts', 'origin', origin)
+    memoryLimit = optional(number, 'findContacts', 'memoryLimit', memoryLimit, 0.0)
     layers = max(1, slabVoxels(memoryLimit) // max(1, a.shape[1] * a.shape[2]))
 
     def read(x0, x1):
-        s = np.asarray(a[x0:x1])
+        s = slab(a, x0, x1)
         if s.dtype == np.uint64 and s.size and s.max() > np.iinfo(np.int64).max:
             raise ValueError('findContacts: a label over 2^63 - 1')
         return np.asfortranarray(s, dtype=np.int64).tobytes(order='F')

@@ -6,7 +6,7 @@ import argparse
 
 from .. import _mss
 from ..base import INT64_MAX, flag, integer, number, vector3
-from ._sources import checkedPlane
+from ._sources import planeList
 
 TABLE = tuple(_mss.optionTable())
 
@@ -34,9 +34,7 @@ def default(name, command):
 
 
 def _planes(func, value):
-    if isinstance(value, (str, bytes)) or not hasattr(value, '__iter__'):
-        raise TypeError('%s: planes must be a list of ((px, py, pz), (nx, ny, nz)), got %r' % (func, value))
-    return [checkedPlane(p) for p in value]
+    return planeList(func, value)
 
 
 def check(func, command, name, value):

@@ -9,7 +9,7 @@ import zlib
 import numpy as np
 
 from .. import _mss
-from ..base import INT64_MAX, atomicWrite, integer, number, split
+from ..base import INT64_MAX, atomicWrite, flag, integer, number, split, vector3
 
 
 class MassProperties(object):
@@ -159,7 +159,7 @@ class MssResult(object):
 
         :param center: the centre, 3 numbers (default: the union's centre of mass)
         """
-        c = self.unionMass().centroid if center is None else np.asarray(center, dtype=float)
+        c = self.unionMass().centroid if center is None else vector3('MssResult.boundingRadius', 'center', center)
         return float(np.max(np.linalg.norm(self.centers - c, axis=1) + self.radii))
 
     def preview(self, path, grain=None, **kw):
@@ -198,6 +198,7 @@ class MssResult(object):
         :param path: the file to write
         :param bool compress: ``.npz``: compressed
         """
+        compress = flag('MssResult.save', 'compress', compress)
         path = os.fspath(path)
         if os.path.isdir(path) or path.endswith(os.sep):
             raise ValueError('MssResult.save: %s is a folder: give a file name in it (clump.csv, clump.npz, ...)'

@@ -6,7 +6,7 @@ import os
 import numpy as np
 
 from .. import _mss
-from ..base import cppPath, memoryBytes, requireRegularFile
+from ..base import cppPath, integer, memoryBytes, number, optional, requireRegularFile, vector3
 from ._results import MassProperties
 from ._volumes import readVolume
 
@@ -111,10 +111,14 @@ class _Voxels(object):
 def readGrain(source, voxelSize=None, origin=None, label=None, scale=None):
     """A mesh or voxel source from a file name, an array, (vertices, triangles) or a dict; *scale* multiplies
     its coordinates as read (a mesh's vertices, a volume's voxel size and origin)."""
+    voxelSize = optional(number, 'grain', 'voxelSize', voxelSize)
+    origin = optional(vector3, 'grain', 'origin', origin)
+    label = optional(integer, 'grain', 'label', label, 0)
+    scale = optional(number, 'grain', 'scale', scale, finite=False)
     s = _unscaled(source, voxelSize, origin, label)
-    if scale is None or float(scale) == 1.0:
+    if scale is None or scale == 1.0:
         return s
-    k = float(scale)
+    k = scale
     if isinstance(s, Mesh):
         v = np.asarray(s.vertices, dtype=float)
         extent = float(np.ptp(v, axis=0).max()) if v.size else 0.0
@@ -175,6 +179,13 @@ def _unscaled(source, voxelSize=None, origin=None, label=None):
                      'MssResult; got %s' % type(source).__name__)
 
 
+def planeList(func, value):
+    """A list of planes, each :func:`checkedPlane`; not a string, not one object that is no list."""
+    if isinstance(value, (str, bytes)) or not hasattr(value, '__iter__'):
+        raise TypeError('%s: planes must be a list of ((px, py, pz), (nx, ny, nz)), got %r' % (func, value))
+    return [checkedPlane(p) for p in value]
+
+
 def checkedPlane(p):
     """A plane ((px, py, pz), (nx, ny, nz)) as the binding takes it, 6 floats, or a ValueError naming it."""
     try:
@@ -200,7 +211,7 @@ def massProperties(source, voxelSize=None, origin=None, label=None, planes=()):
     :return: :class:`MassProperties`
     """
     s = readGrain(source, voxelSize, origin, label)
-    cuts = [checkedPlane(p) for p in planes]
+    cuts = planeList('massProperties', planes)
     if isinstance(s, Mesh):
         return MassProperties._fromDict(_mss.massMesh(*s.args(), cuts))
     return MassProperties._fromDict(_mss.massVoxels(*s.args(), cuts))

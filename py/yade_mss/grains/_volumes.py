@@ -9,7 +9,7 @@ import os
 import numpy as np
 
 from .. import _mss
-from ..base import integer, number, readNpy, readTiff
+from ..base import integer, number, optional, readNpy, readTiff
 
 VOLUME_EXT = tuple(f['extension'] for f in _mss.fileFormats() if f['kind'] == 'voxels')  # the format table's
 
@@ -30,7 +30,43 @@ def readVolume(path):
     if not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
         raise ValueError('readVolume: %s: dtype %s is not boolean or integer (a labelled volume: 0 is background)'
                          % (path, a.dtype))
+    if a.size > MAX_VOXELS:  # said at once, before any pass over the scan (each a read of the whole file)
+        raise ValueError('readVolume: %s: %s voxels (%d), over the %d (2^31 - 1) a grid can index; crop the scan '
+                         'or coarsen it' % (path, 'x'.join(str(n) for n in a.shape), a.size, MAX_VOXELS))
     return np.asarray(a)
+
+
+MAX_VOXELS = 2147483647  # the C++ grids' index (mss::checkGridSize)
+
+
+def _mapping(a):
+    """The mmap under a memory-mapped volume (a .npy or an uncompressed TIFF read by :func:`readVolume`), or None."""
+    while a is not None:
+        m = getattr(a, '_mmap', None)
+        if m is not None:
+            return m
+        a = getattr(a, 'base', None)
+    return None
+
+
+def release(a):
+    """Hands the pages of a memory-mapped volume that this process has read back to the kernel (they stay in the
+    page cache, and are read from it again when needed): a pass over an 8 GB scan would otherwise count all 8 GB
+    in the process's resident memory, over any --memory-limit."""
+    import mmap
+    m = _mapping(a)
+    if m is not None and hasattr(mmap, 'MADV_DONTNEED'):
+        try:
+            m.madvise(mmap.MADV_DONTNEED)
+        except (OSError, ValueError):  # a closed map, a kernel without it: only the resident count suffers
+            pass
+
+
+def slab(a, x0, x1):
+    """Layers x0 .. x1 - 1 of a volume as an array of its own, the mapping's pages released (:func:`release`)."""
+    s = np.array(a[x0:x1])
+    release(a)
+    return s
 
 
 class Region(object):
@@ -46,6 +82,7 @@ class Region(object):
         """The label's voxels in its box, padded by *pad* empty voxels (the double zero hull, eq. 6), and the
         index of the crop's voxel (0, 0, 0) in the volume."""
         sub = labels[self.box] == self.label
+        release(labels)
         start = np.array([s.start for s in self.box]) - pad
         return np.pad(sub, pad), start
 
@@ -56,7 +93,9 @@ class Region(object):
         hi = [min(n, s.stop + pad) for s, n in zip(self.box, labels.shape)]
         sub = labels[tuple(slice(a, b) for a, b in zip(lo, hi))]
         widths = [(a - (s.start - pad), s.stop + pad - b) for a, b, s in zip(lo, hi, self.box)]
-        return np.pad((sub != 0) & (sub != self.label), widths)  # beyond the volume: nobody
+        out = np.pad((sub != 0) & (sub != self.label), widths)
+        release(labels)
+        return out  # beyond the volume: nobody
 
 
 SLAB_VOXELS = 1 << 23  # findContacts reads the volume in slabs of about this many voxels (64 MB as int64)
@@ -81,20 +120,24 @@ def regions(labels, only=None, memoryLimit=None):
     :return: list of :class:`Region` (label, box, voxels, touchesBorder)
     """
     from scipy import ndimage
+    memoryLimit = optional(number, 'regions', 'memoryLimit', memoryLimit, 0.0)
     labels = np.asarray(labels)
     if labels.ndim != 3 or not (labels.dtype == bool or np.issubdtype(labels.dtype, np.integer)):
         raise ValueError('regions: labels must be a 3-D array of integers, got %s of %s' % (labels.shape, labels.dtype))
     if labels.dtype == bool:
         labels = labels.view(np.uint8)  # a view: a memory-mapped volume stays on disk
-    if labels.min() < 0:
-        raise ValueError('labels must be >= 0 (0 is background), found %d' % labels.min())
-    top = int(labels.max()) if labels.size else 0
+    low, top = valueRange(labels, slabVoxels(memoryLimit))
+    if low < 0:
+        raise ValueError('labels must be >= 0 (0 is background), found %d' % low)
     if only is not None and (isinstance(only, (str, bytes)) or not isinstance(only, (list, tuple, set, np.ndarray))):
         raise TypeError('regions: only must be a list of integers, got %r' % (only,))  # '12' is not [1, 2]
     wanted = None if only is None else set(integer('regions', 'only', x, 0, None) for x in only)
     out = []
-    if top <= max(DENSE_LABELS, labels.size // 64) and labels.dtype.isnative and labels.flags.aligned:
+    mapped = _mapping(labels) is not None
+    if top <= max(DENSE_LABELS, labels.size // 64) and labels.dtype.isnative and labels.flags.aligned and not mapped:
         boxes = enumerate(ndimage.find_objects(labels), 1)
+    elif top <= DENSE_LABELS:  # a mapped scan: by slabs, so that its pages are released as they are read
+        boxes = _slabBoxes(labels, slabVoxels(memoryLimit))
     else:  # find_objects' list has an entry per label up to the largest (2^40: a MemoryError), and it copies a
         # swapped or unaligned volume whole
         boxes = _sparseBoxes(labels, slabVoxels(memoryLimit))
@@ -102,6 +145,7 @@ def regions(labels, only=None, memoryLimit=None):
         if box is None or (wanted is not None and label not in wanted):
             continue
         out.append(Region(label, box, np.count_nonzero(labels[box] == label), labels.shape))
+        release(labels)
     if wanted is not None:
         missing = sorted(wanted - set(r.label for r in out))
         if missing:
@@ -112,13 +156,40 @@ def regions(labels, only=None, memoryLimit=None):
 DENSE_LABELS = 1 << 20  # labels up to this (or a 64th of the voxels) are boxed by find_objects
 
 
+def valueRange(labels, voxels=SLAB_VOXELS):
+    """(least, largest) value of a volume, read by slabs (0, 0 for an empty one)."""
+    low, top = 0, 0
+    layers = max(1, voxels // max(1, labels.shape[1] * labels.shape[2]))
+    for x0 in range(0, labels.shape[0], layers):
+        s = slab(labels, x0, x0 + layers)
+        if s.size:
+            low, top = min(low, int(s.min())), max(top, int(s.max()))
+    return low, top
+
+
+def _slabBoxes(labels, voxels):
+    """(label, box) of every label present, in increasing order, by slabs and ``find_objects`` in each."""
+    from scipy import ndimage
+    lo, hi = {}, {}
+    layers = max(1, voxels // max(1, labels.shape[1] * labels.shape[2]))
+    for x0 in range(0, labels.shape[0], layers):
+        for label, box in enumerate(ndimage.find_objects(slab(labels, x0, x0 + layers)), 1):
+            if box is not None:
+                f = (box[0].start + x0, box[1].start, box[2].start)
+                l = (box[0].stop + x0, box[1].stop, box[2].stop)
+                lo[label] = tuple(map(min, lo[label], f)) if label in lo else f
+                hi[label] = tuple(map(max, hi[label], l)) if label in hi else l
+    for label in sorted(lo):
+        yield label, tuple(slice(a, b) for a, b in zip(lo[label], hi[label]))
+
+
 def _sparseBoxes(labels, voxels):
     """(label, box) of every label present, in increasing order, by slabs of the volume: memory follows the
     labels present and one slab, not the largest label."""
     lo, hi = {}, {}
     layers = max(1, voxels // max(1, labels.shape[1] * labels.shape[2]))
     for x0 in range(0, labels.shape[0], layers):
-        s = np.asarray(labels[x0:x0 + layers])
+        s = slab(labels, x0, x0 + layers)
         idx = np.flatnonzero(s)
         if not idx.size:
             continue
@@ -158,7 +229,7 @@ def binaryValue(labels, memoryLimit=None):
     layers = max(1, slabVoxels(memoryLimit) // max(1, a.shape[1] * a.shape[2]))
     value = None
     for x0 in range(0, a.shape[0], layers):
-        s = np.asarray(a[x0:x0 + layers])
+        s = slab(a, x0, x0 + layers)
         nz = s[s != 0]
         if not nz.size:
             continue
@@ -169,32 +240,34 @@ def binaryValue(labels, memoryLimit=None):
     return None if value is None else int(value)
 
 
-def pieces(labels):
-    """How many separate pieces (face-connected) the non-zero voxels of a volume form."""
+def pieces(labels, memoryLimit=None):
+    """How many separate pieces (face-connected) the non-zero voxels of a volume form. Read in slabs (a
+    memory-mapped volume stays on disk; a whole-volume label array is 4-8 bytes a voxel): each slab labelled
+    alone, then the pieces that meet across two slabs' common face joined (union-find)."""
     from scipy import ndimage
-    return int(ndimage.label(np.asarray(labels) != 0)[1])
+    a = labels if isinstance(labels, np.ndarray) else np.asarray(labels)
+    if a.ndim != 3:
+        raise ValueError('pieces: the volume must be 3-D, got %d-D' % a.ndim)
+    layers = max(1, slabVoxels(memoryLimit) // max(1, a.shape[1] * a.shape[2]))
+    parent = np.zeros(1, np.int64)  # parent[i] of piece i (global ids from 1; 0 is background)
+    total, last = 0, None
 
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
 
-def segmentBinary(binary, h=1.0):
-    """A binary scan cut into grains as the usual pipeline does: the Euclidean distance transform of the solid,
-    a marker at each of its maxima that stands at least *h* voxels above the saddles around it (h-maxima), and
-    a marker watershed of the negated transform inside the solid. A piece with no such maximum (thinner than
-    *h*) is a grain of its own. Labels 1..n, no separating lines (grains touch where they meet).
-
-    :param binary: a 3-D array, non-zero where the solid is
-    :param float h: the markers' least height, voxels (larger: fewer, larger grains)
-    :return: int32 array of labels, 0 the background
-    """
-    from scipy import ndimage
-    from skimage.morphology import h_maxima
-    from skimage.segmentation import watershed
-    h = number('segment', 'segmentH', h, 0.0)
-    solid = np.asarray(binary) != 0
-    if solid.ndim != 3:
-        raise ValueError('segment: the scan must be 3-D, got %d-D' % solid.ndim)
-    dist = ndimage.distance_transform_edt(solid)
-    markers, n = ndimage.label(h_maxima(dist, h))
-    labels = watershed(-dist, markers, mask=solid).astype(np.int32)
-    rest, m = ndimage.label(solid & (labels == 0))
-    labels[rest != 0] = rest[rest != 0] + n
-    return labels
+    for x0 in range(0, a.shape[0], layers):
+        lab, k = ndimage.label(slab(a, x0, x0 + layers) != 0)
+        lab = np.where(lab > 0, lab + total, 0)
+        parent = np.concatenate([parent, np.arange(total + 1, total + k + 1)])
+        if last is not None:
+            touch = (last > 0) & (lab[0] > 0)
+            for p, q in np.unique(np.column_stack([last[touch], lab[0][touch]]), axis=0).tolist():
+                rp, rq = root(p), root(q)
+                if rp != rq:
+                    parent[max(rp, rq)] = min(rp, rq)
+        last = lab[-1].copy()
+        total += k
+    return int(sum(1 for i in range(1, total + 1) if root(i) == i))

@@ -1,6 +1,7 @@
 """D and generation time against the sphere count (``mss curve``, :func:`curve`): a chart and its CSV."""
 
 import csv
+import math
 import os
 import time
 
@@ -34,23 +35,37 @@ def curve(grain, lo, hi, path, points=12, compare=(), resolution=103, scoreResol
         s.data, dtype=np.uint8).reshape(s.shape, order='F')
     maxWork = optionTable.check('curve', 'curve', 'maxWork', optionTable.default('maxWork', 'curve')
                              if maxWork is None else maxWork)
-    rows, ns, bar = [], counts(lo, hi, points), None
-    for i, n in enumerate(ns):  # the first, smallest count tells what the rest will cost
+    ns = counts(lo, hi, points)
+
+    def step(n):
+        """One point: (its row, the seconds it took, generation and scoring)."""
         t0 = time.perf_counter()
         r = generate(src, nSpheres=n, maxProtrusion=maxProtrusion, maxWork=maxWork, **kw)
         sec = time.perf_counter() - t0
         c = compareMany(src, [r], resolution=scoreResolution, maxWork=maxWork, **(
             {} if isinstance(s, Mesh) else {'voxelSize': s.voxelSize, 'origin': s.origin}))[0]
-        rows.append({'generator': 'yade-mss', 'n': len(r), 'requested': n, 'D': c['dice'], 'eta': c['eta'],
-                     'protrusion': c['protrusion'], 'seconds': sec})
-        if i == 0:
-            rest = checkSweep('curve', time.perf_counter() - t0, n, ns[1:], maxWork,
-                              'ask for fewer points or a smaller range of counts')
-            bar = progressBar(len(ns) - 1, 'mss curve', rest)
-        else:
-            bar.update()
-    if bar is not None:
-        bar.close()
+        return ({'generator': 'yade-mss', 'n': len(r), 'requested': n, 'D': c['dice'], 'eta': c['eta'],
+                 'protrusion': c['protrusion'], 'seconds': sec}, time.perf_counter() - t0)
+    # the cheapest count, the dearest and the one halfway between (the counts are spaced evenly in log) first:
+    # they tell what the rest will cost (a step's cost is not a power of its count: the count a grain can hold
+    # at a resolution caps it)
+    first, firstSeconds = step(ns[0])
+    done = {ns[0]: first}
+    middle = min(ns, key=lambda n: abs(math.log(n) - 0.5 * math.log(ns[0] * ns[-1])))
+    probes = sorted(set([ns[-1], middle]) - {ns[0]})
+    measured = []
+    for n in probes:
+        done[n], seconds = step(n)
+        measured.append((n, seconds))
+    rest = [n for n in ns if n not in done]
+    seconds = checkSweep('curve', firstSeconds, ns[0], rest, maxWork, 'ask for fewer points or a smaller range of '
+                         'counts', measured)
+    bar = progressBar(len(rest), 'mss curve', seconds)
+    for n in rest:
+        done[n] = step(n)[0]
+        bar.update()
+    bar.close()
+    rows = [done[n] for n in ns]
     others = []
     for f in compare:
         c = compareMany(src, [f], resolution=scoreResolution, align='none', **(

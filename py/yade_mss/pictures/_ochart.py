@@ -83,6 +83,7 @@ def clumpOchart(grain, output, counts=None, radii='0.05:0.6', points=6, radiusPo
     rlo, rhi = _range('radii', radii, False)
     points = optionTable.check('ochart', 'ochart', 'points', points)
     radiusPoints = optionTable.check('ochart', 'ochart', 'radiusPoints', radiusPoints)
+    scoreResolution = anInteger('ochart', 'scoreResolution', scoreResolution, 1)  # as compare's --resolution
     if minCost and dice is None:
         raise ValueError('ochart: minCost needs dice, the fidelity to meet')
     if dice is not None:

@@ -7,8 +7,9 @@ from ._assembly import Assembly, mssAssembly
 from ._batch import Batch, GrainTask, batch, checkLabelled, grainRecord, makeTasks, runGrain
 from ._manifest import read as readManifest
 from ._pools import checkScheduler, clusterSecurity, freeCores
-from ._synthetic import packedSpecimen, syntheticSpecimen, voronoiBall
+from ._synthetic import bestOverlap, packedSpecimen, porousScan, syntheticSpecimen, voronoiBall
 
 __all__ = ['Assembly', 'mssAssembly', 'Batch', 'GrainTask', 'batch', 'checkLabelled', 'checkScheduler',
            'clusterSecurity', 'freeCores',
-           'grainRecord', 'makeTasks', 'readManifest', 'runGrain', 'packedSpecimen', 'syntheticSpecimen', 'voronoiBall']
+           'grainRecord', 'makeTasks', 'readManifest', 'runGrain', 'bestOverlap', 'packedSpecimen', 'porousScan',
+           'syntheticSpecimen', 'voronoiBall']

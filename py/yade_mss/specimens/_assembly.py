@@ -2,13 +2,14 @@
 its true position with its exact mass properties (:func:`mssAssembly`)."""
 
 import csv
+import json
 import os
 
 import numpy as np
 
 from ..base import split
 from ..grains import GENERATE_OPTIONS
-from ..yade import bodyOptions, buildClump, requireVoxelSize, yadeModules
+from ..yade import SCAN_BOX_TAG, bodyOptions, buildClump, requireVoxelSize, yadeModules
 from . import _manifest
 from ._batch import batch, grainRecord
 
@@ -154,6 +155,7 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
             with open(path, newline='') as f:
                 contacts = list(csv.DictReader(f))
         tolerance = _tolerance(os.fspath(source))
+        box = _scanBox(os.fspath(source))
     else:
         requireVoxelSize('mssAssembly', source, dict(voxelSize=voxelSize))
         b = batch(source if isinstance(source, np.ndarray) else [source], None, workers=1,
@@ -165,6 +167,7 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
         results = {b.rows[k]['label']: r for k, r in b.results.items()}
         contacts = b.scanContacts or []
         tolerance = gen.get('contactGap', 1.0)
+        box = getattr(b, 'scanBox', None)
     utils, O, me = yadeModules()
     out = {}
     try:
@@ -175,8 +178,20 @@ def mssAssembly(source, minVoxels=0, excludeBorder=False, labels=None, voxelSize
         for cid, ids in out.values():
             O.bodies.erase(cid, True)
         raise
+    if box is not None:  # porosity()'s default container: the scan's box, not the spheres' (1.5 voxels beyond it)
+        O.tags[SCAN_BOX_TAG] = json.dumps(box)
     h = next(iter(results.values())).grid['voxelSize'] if results else 1.0
     return Assembly(out, _scanPairs(contacts), tolerance * h)
+
+
+def _scanBox(outdir):
+    """The world box of a finished batch's labelled volume, [lower, upper], from its manifest; None (a folder of
+    grains, or an older manifest)."""
+    try:
+        box = _manifest.read(outdir)['state']['scanBox']
+        return [[float(x) for x in box[0]], [float(x) for x in box[1]]] if box is not None else None
+    except (ValueError, KeyError, TypeError, IndexError):
+        return None
 
 
 def _tolerance(outdir):

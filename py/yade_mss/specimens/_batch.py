@@ -26,7 +26,7 @@ from ..base import (atomicWrite, flag, folderLock, integer, number, refuseLinked
                     requireRegularFile, slowPhase, split, vector3)
 from ..exports import MAX_TEMPLATES, writeTemplates
 from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, MssResult, binaryValue, contactsByLabel, generateWith,
-                      optionTable, pieces, readVolume, regions, scanContacts, segmentBinary)
+                      optionTable, pieces, readVolume, regions, scanContacts, segmentScan, slabVoxels, valueRange)
 from . import _manifest, _report
 from ._pools import WORKER_DIED, checkScheduler, executor, freeCores
 from ._report import COLUMNS
@@ -223,14 +223,14 @@ def checkLabelled(vol, name, segment=False, memoryLimit=None):
     of all its pieces. *segment*: the scan is meant to be binary; refused if it is not."""
     value = binaryValue(vol, memoryLimit)
     if segment:
-        if value is None and not np.any(vol):
+        if value is None and not any(valueRange(vol, slabVoxels(memoryLimit))):
             raise ValueError('batch: %s holds no solid voxel: every voxel is 0 (the background)' % name)
         if value is None:
             raise ValueError('batch: %s: segment applies to a binary scan (0 and one other value); this volume holds '
                              'labels: give it without --segment' % name)
         return
     if value is not None:
-        n = pieces(vol)
+        n = pieces(vol, memoryLimit)
         if n > 1:
             raise ValueError('batch: %s holds two values (0 and %d) in %d separate pieces: a binary scan, not '
                              'labelled grains (as labels it would be one grain of all %d). Give --segment '
@@ -240,10 +240,12 @@ def checkLabelled(vol, name, segment=False, memoryLimit=None):
                              'ones)' % (name, value, n, n))
 
 
-def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, excludeBorder=False, labels=None):
+def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, excludeBorder=False, labels=None,
+              scan=None):
     """The grains of the inputs: a labelled volume (one file, or an array) gives one task per label, read once;
     several files give one task each. Grains under *minVoxels* or (with *excludeBorder*) cut by
-    the border come back as skipped rows instead.
+    the border come back as skipped rows instead. *scan*: a dict that gets the labelled volume's ``box`` (the
+    world box its voxels fill, [lower, upper], as the grains are placed), for porosity().
 
     :return: (tasks, skipped rows {key: row}, options key, the volume's contacts or None)
     """
@@ -266,6 +268,8 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
     if array is not None or (len(files) == 1 and volumes):
         vol = readVolume(files[0]) if array is None else array
         checkLabelled(vol, files[0], memoryLimit=options.get('memoryLimit'))
+        if scan is not None:
+            scan['box'] = [(org - h / 2).tolist(), (org + h * (np.array(vol.shape) - 0.5)).tolist()]
         limit = options.get('memoryLimit')  # the volume is read by slabs under it: a CT larger than it is fine
         gap = options.get('contactGap', 1.0)
         found = scanContacts(vol, h, org, limit, gap) if options.get('contacts', True) else None
@@ -374,7 +378,8 @@ class _StoredResults(Mapping):
         return len(self._keys)
 
 
-_STATE = ('timeStep', 'setBy', 'contacts', 'ranked', 'kinds', 'flagAt', 'previewed', 'voxelSize', 'voxelSizeGiven')
+_STATE = ('timeStep', 'setBy', 'contacts', 'ranked', 'kinds', 'flagAt', 'previewed', 'voxelSize', 'voxelSizeGiven',
+          'scanBox')
 
 
 def _state(b):
@@ -480,7 +485,7 @@ def _store(outdir, key, row, result, optionsKey, digest=None):
 @optionTable.documented('batch')
 def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, excludeBorder=False, labels=None,
           voxelSize=None, origin=None, progress=True, previews=False, security=None, density=1000.0, young=1e9,
-          format=None, segment=False, segmentH=1.0, connectTimeout=5.0, **options):
+          format=None, segment=False, segmentH=None, segmentMarkers=None, connectTimeout=5.0, **options):
     """Generates every grain of a labelled volume (or of several files) and, with *outdir*, writes the
     assembly, as ``mss batch`` does (the options are the same, spelled for Python).
 
@@ -489,6 +494,11 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
     :param outdir: the output folder (a rerun resumes in it); None: nothing is written
     :param labels: only these labels of a labelled volume, a list of integers
     :param bool progress: a progress bar on a terminal, a line per grain otherwise
+    :param bool segment: *inputs* is a binary scan: cut it into grains first (:func:`yade_mss.grains.segmentScan`;
+        segments under *minVoxels* are dropped, not grains)
+    :param float segmentH: with *segment*: the markers' fixed height, voxels (default: chosen from the grains'
+        own size)
+    :param segmentMarkers: with *segment*: a label volume (or its .npy file) of markers of the user's own
     :param security: a ``distributed.Security`` for a TLS scheduler (``tls://``); anyone who can reach a
         scheduler without it runs code as its workers (Dask moves pickles)
     OPTIONS
@@ -535,7 +545,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
             runKey = _runKey(inputs, gen, {'voxelSize': voxelSize, 'origin': origin, 'minVoxels': minVoxels,
                                            'excludeBorder': excludeBorder, 'labels': labels, 'previews': previews,
                                            'density': density, 'young': young, 'format': format, 'segment': segment,
-                                           'segmentH': segmentH})
+                                           'segmentH': segmentH,
+                                           'segmentMarkers': _fileKey(segmentMarkers)})
             state = _manifest.finished(outdir, runKey)
             if state is not None:
                 out = _upToDate(outdir, state, time.perf_counter() - t0)
@@ -546,14 +557,20 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                 return out
             _manifest.forget(outdir)
         segmented = None
-        if segment or segmentH != 1.0:
-            segmentH = optionTable.check('batch', 'batch', 'segmentH', segmentH)
+        if segment or segmentH is not None or segmentMarkers is not None:
+            if segmentH is not None:
+                segmentH = optionTable.check('batch', 'batch', 'segmentH', segmentH)
             if not segment:
-                raise ValueError('batch: segmentH applies with segment (a binary scan to cut into grains)')
-            inputs, segmented = _segmented(inputs, outdir, segmentH, gen.get('memoryLimit'))
-        tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels)
+                raise ValueError('batch: segmentH and segmentMarkers apply with segment (a binary scan to cut into '
+                                 'grains)')
+            with slowPhase('batch: segmenting the binary scan', progress):
+                inputs, segmented = _segmented(inputs, outdir, segmentH, gen.get('memoryLimit'), segmentMarkers,
+                                               minVoxels)
+        scan = {}
+        tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels,
+                                               scan)
         if segmented is not None:
-            key = _optionsKey(key, {'segment': segmentH})
+            key = _optionsKey(key, {'segment': segmentH, 'segmentMarkers': _fileKey(segmentMarkers)})
         if format == 'liggghts':
             if len(tasks) > MAX_TEMPLATES:  # said before the grains are generated, not after
                 raise ValueError('batch: %d grains: LIGGGHTS templates are numbered by 32-bit seeds, at most %d'
@@ -616,6 +633,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
         if found is not None:  # a labelled volume: its voxel edge, said in the summary with its unit
             out.voxelSize, out.voxelSizeGiven = h, voxelSize is not None or gen.get('scale') not in (None, 1.0)
+        out.scanBox = scan.get('box')
         with slowPhase('batch: the contacts of %d grains in the assembly' % len(out.results), progress):
             _report.keptContacts(out, found, h)
             _report.annotate(out, gen, density, young)
@@ -701,10 +719,23 @@ def _refuseOverInputs(inputs, outdir):
                              'it out or name another output folder' % f)
 
 
-def _segmented(inputs, outdir, h, memoryLimit=None):
-    """A binary scan (one volume file or array) cut into grains (:func:`segmentBinary`), its labels written to
-    OUTDIR/labels.npy: (the label array, what the report shows of it: {'file', 'grains', 'h', 'binary' and
-    'labels': the middle section across z})."""
+def _fileKey(markers):
+    """What a run key holds of the user's markers: a file's path and size and time, an array's digest."""
+    if markers is None:
+        return None
+    if not isinstance(markers, (np.ndarray, str, os.PathLike)):
+        raise TypeError('batch: segmentMarkers must be a label volume or its .npy file, got %r' % (markers,))
+    if isinstance(markers, np.ndarray):
+        return hashlib.sha256(np.ascontiguousarray(markers).tobytes()).hexdigest()
+    st = os.stat(os.fspath(markers))
+    return [os.path.abspath(os.fspath(markers)), st.st_size, st.st_mtime_ns]
+
+
+def _segmented(inputs, outdir, h, memoryLimit=None, markers=None, minVoxels=0):
+    """A binary scan (one volume file or array) cut into grains (:func:`segmentScan`; *markers*: a label volume
+    or its .npy file, seeds of the user's own), its labels written to OUTDIR/labels.npy: (the label array, what
+    the report shows of it: {'file', 'grains', 'h', 'info' (segmentScan's), 'sizes' (each grain's voxels),
+    'binary' and 'labels': the middle section across z})."""
     if isinstance(inputs, np.ndarray):
         vol, name = inputs, '(array)'
     else:
@@ -714,14 +745,19 @@ def _segmented(inputs, outdir, h, memoryLimit=None):
                              % ', '.join(files[:3]))
         vol, name = readVolume(files[0]), files[0]
     checkLabelled(vol, name, segment=True, memoryLimit=memoryLimit)
-    labels = segmentBinary(vol, h)
+    if markers is not None and not isinstance(markers, np.ndarray):
+        if not isinstance(markers, (str, os.PathLike)):
+            raise TypeError('batch: segmentMarkers must be a label volume or its .npy file, got %r' % (markers,))
+        markers = readVolume(markers)
+    labels, info = segmentScan(vol, h, markers, minVoxels, memoryLimit)
     path = None
     if outdir is not None:
         os.makedirs(outdir, exist_ok=True)
         path = os.path.join(outdir, 'labels.npy')
         _atomic(path, lambda p: np.save(p, labels))
     z = labels.shape[2] // 2
-    return labels, {'file': path, 'grains': int(labels.max()), 'h': h, 'binary': np.asarray(vol[:, :, z]) != 0,
+    return labels, {'file': path, 'grains': int(labels.max()), 'h': h, 'info': info,
+                    'sizes': np.bincount(labels.ravel())[1:].tolist(), 'binary': np.asarray(vol[:, :, z]) != 0,
                     'labels': labels[:, :, z].copy(), 'z': z}
 
 

@@ -11,12 +11,12 @@ import urllib.parse
 import numpy as np
 
 from ..base import atomicWrite
-from ..grains import NEARBY_GAP
+from ..grains import NEARBY_GAP, SPECK_VOXELS
 from ..pictures import preview
 
 COLUMNS = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min',
            'r_min_voxels', 'thickness_voxels', 'time_step', 'contacts_ct', 'contacts_kept', 'contacts_not_generated',
-           'contacts_assembly', 'contact_spheres', 'seconds', 'touches_border', 'message']
+           'contacts_lost_why', 'contacts_assembly', 'contact_spheres', 'seconds', 'touches_border', 'message']
 DICE_FLAG = 0.1  # D above this (or above a --dice target) flags a grain
 THIN_VOXELS = 2.5  # a largest inscribed radius under this (grains at most 4 voxels thick): thin, hard to fill
 STEP_MARGIN = 1.1  # grains whose time step is within 10% of the least "set" the assembly's
@@ -73,8 +73,8 @@ def keptContacts(b, found, h):
         return
     tolerance = float(getattr(found, 'gap', 0.0))
     byLabel = {b.rows[k]['label']: k for k in b.results}
-    ct, kept, near, other = {}, {}, {}, {}
-    both, keptPairs, overlap = 0, 0, 0.0
+    ct, kept, near, other, why = {}, {}, {}, {}, {}
+    both, keptPairs, overlap, lost = 0, 0, 0.0, {}
     for c in found:
         for lab in (c['a'], c['b']):
             ct[lab] = ct.get(lab, 0) + 1
@@ -91,6 +91,11 @@ def keptContacts(b, found, h):
             overlap = max(overlap, -g)
             for lab in (c['a'], c['b']):
                 kept[lab] = kept.get(lab, 0) + 1
+        else:  # lost: why, as far as the scan tells
+            reason = lostReason(c, b.rows[ka], b.rows[kb])
+            lost[reason] = lost.get(reason, 0) + 1
+            for lab in (c['a'], c['b']):
+                why.setdefault(lab, {})[reason] = why.setdefault(lab, {}).get(reason, 0) + 1
     assembly = _assemblyPairs(b.results, tolerance * h)
     for ka, kb in assembly:
         for k in (ka, kb):
@@ -102,10 +107,35 @@ def keptContacts(b, found, h):
             row['contacts_kept'] = kept.get(lab, 0) if k in b.results else ''
             row['contacts_not_generated'] = other.get(lab, 0) if k in b.results else ''
             row['contacts_assembly'] = near.get(k, 0) if k in b.results else ''
+            row['contacts_lost_why'] = reasonsText(why.get(lab, {})) if k in b.results else ''
     n = max(1, len(b.results))
     b.contacts = {'pairs': len(found), 'between': both, 'kept': keptPairs, 'overlap': overlap, 'gap': tolerance,
                   'assembly': len(assembly), 'coordinationScan': 2.0 * both / n,
-                  'coordinationAssembly': 2.0 * len(assembly) / n, 'nearby': getattr(found, 'nearby', None)}
+                  'coordinationAssembly': 2.0 * len(assembly) / n, 'nearby': getattr(found, 'nearby', None),
+                  'lost': lost}
+
+
+LOST_BORDER = 'a grain cut by the border'
+LOST_GAP = 'apart in the scan (a gap over a voxel)'
+LOST_REACH = 'not reached by the clumps'
+
+
+def lostReason(c, rowA, rowB):
+    """Why a contact of the scan is not kept in the assembly: one of its grains ends where the scan does (its
+    clump is cut there, and its contact balls with it), or the grains are apart in the scan (a gap over a
+    voxel: the balls meet at the middle, the clumps' bound leaves them short), or else the clumps do not
+    reach each other."""
+    if int(rowA.get('touches_border') or 0) or int(rowB.get('touches_border') or 0):
+        return LOST_BORDER
+    if float(c.get('gap', 0.0)) > 1.0:
+        return LOST_GAP
+    return LOST_REACH
+
+
+def reasonsText(counts):
+    """'3 with a grain cut by the border, 1 apart in the scan (2 voxels)', largest first."""
+    return ', '.join('%d %s%s' % (n, 'with ' if r == LOST_BORDER else '', r)
+                     for r, n in sorted(counts.items(), key=lambda kv: -kv[1]))
 
 
 def gapsText(c):
@@ -168,8 +198,10 @@ def annotate(b, options, density, young):
             ct, kept = _number(row.get('contacts_ct')), _number(row.get('contacts_kept'))
             other = _number(row.get('contacts_not_generated')) or 0
             if ct is not None and kept is not None and kept + other < ct:
-                reasons.append('%d of its %d contacts in the scan lost%s' % (
-                    ct - other - kept, ct, ' (%d more with grains not generated)' % other if other else ''))
+                whyLost = row.get('contacts_lost_why') or ''
+                reasons.append('%d of its %d contacts in the scan lost%s%s' % (
+                    ct - other - kept, ct, ': %s' % whyLost if whyLost else '',
+                    ' (%d more with grains not generated)' % other if other else ''))
             if k in b.setBy:
                 reasons.append('sets the time step (smallest radius %.3g voxels)' % _number(row['r_min_voxels'])
                                if _number(row.get('r_min_voxels')) is not None else 'sets the time step')
@@ -238,6 +270,8 @@ def summary(b, total, density, young):
                      'coordination %.2f in the scan, %.2f in the assembly'
                      % (c['pairs'], c['gap'], _s(c['gap']), c['between'], c['kept'], KEPT_GAP, c['assembly'],
                         c['gap'], _s(c['gap']), c['coordinationScan'], c['coordinationAssembly']))
+            if c.get('lost'):
+                text += '\nbatch: contacts lost: %s' % reasonsText(c['lost'])
     if b.ranked and b.rows[b.ranked[0]]['problems']:
         k = b.ranked[0]
         text += '\nbatch: worst: %s (%s)' % (k, b.rows[k]['problems'])
@@ -374,15 +408,24 @@ def _segmentationPicture(outdir, seg):
     labels = seg['labels']
     rng = np.random.default_rng(0)
     colours = np.vstack([[1, 1, 1], rng.uniform(0.15, 0.95, (max(1, int(labels.max())), 3))])
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 5), dpi=100)
-    a1.imshow(seg['binary'].T, origin='lower', cmap='gray_r', interpolation='nearest')
-    a1.set_title('the binary scan, section z = %d' % seg['z'])
+    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15, 5), dpi=100)
+    # the solid grey on white, as a scan is seen (black solid read as a negative)
+    a1.imshow(seg['binary'].T, origin='lower', cmap=ListedColormap([[1, 1, 1], [0.45, 0.45, 0.45]]), vmin=0,
+              vmax=1, interpolation='nearest')
+    a1.set_title('the binary scan, section z = %d (solid grey)' % seg['z'])
     a2.imshow(labels.T, origin='lower', cmap=ListedColormap(colours), vmin=0, vmax=len(colours) - 1,
               interpolation='nearest')
     a2.set_title('its grains (%s in the volume; a colour each)' % grains(seg['grains']))
     for a in (a1, a2):
         a.set_xlabel('x (voxels)')
         a.set_ylabel('y (voxels)')
+    sizes = np.asarray(seg.get('sizes') or [], dtype=float)
+    if sizes.size:
+        d = np.cbrt(6.0 * sizes / np.pi)  # each grain's equivalent diameter, voxels
+        a3.hist(d, bins=min(40, max(5, sizes.size // 3)), color='0.5', edgecolor='k')
+        a3.set_xlabel('equivalent diameter (voxels: the ball of the grain\'s volume)')
+        a3.set_ylabel('grains')
+        a3.set_title('the grains\' sizes (median %.3g voxels)' % float(np.median(d)))
     fig.tight_layout()
     _atomic(os.path.join(outdir, 'report_segmentation.png'), fig.savefig)
     plt.close(fig)
@@ -427,14 +470,19 @@ def _report(outdir, b, density, young):
                          'assembly (clumps within %.1f voxel; largest overlap %.2f voxels); %d pairs of clumps in '
                          'the assembly. Coordination number %.2f in the scan, %.2f in the assembly.'
                          % (c['gap'], _s(c['gap']), c['pairs'], c['between'], c['kept'], KEPT_GAP, c['overlap'],
-                            c['assembly'], c['coordinationScan'], c['coordinationAssembly']))
+                            c['assembly'], c['coordinationScan'], c['coordinationAssembly'])
+                         + (' Lost: %s.' % reasonsText(c['lost']) if c.get('lost') else ''))
     seg = getattr(b, 'segmented', None)
     if seg is not None:
-        notes.append('The scan was binary: it was segmented here into %s (its distance transform, a marker at each '
-                     'maximum standing %g voxels above its saddles, a marker watershed). The labels are in '
-                     '<a href="labels.npy">labels.npy</a>: inspect or correct them, then run the batch on them. '
-                     'Below, the section z = %d.%s' % (grains(seg['grains']), seg['h'], seg['z'],
-                                                        _segmentationPicture(outdir, seg)))
+        i = seg.get('info', {})
+        notes.append('The scan was binary: it was segmented here into %s: %s. Dropped: %d specks (%d voxels, pieces '
+                     'under %d voxels) and %d segments under --min-voxels (%d voxels); %d voxels of pores filled for '
+                     'the distance transform only (the grains keep the scan\'s pores). The labels are in '
+                     '<a href="labels.npy">labels.npy</a>: inspect or correct them, then run the batch on them (or '
+                     'give markers of your own: --segment-markers). Below, the section z = %d and the grains\' '
+                     'sizes.%s' % (grains(seg['grains']), _html(i.get('method', '')), i.get('specks', 0),
+                                   i.get('speckVoxels', 0), SPECK_VOXELS, i.get('small', 0), i.get('smallVoxels', 0),
+                                   i.get('poreVoxels', 0), seg['z'], _segmentationPicture(outdir, seg)))
     generated = sum(_number(r['seconds']) or 0.0 for r in rows)
     previewed = set(getattr(b, 'previewed', []))
 

@@ -12,7 +12,8 @@ import time
 import numpy as np
 
 from .. import _mss
-from ..base import atomicWrite, checkWork, integer, readNpy, requireRegularFile
+from ..base import (atomicWrite, checkWork, choice, flag, integer, number, numberList, optional, readNpy,
+                    requireRegularFile, vector)
 from ..grains import optionTable
 
 _DEFAULT_RADII = (0.0025, 0.004, 0.006, 0.01, 0.02)  # fractions of the particle's size
@@ -130,7 +131,18 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
         area, perimeter, history, seconds; with regionVertices also regions, regionsFilled (vertices put in)
         and regionsMissed (regions left without a vertex: more regions than vertices)
     """
-    vertices = integer('spheropolygon', 'vertices', vertices, 3, MAX_VERTICES)  # 10**6 ran for hours
+    F = 'spheropolygon'
+    vertices = integer(F, 'vertices', vertices, 3, MAX_VERTICES)  # 10**6 ran for hours
+    radius = optional(number, F, 'radius', radius, 0.0)
+    pixelSize = _pixelSize(F, pixelSize)
+    origin = vector(F, 'origin', origin, 2).tolist()
+    label = optional(integer, F, 'label', label)
+    init = choice(F, 'init', init, ('auto', 'circle', 'boundary', 'curvature'))
+    inset, vertexRadii = flag(F, 'inset', inset), flag(F, 'vertexRadii', vertexRadii)
+    regionVertices = flag(F, 'regionVertices', regionVertices)
+    radii = optional(numberList, F, 'radii', radii, 0.0)
+    minRadius = optional(number, F, 'minRadius', minRadius, 0.0)
+    regionTurning = optional(number, F, 'regionTurning', regionTurning, 0.0, 360.0)
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     if a.ndim != 2 or a.size == 0:
         raise ValueError('spheropolygon: the image must be 2-D and not empty')
@@ -140,14 +152,10 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
     if label is None and a.dtype != bool and len(np.unique(a[a != 0])) > 1:
         raise ValueError('spheropolygon: the image holds several labels: choose one (label=), or use '
                          'spheropolygons() for all')
-    if not (float(pixelSize) > 0):
-        raise ValueError('spheropolygon: pixelSize must be > 0, got %r' % (pixelSize,))
     if regionTurning is not None and not regionVertices:
         raise ValueError('spheropolygon: regionTurning sets what counts as a region: it needs regionVertices=True')
     if minRadius is not None and not vertexRadii:
         raise ValueError('spheropolygon: minRadius bounds the radii per vertex: it needs vertexRadii=True')
-    if minRadius is not None and not (float(minRadius) >= 0 and math.isfinite(float(minRadius))):
-        raise ValueError('spheropolygon: minRadius must be >= 0 and finite, got %r' % (minRadius,))
     maxWork = optionTable.check('spheropolygon', 'spheropolygon', 'maxWork',
                              optionTable.default('maxWork', 'spheropolygon') if maxWork is None else maxWork)
     _checkFitWork(mask, vertices, 1 if radius is not None else len(radii or _DEFAULT_RADII) + 1,
@@ -172,6 +180,19 @@ def spheropolygon(image, vertices=30, radius=None, pixelSize=1.0, origin=(0.0, 0
     return r
 
 
+def _list(func, name, value):
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, '__iter__'):
+        raise TypeError('%s: %s must be a list, got %r' % (func, name, value))
+    return list(value)
+
+
+def _pixelSize(func, value):
+    v = number(func, 'pixelSize', value)
+    if not v > 0:
+        raise ValueError('%s: pixelSize must be > 0, got %r' % (func, value))
+    return v
+
+
 def boundaryRegions(image, minTurning=90.0, pixelSize=1.0, origin=(0.0, 0.0), label=None):
     """The convex and concave regions of a particle's boundary (as regionVertices uses them): a list of dicts
     with first, last, coreFirst, coreLast (the stretch where the middle half of the turning is done: a vertex
@@ -185,11 +206,15 @@ def boundaryRegions(image, minTurning=90.0, pixelSize=1.0, origin=(0.0, 0.0), la
     :param label: of a labelled image, the particle
     :return: (list of region dicts, (n, 2) array)
     """
+    F = 'boundaryRegions'
+    minTurning = number(F, 'minTurning', minTurning, 0.0, 360.0)
+    pixelSize = _pixelSize(F, pixelSize)
+    origin = vector(F, 'origin', origin, 2).tolist()
+    label = optional(integer, F, 'label', label)
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     m = (a == label) if label is not None else (a != 0)
     data = np.ascontiguousarray(m.T.astype(np.uint8)).tobytes()
-    regions, boundary = _mss.spheropolygonRegions(data, m.shape[0], m.shape[1], float(pixelSize),
-                                                  [float(x) for x in origin], float(minTurning))
+    regions, boundary = _mss.spheropolygonRegions(data, m.shape[0], m.shape[1], pixelSize, origin, minTurning)
     return ([dict(first=f, last=l, coreFirst=cf, coreLast=cl, centre=c, turning=t)
              for f, l, cf, cl, c, t in regions],
             np.array(boundary, float).reshape(-1, 2))
@@ -223,6 +248,15 @@ def ochart(image, outdir, vertices=(4, 6, 10, 15, 20, 30), radii=(0.005, 0.01, 0
     :param options: :func:`spheropolygon`'s keywords
     :return: the rows
     """
+    F = 'ochart'
+    vertices = [integer(F, 'vertices', n, 3, MAX_VERTICES) for n in _list(F, 'vertices', vertices)]
+    radii = numberList(F, 'radii', radii, 0.0)
+    if len(set(vertices)) < 2 or len(set(radii)) < 2:  # a contour chart needs a plane of them
+        raise ValueError('ochart: the chart is drawn over vertex counts and radii: give at least 2 distinct of '
+                         'each, got vertices %s and radii %s' % (vertices, radii))
+    pixelSize = _pixelSize(F, pixelSize)
+    origin = vector(F, 'origin', origin, 2).tolist()
+    label = optional(integer, F, 'label', label)
     a = readImage(image) if isinstance(image, (str, os.PathLike)) else np.asarray(image)
     mask = (a == label) if label is not None else (a != 0)
     idx = np.argwhere(mask)

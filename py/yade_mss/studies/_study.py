@@ -22,7 +22,7 @@ import time
 
 import numpy as np
 
-from ..base import atomicWrite, integer, number, refuseLinkedFolders, restoreSignals, split, stopOnce
+from ..base import atomicWrite, flag, integer, number, refuseLinkedFolders, restoreSignals, split, stopOnce
 from ..grains import GENERATE_OPTIONS, MssResult, optionTable
 from ..specimens import checkScheduler, clusterSecurity, freeCores
 from ._analysis import COLUMNS, derived
@@ -322,6 +322,8 @@ def triaxialStudy(inputs, outdir, nSpheres=None, grain=None, workers=None, sched
         raise TypeError('triaxial: outdir must be a folder\'s path, got %r' % (outdir,))
     outdir = os.fspath(outdir)
     maxWork = number('triaxial', 'maxWork', maxWork, 0.0)
+    connectTimeout = number('triaxial', 'connectTimeout', connectTimeout, 0.0)
+    quiet = flag('triaxial', 'quiet', quiet)
     workers = None if workers is None else integer('triaxial', 'workers', workers, 1, 1024)
     counts = _counts(optionTable.default('nSpheres', 'triaxial') if nSpheres is None else nSpheres)
     grains = resolve(inputs, grain, gen)

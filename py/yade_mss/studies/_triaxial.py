@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 
-from ..base import atomicWrite, number, randomRotation
+from ..base import atomicWrite, integer, number, randomRotation
 from ..grains import optionTable
 from ..yade import MssTemplate, contactStiffnessEngine, yadeModules
 from ._analysis import COLUMNS, derived
@@ -72,7 +72,7 @@ def _checked(templates, weights, o):
         raise TypeError('%s: templates must be MssTemplate objects (mssTemplate makes them), got %r' % (f, templates))
     if weights is None:
         weights = [1.0] * len(templates)
-    if isinstance(weights, (str, bytes)) or len(weights) != len(templates):
+    if isinstance(weights, (str, bytes)) or not hasattr(weights, '__len__') or len(weights) != len(templates):
         raise ValueError('%s: weights must be a number a template (%d), got %r' % (f, len(templates), weights))
     w = np.array([number(f, 'weights', x, 0.0) for x in weights])
     if w.sum() <= 0:
@@ -434,7 +434,11 @@ def triaxial(templates, weights=None, grains=200, confining=1e5, state='dense', 
              inertialNumber=inertialNumber, damping=damping, records=records, spacing=spacing,
              compactionSteps=compactionSteps, contactStiffness=contactStiffness)
     templates, w = _checked(templates, weights, o)
-    o['n'] = int(n) if n is not None else max(len(t.result) for t in templates)
+    if checkpoint is not None and not isinstance(checkpoint, (str, os.PathLike)):
+        raise TypeError('triaxial: checkpoint must be a folder\'s path, got %r' % (checkpoint,))
+    if progress is not None and not callable(progress):
+        raise TypeError('triaxial: progress must be a function progress(phase, fraction, text), got %r' % (progress,))
+    o['n'] = integer('triaxial', 'n', n, 1) if n is not None else max(len(t.result) for t in templates)
     utils, O, me = yadeModules()
     run = _Run(o)
     if checkpoint is not None:

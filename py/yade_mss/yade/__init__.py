@@ -7,7 +7,8 @@ that the package imports in a plain python3 too.
 from ._breakage import (MssBreakage, breakageLog, breakagePotential, contactsByClump, grainSizes, mssSplit,
                         opposingPair, relativeBreakage, step as breakageStep, weibullStrength)
 from ._clumpfiles import readClumps, writeClumps
-from ._clumps import bodyOptions, buildClump, mssClump, porosity, requireVoxelSize, rotation, totalMass, yadeModules
+from ._clumps import (SCAN_BOX_TAG, bodyOptions, buildClump, mssClump, porosity, requireVoxelSize, rotation, totalMass,
+                      yadeModules)
 from ._loads import memberLoads, sumsAsYade, tiltedShares
 from ._restore import restoreClumpProperties
 from ._stiffness import MARK as GRAIN_STIFFNESS_MARK, contactStiffnessEngine, contactStiffnessStep
@@ -15,8 +16,8 @@ from ._templates import MssTemplate, mssClumpCloud, mssReplaceByClumps, mssTempl
 
 __all__ = ['MssBreakage', 'breakageLog', 'breakagePotential', 'contactsByClump', 'grainSizes', 'mssSplit',
            'opposingPair', 'relativeBreakage', 'breakageStep', 'weibullStrength', 'readClumps', 'writeClumps',
-           'bodyOptions', 'buildClump', 'mssClump', 'porosity', 'requireVoxelSize', 'rotation', 'totalMass',
-           'yadeModules',
+           'SCAN_BOX_TAG', 'bodyOptions', 'buildClump', 'mssClump', 'porosity', 'requireVoxelSize', 'rotation',
+           'totalMass', 'yadeModules',
            'memberLoads', 'sumsAsYade', 'tiltedShares', 'restoreClumpProperties', 'MssTemplate', 'mssClumpCloud',
            'mssReplaceByClumps', 'mssTemplate', 'GRAIN_STIFFNESS_MARK', 'contactStiffnessEngine',
            'contactStiffnessStep']

@@ -26,6 +26,7 @@ frame) is checked before they are applied.
 """
 
 import inspect
+import json
 import math
 import os
 import random
@@ -91,13 +92,17 @@ def rotation(orientation, seed=None):
         return matrix(orientation)
     o = orientation
     if isinstance(o, (tuple, list)) and len(o) == 2 and np.size(o[0]) == 3:
-        axis = np.asarray(o[0], dtype=float)
+        axis = vector3('orientation', 'orientation (its axis)', o[0])
         n = np.linalg.norm(axis)
         if not n > 0:
             raise ValueError('orientation: rotation axis must be non-zero')
-        a = float(o[1])
+        a = number('orientation', 'orientation (its angle)', o[1])
         return quaternionMatrix(np.concatenate([[math.cos(a / 2)], math.sin(a / 2) * axis / n]))
-    a = np.asarray(o, dtype=float)
+    try:
+        a = np.asarray(o, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError("orientation: give a Quaternion, (axis, angle), a 3x3 rotation matrix, (w, x, y, z) or "
+                        "'random', got %r" % (o,))
     if a.shape == (3, 3):
         if not (np.allclose(a.dot(a.T), np.eye(3), atol=1e-9) and np.linalg.det(a) > 0):
             raise ValueError('orientation: the matrix is not a rotation')
@@ -603,6 +608,9 @@ def totalMass():
     return float(sum(b.state.mass for b in O.bodies if b is not None and not b.isClumpMember))
 
 
+SCAN_BOX_TAG = 'mss.scanBox'  # O.tags: the world box of the scan mssAssembly built the specimen from, JSON
+
+
 def porosity(volume=None):
     """The porosity of a specimen of clumps from the grains' exact volumes: one minus the solid volume over
     *volume*. A clump counts its own mass over its members' density (for an mss clump the grain's exact volume;
@@ -610,8 +618,9 @@ def porosity(volume=None):
     sums every sphere, members included: where members overlap (every clump) it counts that volume twice and
     goes negative in a dense packing.
 
-    :param float volume: the container's volume (world units^3); default: the periodic cell's, or the box
-        that holds every sphere
+    :param float volume: the container's volume (world units^3); default: the periodic cell's; for a specimen
+        :func:`mssAssembly` built from a scan, the scan's box (the volume its voxels fill, as the scan's porosity
+        is counted); else the box that holds every sphere
     :return: float
     """
     utils, O, me = yadeModules()
@@ -633,6 +642,9 @@ def porosity(volume=None):
     if volume is None:
         if O.periodic:
             volume = O.cell.volume
+        elif SCAN_BOX_TAG in O.tags.keys():
+            box = np.array(json.loads(O.tags[SCAN_BOX_TAG]), dtype=float)
+            volume = float(np.prod(box[1] - box[0]))
         elif np.all(hi >= lo):
             volume = float(np.prod(hi - lo))
         else:

@@ -216,5 +216,7 @@ def contactStiffnessEngine(every=10, label='mssContactStiffness'):
     utils, O = _yade()
     if isinstance(every, bool) or not isinstance(every, int) or every < 1:
         raise ValueError('contactStiffnessEngine: every must be an integer >= 1, got %r' % (every,))
+    if not isinstance(label, str):
+        raise TypeError('contactStiffnessEngine: label must be a string, got %r' % (label,))
     return utils.PyRunner(command='import yade_mss.yade as m; m.contactStiffnessStep()', iterPeriod=every,
                           initRun=True, label=label)

@@ -6,7 +6,7 @@ import warnings
 
 import numpy as np
 
-from ..base import flag as _flag, randomRotation, split, vector3
+from ..base import INT64_MAX, flag as _flag, integer, randomRotation, split, vector3
 from ..grains import GENERATE_OPTIONS, MssResult, generate
 from ._clumps import (_Members, _basePlan, _build, _mass, _offsetWarning, _plans, _scale, _seed, bodyOptions, grainsOf,
                       requireVoxelSize, yadeModules)
@@ -303,7 +303,7 @@ def mssReplaceByClumps(templates, amounts, fit='inside', seed=None, mass='target
     if fit not in ('inside', 'volume'):
         raise ValueError("mssReplaceByClumps: fit must be 'inside' or 'volume', got %r" % (fit,))
     free = [b for b in O.bodies if b is not None and isinstance(b.shape, Sphere) and not b.isClumpMember]
-    rng = np.random.default_rng(seed)
+    rng = np.random.default_rng(None if seed is None else integer('mssReplaceByClumps', 'seed', seed, 0, INT64_MAX))
     order = rng.permutation(len(free))
     out, k, makers = [], 0, {}
     for t, a in zip(templates, amounts):

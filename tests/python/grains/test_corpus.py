@@ -21,16 +21,30 @@ def cases():
             if fragment.startswith('ok:'):
                 continue
             if words[0] == 'generate' and words[1].startswith('{C}'):
-                yield name, os.path.join(CORPUS, 'files', words[1][4:]), fragment.strip()
+                yield name, os.path.join(CORPUS, 'files', words[1][4:]), fragment.strip(), options(words[2:])
+
+
+# the command's options that bound the work, as generate's keywords: the case is the same in both
+OPTIONS = {'--spheres': ('nSpheres', int), '--resolution': ('resolution', int), '--memory-limit': ('memoryLimit', float),
+           '--max-work': ('maxWork', float), '--scale': ('scale', float)}
+
+
+def options(words):
+    kw = {'nSpheres': 3, 'resolution': 20}
+    for flag, value in zip(words, words[1:]):
+        if flag in OPTIONS:
+            key, kind = OPTIONS[flag]
+            kw[key] = kind(value)
+    return kw
 
 
 class Corpus(unittest.TestCase):
     def test_every_bad_file(self):
         n = 0
-        for name, path, fragment in cases():
+        for name, path, fragment, kw in cases():
             with self.subTest(name):
                 with self.assertRaises((ValueError, RuntimeError)) as ctx:
-                    yade_mss.generate(path, nSpheres=3, resolution=20)
+                    yade_mss.generate(path, **kw)
                 self.assertIn(fragment, str(ctx.exception))
                 n += 1
         self.assertGreaterEqual(n, 20)

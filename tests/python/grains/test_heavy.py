@@ -101,6 +101,56 @@ class CommandLine(unittest.TestCase):
                 yade_mss.generate(np.load(path, mmap_mode='r'), nSpheres=5)
             self.assertLess(time.perf_counter() - t0, BAR)
 
+    def test_a_batch_of_a_volume_over_the_grid_is_refused_before_any_pass(self):
+        # each pass over a 1300^3 scan reads the file whole (tens of seconds); the grid's index says no first
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'big.npy')
+            m = np.lib.format.open_memmap(path, mode='w+', dtype=np.uint8, shape=(1300, 1300, 1300))
+            m[600:610, 600:610, 600:610] = 1
+            del m
+            p, t = self.run_mss('batch', path, '-o', os.path.join(d, 'out'), '--spheres', 5)
+            self.assertRefused(p, t, '1300x1300x1300 voxels', 'over the 2147483647 (2^31 - 1) a grid can index')
+            self.assertFalse(os.path.exists(os.path.join(d, 'out')))
+
+    def test_a_mapped_scan_larger_than_its_passes_stays_out_of_resident_memory(self):
+        # a batch passes over a memory-mapped scan several times (its values, its pieces, its contacts, its
+        # regions): each slab's pages are handed back as it goes, so the peak follows the slabs, not the file
+        # (before: the whole file, 8 GB of an 8 GB scan, over an 8 GiB --memory-limit)
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'scan.npy')
+            m = np.lib.format.open_memmap(path, mode='w+', dtype=np.int64, shape=(480, 480, 480))  # 885 MB
+            m[100:112, 100:112, 100:112] = 1
+            m[300:312, 300:312, 300:312] = 2
+            del m
+            out = os.path.join(d, 'out')
+            code = ('import resource, subprocess, sys\n'
+                    'p = subprocess.run(sys.argv[1:], capture_output=True, text=True)\n'
+                    'print(p.returncode, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n'
+                    'sys.stderr.write(p.stderr)\n')
+            p = subprocess.run([sys.executable, '-c', code, MSS, 'batch', path, '-o', out, '--spheres', '5',
+                                '--memory-limit', '0.25'], capture_output=True, text=True, timeout=300)
+            rc, kib = map(int, p.stdout.split())
+            self.assertEqual(rc, 0, p.stderr)
+            self.assertLess(kib * 1024, 0.5 * os.path.getsize(path), 'peak resident memory %d KiB' % kib)
+            self.assertEqual(len(os.listdir(os.path.join(out, 'grains'))) > 0, True)
+
+    def test_a_triangle_soup_is_refused_before_its_crossings_fill_the_memory(self):
+        # 20,000 random triangles in a cube: every ray meets thousands (before: 300k such triangles held 6.4 GiB
+        # and ran past 150 s); the mesh's crossings are bounded before a ray is cast
+        with tempfile.TemporaryDirectory() as d:
+            rng = np.random.default_rng(0)
+            path = os.path.join(d, 'soup.obj')
+            with open(path, 'w') as f:
+                f.writelines('v %.6f %.6f %.6f\n' % tuple(v) for v in rng.random((60000, 3)))
+                f.writelines('f %d %d %d\n' % (3 * i + 1, 3 * i + 2, 3 * i + 3) for i in range(20000))
+            p, t = self.run_mss('generate', path, '-o', os.path.join(d, 'g.csv'), '--spheres', 5,
+                                '--resolution', 200, '--memory-limit', 0.5)
+            self.assertRefused(p, t, 'triangle soup', 'over the memory limit of 0.5 GiB')
+            p, t = self.run_mss('generate', path, '-o', os.path.join(d, 'g.csv'), '--spheres', 5,
+                                '--resolution', 100, '--max-work', 5)
+            self.assertRefused(p, t, 'winding number', 'over the work limit of 5 s')
+            self.assertFalse(os.path.exists(os.path.join(d, 'g.csv')))
+
     def test_ctrl_c_stops_a_long_generation_and_writes_nothing(self):
         with tempfile.TemporaryDirectory() as d:
             out = os.path.join(d, 'g.csv')
@@ -125,6 +175,15 @@ class Python(unittest.TestCase):
             yade_mss.generate(v, nSpheres=5)
         self.assertLess(time.perf_counter() - t0, BAR)  # refused before any copy (a bar loose enough for load)
 
+    def test_segmenting_a_scan_past_the_memory_limit_is_refused_before_allocating(self):
+        scan = np.zeros((400, 400, 400), np.uint8)  # 64 MB; segmented, about 128 bytes a voxel: 7.6 GiB
+        scan[100:200, 100:200, 100:200] = 1
+        t0 = time.perf_counter()
+        with self.assertRaisesRegex(ValueError, r'segment: segmenting a scan of 400x400x400 voxels needs about '
+                                                r'7.63 GiB .* over the memory limit of 2 GiB'):
+            yade_mss.grains.segmentBinary(scan, memoryLimit=2)
+        self.assertLess(time.perf_counter() - t0, BAR)
+
     def test_sweeps_are_estimated_after_their_first_point(self):
         with tempfile.TemporaryDirectory() as d:
             t0 = time.perf_counter()
@@ -134,6 +193,29 @@ class Python(unittest.TestCase):
                 yade_mss.clumpOchart(ELLIPSOID, os.path.join(d, 'o.png'), points=100, radiusPoints=100,
                                      resolution=40, maxWork=5)
             self.assertLess(time.perf_counter() - t0, 2 * BAR)
+            self.assertEqual(os.listdir(d), [])
+
+    def test_a_sweep_is_estimated_through_its_measured_steps(self):
+        # steps measured at 1, 100 and 10,000 spheres (0.1, 1 and 1 s: the cost capped, as a grain's count is at
+        # a resolution): a step of 10 costs the log-log chord's 0.316 s, one of 1,000 the cap's 1 s; x 1.25
+        checkSweep = yade_mss.base.checkSweep
+        self.assertAlmostEqual(checkSweep('curve', 0.1, 1, [10, 1000], 600, '', [(100, 1.0), (10000, 1.0)]),
+                               1.25 * (0.1 * 10 ** 0.5 + 1.0), places=9)
+        with self.assertRaisesRegex(ValueError, r'curve: 2 generations of 10 to 1000 spheres .* about 1.6 s of '
+                                                r'work, over the work limit of 1 s: fewer'):
+            checkSweep('curve', 0.1, 1, [10, 1000], 1, 'fewer', [(100, 1.0), (10000, 1.0)])
+        # the model alone (no measured step) scales the first step by the core's log model: far less
+        self.assertLess(checkSweep('curve', 0.1, 1, [10, 1000], 600, ''), 0.5)
+
+    def test_a_curve_runs_its_dearest_step_before_it_estimates_the_rest(self):
+        # 1 to 1,000 spheres at resolution 40: the log model scaled the cheap first step to about 26 s of the 128
+        # steps and let it start at a 40 s limit; the dearest step (1,000 asked), run second, shows the steps
+        # cost several times that (scoring grows with the spheres): refused, and only 3 steps run
+        with tempfile.TemporaryDirectory() as d:
+            t0 = time.perf_counter()
+            with self.assertRaisesRegex(ValueError, r'curve: 1\d\d generations .* over the work limit of 40 s'):
+                _pictures.curve(ELLIPSOID, 1, 1000, os.path.join(d, 'c.png'), points=200, resolution=40, maxWork=40)
+            self.assertLess(time.perf_counter() - t0, BAR)
             self.assertEqual(os.listdir(d), [])
 
     def test_preview_of_many_spheres_is_estimated(self):
