@@ -32,9 +32,21 @@ def run(argv):
     return pictures(argv)
 
 
+def _warning(message, category, filename, lineno, file=None, line=None):
+    """A warning as a command's line ("mss batch: warning: ..."), not Python's (a source path, a line number
+    and the warning's class: what a user of the command has no use for)."""
+    return 'mss %s: warning: %s\n' % (_COMMAND[0], message)
+
+
+_COMMAND = ['']
+
+
 def main(argv=None):
     """``python3 -m yade_mss``: :func:`run` on the command line's arguments; Ctrl-C is status 130."""
+    import warnings
     argv = sys.argv[1:] if argv is None else argv
+    _COMMAND[0] = argv[0] if argv else ''
+    warnings.formatwarning = _warning
     try:
         return run(argv)
     except KeyboardInterrupt:  # Ctrl-C: whatever was being written is not published (atomic writes)

@@ -495,16 +495,21 @@ def _report(outdir, b, density, young):
     def cls(k):
         return {'failed': 'bad', 'flagged': 'warn', 'too small': 'warn'}.get(b.kinds.get(k), '')
     cells = ''.join('<tr class="%s"><td>%d</td>%s%s</tr>' % (cls(k), i, ''.join(
-        '<td>%s</td>' % _html(b.rows[k].get(c, '')) for c in _SHOWN), thumb(k)) for i, k in enumerate(b.ranked, 1))
+        '<td class="%s">%s</td>' % (c, _html(b.rows[k].get(c, ''))) for c in _SHOWN), thumb(k))
+        for i, k in enumerate(b.ranked, 1))
     page = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>'
-            'td,th{padding:2px 8px;font:12px sans-serif}tr:nth-child(even){background:#eee}'
+            'td,th{padding:2px 8px;font:12px sans-serif;vertical-align:top}tr:nth-child(even){background:#eee}'
             'tr.bad td{background:#f4c7c3}tr.warn td{background:#fce8b2}p.note{background:#fce8b2;padding:4px}'
+            # the table fits the page: long texts wrap in columns wide enough to read, the rest scrolls
+            'div.grains{overflow-x:auto}td.problems{min-width:22em}td.message,td.file{max-width:28em;'
+            'overflow-wrap:anywhere}img{max-width:100%%}'
             '</style></head><body><h1>mss batch</h1>'
-            '<p>%s: %d ok, %d skipped, %d failed. This run: %.2f s, %s generated%s; generation time of all grains '
+            '<p>%s: %d ok, %d skipped, %d failed. This run, up to this report: %.2f s (the console\'s last line also '
+            'counts the writing of the outputs), %s generated%s; generation time of all grains '
             '%.2f s. Files: '
             '<a href="assembly.txt">assembly.txt</a>, <a href="assembly.vtk">assembly.vtk</a> (ParaView), '
-            '<a href="grains.csv">grains.csv</a>.</p>%s%s<h2>Grains, worst first</h2><table><tr><th>#</th>%s'
-            '<th>preview</th></tr>%s</table></body></html>'
+            '<a href="grains.csv">grains.csv</a>.</p>%s%s<h2>Grains, worst first</h2><div class="grains"><table><tr>'
+            '<th>#</th>%s<th>preview</th></tr>%s</table></div></body></html>'
             % (grains(len(rows)), counts['ok'], counts['skipped'], counts['failed'], b.seconds, grains(b.generated),
                ', %s reused from an earlier run with the same input and options' % grains(b.reused)
                if getattr(b, 'reused', 0) else '', generated,

@@ -62,6 +62,24 @@ class BatchOutputs(unittest.TestCase):
             batch([moved], out, workers=1, progress=False, nSpheres=3)
         self.assertIn("grains/", str(e.exception))
 
+    def test_warnings_are_the_command_s_lines_not_python_s(self):
+        # the issue: Python UserWarning lines with source paths on stderr
+        p = subprocess.run([BINARY, 'batch', os.path.join(DATA, 'stanford_bunny_open.stl'), '-o',
+                            os.path.join(self.d, 'w'), '--spheres', '5', '--resolution', '30', '--workers', '1'],
+                           capture_output=True, text=True, timeout=300)
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertIn('mss batch: warning: stanford_bunny_open.stl: the mesh is not closed', p.stderr)
+        self.assertNotIn('UserWarning', p.stderr)
+        self.assertNotIn('.py:', p.stderr)
+
+    def test_the_report_s_table_fits_the_page(self):
+        b = batch([self.path], os.path.join(self.d, 'r'), workers=1, progress=False, nSpheres=3)
+        page = read(os.path.join(self.d, 'r', 'report.html')).decode()
+        self.assertIn('<div class="grains"><table>', page)  # scrolls within the page, not the page sideways
+        self.assertIn('td.problems{min-width:22em}', page)  # the problems wide enough to read
+        self.assertEqual(page.count('<td class="problems">'), len(b.rows))
+        self.assertIn('This run, up to this report:', page)  # not the console's total, which counts the writing
+
     def test_worker_processes_end_without_tracebacks(self):
         out = os.path.join(self.d, 'out')
         p = subprocess.run([BINARY, 'batch', self.path, '-o', out, '--spheres', '3', '--workers', '2'],
