@@ -13,10 +13,10 @@ MAIN=(build-essential cmake pkgconf libcgal-dev libeigen3-dev libboost-dev libgm
       libboost-python-dev python3-dev python3-numpy python3-matplotlib python3-tqdm yade)
 # the tests (Google Test and Benchmark, Hypothesis), batches (SciPy, scikit-image, Dask, TIFF stacks), the manual
 # (Sphinx, Breathe, Doxygen, opened in Chromium), the exports read by the real codes (LIGGGHTS, VTK), the fuzz
-# targets (clang, its libFuzzer runtime and OpenMP)
+# targets (clang, its libFuzzer runtime and OpenMP), the Debian package (dpkg-dev, fakeroot, lintian)
 REST=(libgtest-dev libbenchmark-dev python3-scipy python3-skimage python3-distributed python3-tifffile
       python3-hypothesis chromium python3-sphinx python3-breathe doxygen python3-vtk9 liggghts
-      clang libclang-rt-14-dev libomp-14-dev)
+      clang libclang-rt-14-dev libomp-14-dev dpkg-dev fakeroot lintian file)
 PACKAGES=("${MAIN[@]}")
 [ "$PROFILE" = all ] && PACKAGES+=("${REST[@]}")
 missing=()

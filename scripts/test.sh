@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set-up, then every test:
 #  1. ctest on the release build: C++ unit tests, CLI and bad-input corpus, Python (plain and inside real YADE),
-#     the examples (short runs), replays of the fuzz corpus; then the manual (scripts/docs.sh);
+#     the examples (short runs), replays of the fuzz corpus; then the manual (scripts/docs.sh); then the Debian
+#     package (scripts/package.sh), installed, run and removed (tests/package/test_package.sh);
 #  2. the C++ tests, CLI, corpus and fuzz replays again under AddressSanitizer + UndefinedBehaviorSanitizer;
 #  3. every fuzz target (libFuzzer, clang) for MSS_FUZZ_SECONDS (default 45) each, from its seed corpus, inputs up
 #     to 1 MB, with the format's words (fuzz/dict/) where there is a dictionary.
@@ -12,6 +13,10 @@ MSS_STRICT=${MSS_STRICT:-ON} bash scripts/setup.sh
 (cd build && ctest --output-on-failure -j"$(nproc)")
 echo "== the manual (Sphinx, warnings as errors; opened in headless Chromium)"
 bash scripts/docs.sh
+echo "== the Debian package: built (lintian: no error), installed with apt-get, the quickstart run from it, removed"
+bash scripts/package.sh
+bash tests/package/test_package.sh "dist/yade-mss_$(sed -n 's/^project(yade_mss VERSION \([0-9.]*\).*/\1/p' \
+  CMakeLists.txt)_$(dpkg --print-architecture).deb"
 [ "${MSS_QUICK:-0}" = "1" ] && exit 0
 
 echo "== sanitizers (ASan + UBSan); not strict: GCC 12 reports false maybe-uninitialized warnings in libstdc++ under ASan"
