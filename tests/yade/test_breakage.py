@@ -70,6 +70,16 @@ class Split(Base):
         self.assertIsNone(O.bodies[cid])  # the parent is gone, and its members
         self.assertEqual(sum(1 for b in O.bodies if b is not None and b.isClump), len(made))
 
+    def test_a_grown_grain_splits_as_grown(self):
+        # growParticles grows the grain a breakable clump carries with its record: the pieces are of the grown grain
+        cid = self.femur()
+        mass = O.bodies[cid].state.mass
+        utils.growParticles(1.1)
+        restoreClumpProperties([cid])
+        self.assertLess(abs(O.bodies[cid].state.mass / mass - 1.331), 1e-9)
+        made = mssSplit(cid, (vec(O.bodies[cid].state.pos), (0.3, -0.2, 1.0)))
+        self.assertLess(abs(sum(O.bodies[c].state.mass for c, _ in made) / (1.331 * mass) - 1), 1e-9)
+
     def test_pieces_are_the_cut_grain_computed_independently(self):
         cid = self.femur()
         point, normal = vec(O.bodies[cid].state.pos) + np.array([5.0, 0, 0]), np.array([0.3, -0.2, 1.0])

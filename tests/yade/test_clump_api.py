@@ -179,6 +179,26 @@ class SideBySide(Base):
             self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
             self.assertExact(cid, M, C, I)
 
+    def test_grown_particles_keep_their_exact_properties(self):
+        # utils.growParticles, YADE's usual way to densify, grows both clumps about their centres alike; ours keeps
+        # its record (grown with it): the restore gives the grown grain's exact mass (s^3) and inertia (s^5), after
+        # YADE's own update too (the record was dropped as "made for another clump", then the mass lost for good)
+        (cid, ids), (pc, pids) = self.pair()
+        M, C, I = exactFemur()
+        for s in (1.1, 0.95):
+            plain = O.bodies[pc].state.mass
+            utils.growParticles(s)
+            self.assertLess(abs(O.bodies[pc].state.mass / plain - s ** 3), 1e-9)  # YADE's clump, as it grows
+            M, I = M * s ** 3, I * s ** 5
+            with warnings.catch_warnings():
+                warnings.simplefilter('error')  # no record dropped
+                self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
+            self.assertExact(cid, M, C, I)
+            O.bodies.updateClumpProperties(discretization=0)  # YADE's sums: overlaps counted twice
+            self.assertGreater(O.bodies[cid].state.mass, 1.5 * M)
+            self.assertEqual(restoreClumpProperties(), [(cid, 'grain')])
+            self.assertExact(cid, M, C, I)
+
     def test_clumps_placed_alike_share_record_parts_and_restore_exactly(self):
         # a record's parts besides the member ids are kept per turn and scale of a placement: clumps placed alike
         # (a cache hit), turned (a miss) or scaled must each carry a record of their own members, as encodeMany

@@ -161,18 +161,41 @@ def drop(body):
     body.material = None  # as YADE's own clumps: no material
 
 
+def scaled(rec, s):
+    """Record *rec* of a clump grown by *s* about its centre (``utils.growParticles(s)`` scales the members' radii
+    and their offsets from the clump's centre): lengths times s, volumes s^3, second moments s^5."""
+    out = Record.__new__(Record)
+    out.volume, out.centroid, out.inertia, out.J = rec.volume * s ** 3, rec.centroid * s, rec.inertia * s ** 5, \
+        rec.J * s ** 5
+    out.ids, out.radii, out.rel, out.m = list(rec.ids), rec.radii * s, rec.rel * s, rec.m * s ** 3
+    return out
+
+
+def scaleOf(rec, ids, radii, x, F):
+    """The factor s by which the clump found (as :func:`matchMembers` takes it) is its record's clump grown about
+    its centre, every member's radius and offset times s (YADE's ``utils.growParticles``); None where it is not."""
+    if rec.ids != ids or not rec.radii[0] > 0:
+        return None
+    s = float(radii[0] / rec.radii[0])
+    size = float(np.ptp(x, axis=0).max() + 2 * radii.max())
+    if s > 0 and np.abs(rec.radii * s - radii).max() <= 1e-12 * radii.max() \
+            and np.abs((x - x[0]).dot(F) - s * rec.rel).max() <= 1e-9 * size:
+        return s
+    return None
+
+
 def matchMembers(rec, ids, radii, x, F):
     """How the members found (ids, radii, positions (n, 3), the record's frame now: member 1's rotation, or
-    member 0's alone) match record *rec*: 'same' (ids, radii and positions in that frame as recorded), 'changed'
-    (some recorded members left or others joined, the rest where they were: their distances), or None (another
-    clump)."""
+    member 0's alone) match record *rec*: 'same' (ids, radii and positions in that frame as recorded), 'scaled'
+    (all of them grown alike about the centre: :func:`scaleOf`), 'changed' (some recorded members left or others
+    joined, the rest where they were: their distances), or None (another clump)."""
     size = float(np.ptp(x, axis=0).max() + 2 * radii.max())
     tol = 1e-9 * size
     if rec.ids == ids:
         if (np.abs(rec.radii - radii).max() <= 1e-12 * radii.max()
                 and np.abs((x - x[0]).dot(F) - rec.rel).max() <= tol):
             return 'same'
-        return None
+        return 'scaled' if scaleOf(rec, ids, radii, x, F) is not None else None
     where = {i: k for k, i in enumerate(rec.ids)}
     common = [(k, where[i]) for k, i in enumerate(ids) if i in where]
     if not common:

@@ -7,7 +7,8 @@ import numpy as np
 
 from .. import _mss
 from ._clumps import _Plan, _checkMany, _clumpIds, _sphereMass, _withLoads, clumpIdList, yadeModules
-from ._records import OLD_TAG, attach, drop, encodeMany, matchMembers, quaternionMatrices, recordOf
+from ._records import (OLD_TAG, attach, drop, encodeGrain, encodeMany, grainOf, labelOf, matchMembers,
+                       quaternionMatrices, recordOf, scaled, scaleOf)
 
 
 def _ids(func, clumpIds, O):
@@ -93,11 +94,16 @@ def _restore(func, O, me, ids, explicit, resolution, recs):
         return []
     R = quaternionMatrices(quats).reshape(-1, 2, 3, 3)
     same = _sameMembers(found, R)
-    jobs = []
+    jobs, grown = [], {}
     for k, (cid, body, mids, members, radii, x, rho, rec, refs) in enumerate(found):
         how = 'same' if same[k] else None
         if rec and not same[k]:
             how = matchMembers(rec, mids, np.array(radii), np.array(x), R[k, 1])
+        if how == 'scaled':  # grown alike about its centre (utils.growParticles): the record grows with it
+            s = scaleOf(rec, mids, np.array(radii), np.array(x), R[k, 1])
+            found[k] = found[k][:7] + (scaled(rec, s),) + found[k][8:]
+            grown[cid] = _grownGrain(body, s)
+            how = 'same'
         if rec is not None and how is None:
             warnings.warn('%s: the record of clump %d %s: dropped, not applied' % (
                 func, cid, 'is not readable' if rec is False else
@@ -125,7 +131,8 @@ def _restore(func, O, me, ids, explicit, resolution, recs):
         before = ((p[0], p[1], p[2]), (v[0], v[1], v[2]), (w[0], w[1], w[2]))
         final = [spheres[rd] if rd in spheres else spheres.setdefault(rd, _sphereMass(rd[0], rd[1], V3))
                  for rd in zip(radii, rho)]
-        work.append((cid, members, plan, rho[0], before, kind, final, refs, k, s and len(members) > 1))
+        work.append((cid, members, plan, rho[0], before, kind, final, refs, k,
+                     s and len(members) > 1 and cid not in grown))
     wanted = set(w[0] for w in work)
     others = [i for i in _clumpIds(O) if i not in wanted]
     # the inertias are set too: the density may have changed, whatever the masses say
@@ -157,8 +164,15 @@ def _restore(func, O, me, ids, explicit, resolution, recs):
                            np.array([R[w[8], 1] if len(w[1]) > 1 else w[2].V.T for w in write]))
         from yade.wrapper import Material
         for w, text in zip(write, texts):  # a clump whose members changed is no longer its grain
-            attach(O.bodies[w[0]], text, Material, '' if w[5] == 'union' else None)
+            attach(O.bodies[w[0]], text, Material, '' if w[5] == 'union' else grown.get(w[0]))
     return done
+
+
+def _grownGrain(body, s):
+    """The grain a breakable clump carries, grown by *s* as its record (its mesh is in the record's frame, whose
+    origin is member 0: it scales about it as the offsets do); None where it carries none."""
+    g = grainOf(labelOf(body))
+    return encodeGrain(g[0] * s, g[1]) if g else None
 
 
 def _aboutTheOrigin(O, me, work, action):
