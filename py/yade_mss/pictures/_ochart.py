@@ -180,7 +180,9 @@ def _figure(rows, ns, rs, path, name, dice, best, mesh, scoreResolution):
     at = {(r['n_asked'], r['rmin_fraction_asked']): r for r in rows}
     grid = {k: np.array([[at[(n, rv)][k] if at[(n, rv)][k] != '' else np.nan for rv in rs] for n in ns])
             for k in ('D', 'T', 'O')}
-    fig, axs = plt.subplots(1, 4, figsize=(21, 4.9), dpi=100)
+    # two by two, 12 inches wide: legible at a page's width (in a row of four, the text shrank to 6 points there)
+    fig, axs = plt.subplots(2, 2, figsize=(12, 9.5), dpi=110)
+    axs = axs.ravel()
     o = np.where(np.isfinite(grid['O']), grid['O'], np.inf)
     g = np.unravel_index(np.argmin(o), o.shape)
     titles = (('D', 'Dice mismatch D (eq. 27)'), ('T', 'cost T = n / r_min (one sphere of the volume: 1)'),
@@ -190,7 +192,7 @@ def _figure(rows, ns, rs, path, name, dice, best, mesh, scoreResolution):
         cs = ax.contourf(N, R, np.ma.masked_invalid(z), levels=14, cmap='viridis')
         ax.contour(N, R, np.ma.masked_invalid(z), levels=14, colors='k', linewidths=0.3)
         fig.colorbar(cs, ax=ax, label='log10 ' + k)
-        ax.plot(N[g], R[g], 'r*', ms=14, label='least O')
+        ax.plot(N[g], R[g], 'r*', ms=16, mec='w', clip_on=False, zorder=5, label='least O')
         if best is not None:
             ax.plot(best['n_asked'], best['rmin_fraction_asked'], 'wo', ms=9, mec='k',
                     label='least T with D <= %.3g' % dice)
@@ -202,7 +204,7 @@ def _figure(rows, ns, rs, path, name, dice, best, mesh, scoreResolution):
         ax.set_xlabel('sphere count asked n')
         ax.set_ylabel('radius bound asked / largest inscribed radius')
         ax.set_title(title)
-    axs[0].legend(fontsize=8, loc='upper right')
+    axs[0].legend(fontsize=9, loc='upper right')
     done = [r for r in rows if r['D'] != '']
     front = sorted((r for r in done if r['pareto']), key=lambda r: r['T'])
     axs[3].loglog([r['T'] for r in done], [r['D'] for r in done], 'o', color='#999999', ms=5, label='chart points')
@@ -216,8 +218,8 @@ def _figure(rows, ns, rs, path, name, dice, best, mesh, scoreResolution):
     axs[3].set_ylabel('D')
     axs[3].set_title('fidelity against cost')
     axs[3].grid(True, which='both', alpha=0.3)
-    axs[3].legend(fontsize=8)
-    fig.suptitle('%s: O-chart of the clumps (seed 004, Fig. 4, in 3-D); D %s; least O at n %d, bound %.3g'
+    axs[3].legend(fontsize=9)
+    fig.suptitle('%s: O-chart of the clumps (seed 004, Fig. 4, in 3-D)\nD %s; least O at n %d, bound %.3g'
                  % (name, 'on an independent grid of %d voxels, offset 0.37' % scoreResolution if mesh else
                     'on the volume\'s own voxels', N[g], R[g]))
     fig.tight_layout()
