@@ -3,7 +3,8 @@ README and of each guide and tutorial page, in page order, from a copy of the re
 linked, so that what a page writes lands in a scratch folder) on the bundled data. Python blocks run as one
 script from one shell step to the next (later blocks use what earlier ones made), in real YADE where they use
 it, else in Debian's python3. The output a console block shows must be what the command prints, line for line
-(numbers aside). Each guide and tutorial page must lead with its code, and no code line may be wider than the
+(numbers aside), and so must a block of class ``output`` what the Python blocks before it print. Each guide and
+tutorial page must lead with its code, and no code line may be wider than the
 manual shows.
 Run: MSS_BINARY=build/mss PYTHONPATH=build/py /usr/bin/python3 tests/manual/test_manual.py [page ...]
 """
@@ -24,6 +25,8 @@ LEAD = 12  # a page's first code block starts within this many lines of its titl
 MIN_BLOCKS = 10
 YADE_WORDS = re.compile(r'\bO\.|\bFrictMat\b|\bfrom yade\b|\bimport yade\b|\butils\.|\bmssClump|\bmssTemplate'
                         r'|\bmssAssembly|\bmssSplit|\bMssBreakage|\brestoreClumpProperties|\breadClumps')
+YADE_BANNER = re.compile(r'^(Welcome to Yade|Using python version|TCP python prompt|XMLRPC info provider|'
+                         r'Running script)')
 NUMBER = re.compile(r'[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?')
 
 
@@ -51,14 +54,18 @@ def rstBlocks(text):
             i += 1
             continue
         i += 1
+        output = False
         while i < len(lines) and re.match(r'\s+:\w', lines[i]):  # the directive's options
+            output = output or bool(re.match(r'\s+:class:.*\boutput\b', lines[i]))
             i += 1
         body = []
         while i < len(lines) and (not lines[i].strip() or lines[i].startswith((' ', '\t'))):
             body.append(lines[i])
             i += 1
         body = textwrap.dedent('\n'.join(body)).strip('\n').split('\n')
-        out.append(({'python': 'python', 'console': 'console'}.get(lang, 'other'), start, body))
+        # a block of class "output" is what the Python blocks before it print: compared as a console's
+        out.append(('output' if output else {'python': 'python', 'console': 'console'}.get(lang, 'other'), start,
+                    body))
     return out
 
 
@@ -133,12 +140,25 @@ class Page(object):
                                  % (self.name, stretch[0][0], 's' if len(stretch) > 1 else '',
                                     'YADE' if yade else 'python3', p.returncode, p.stdout[-3000:], p.stderr[-4000:]))
         self.ran += len(stretch)
+        # what the code printed: YADE's banner lines are YADE's, not the page's
+        return [l for l in p.stdout.split('\n') if l.strip() and not (yade and YADE_BANNER.match(l))]
+
+    def compare(self, printed, shown, line):
+        if [shape(l) for l in printed] != [shape(l) for l in shown]:
+            raise AssertionError('%s:%d: the page shows the Python blocks before it print:\n  %s\nthey print:\n  %s'
+                                 % (self.name, line, '\n  '.join(shown), '\n  '.join(printed)))
 
     def run(self):
         stretch = []
         for kind, line, body in blocks(self.path):
             if kind == 'python':
                 stretch.append((line, body))
+                continue
+            if kind == 'output':
+                if not stretch:
+                    raise AssertionError('%s:%d: an output block that follows no Python block' % (self.name, line))
+                self.compare(self.python(stretch), [l for l in body if l.strip()], line)
+                stretch = []
                 continue
             if kind != 'console':
                 continue  # a picture, a literal text, an included example: the Python around it runs as one
@@ -222,6 +242,23 @@ class Manual(unittest.TestCase):
         self.assertEqual(commands(found[0][2]), [('mss generate a.stl  --spheres 3', ['spheres  3'])])
         self.assertEqual(found[1][2], ['print(1)', '', 'print(2)'])
         self.assertEqual(shape('dice   0.0281602   (Dice, eq. 27)'), 'dice # (Dice, eq. #)')
+        shown = rstBlocks('.. code-block:: python\n\n   print(3)\n\n.. code-block:: text\n   :class: output\n\n   3\n')
+        self.assertEqual([b[0] for b in shown], ['python', 'output'])
+
+    def test_an_output_block_is_compared_with_what_the_code_prints(self):
+        with tempfile.TemporaryDirectory() as d:
+            path = os.path.join(d, 'page.rst')
+            for printed, ok in (('2.5', True), ('3 extra', False)):
+                with open(path, 'w') as f:
+                    f.write('.. code-block:: python\n\n   print(%r)\n\n.. code-block:: text\n   :class: output\n\n'
+                            '   2.5\n' % printed)
+                page = Page(path, d, dict(os.environ))
+                if ok:
+                    page.run()
+                    self.assertEqual(page.ran, 1)
+                else:
+                    with self.assertRaisesRegex(AssertionError, 'the page shows the Python blocks before it print'):
+                        page.run()
 
 
 if __name__ == '__main__':
