@@ -129,7 +129,7 @@ if figures:
         ax.axvline(s['displacement'] * 1e3, color='C3', lw=0.6, ls='--')
     ax.set_xlabel('platen displacement (mm)')
     ax.set_ylabel('force on the top platen (N)')
-    ax.set_title('Crushing one pebble: %d splits (dashed)' % len(splits))
+    ax.set_title('Crushing one pebble: %d split%s (dashed)' % (len(splits), '' if len(splits) == 1 else 's'))
     fig.tight_layout()
     fig.savefig(os.path.join(figures, 'crush_force.png'), dpi=120)
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.4), sharey=True)

@@ -2,7 +2,7 @@
 # true position with its exact mass properties (mssAssembly; the same as `mss batch` then mssAssembly(OUTDIR)),
 # inside a box whose lid then moves down until the loose specimen jams (it carries five times its weight between
 # lid and floor). Prints the assembly's figures, the lid's force against its travel and the force it holds.
-# Run: yade -n -x examples/ct_specimen.py       (MSS_SHORT=1 for a short run)
+# Run: yade -n -x examples/ct_specimen.py       (MSS_SHORT=1 for a short run; MSS_FIGURES=DIR for a picture)
 # Environment: MSS_SPECIMEN  a labelled volume (.npy or .tif, 0 is background; voxel edge MSS_VOXEL_SIZE, m);
 #              by default a synthetic specimen of 40 irregular grains (yade_mss.syntheticSpecimen).
 import os
@@ -58,11 +58,12 @@ weight = 9.81 * sum(O.bodies[c].state.mass for c, m in clumps.values())
 speed = 0.5 * height / (4000 * O.dt)
 O.bodies[lid].state.blockedDOFs = 'xyzXYZ'
 print('%10s %12s %12s' % ('travel', 'lid force', 'held'))
-jammed, held = False, 0.0
+jammed, held, path = False, 0.0, []
 while not jammed and hi[2] - O.bodies[lid].state.pos[2] < 0.95 * height:
     O.bodies[lid].state.vel = (0, 0, -speed)
     O.run(50, True)
     force = abs(O.forces.f(lid, True)[2])
+    path.append((hi[2] - O.bodies[lid].state.pos[2], force))
     if force >= 5 * weight:
         O.bodies[lid].state.vel = (0, 0, 0)
         O.run(1000, True)
@@ -77,3 +78,15 @@ print('jammed       at travel %.4g (%.0f%% of the height): the still lid holds %
       % (travel, 100 * travel / height, held, held / weight))
 if not all(np.isfinite(O.bodies[c].state.pos).all() for c, m in clumps.values()):
     raise SystemExit('a clump left the box')
+if os.environ.get('MSS_FIGURES'):  # the jammed specimen from the side, and the lid's force against its travel
+    from yade_mss.pictures import sideView
+    ids = [(c, i) for c, m in clumps.values() for i in m]
+
+    def lidCurve(ax):
+        ax.plot([1e3 * t for t, f in path], [f / weight for t, f in path], lw=0.8)
+        ax.set_xlabel('lid travel (mm)')
+        ax.set_ylabel('lid force / the specimen\'s weight')
+        ax.set_title('the lid moving down until the specimen jams')
+    sideView([tuple(O.bodies[i].state.pos) for c, i in ids], [O.bodies[i].shape.radius for c, i in ids],
+             [c for c, i in ids], os.path.join(os.environ['MSS_FIGURES'], 'ct_specimen.png'),
+             'a CT specimen as clumps (mssAssembly), jammed under the lid', extra=lidCurve)

@@ -1,5 +1,5 @@
 # yade-mss quick start: a CT-scanned femur to one clump of 70 spheres, dropped on a plane.
-# Run: yade -n -x examples/quickstart.py        (MSS_SHORT=1 for a short run)
+# Run: yade -n -x examples/quickstart.py        (MSS_SHORT=1 for a short run; MSS_FIGURES=DIR for a picture)
 import os
 
 import numpy as np
@@ -43,3 +43,5 @@ print('after %d steps (%.3f s): height of centre %.3f mm, speed %.3g mm/s, %d co
       % (steps, O.time, 1e3 * st.pos[2], 1e3 * v, len([i for i in O.bodies[ground].intrs() if i.isReal])))
 if not short and v > 1e-3:
     raise SystemExit('the femur did not come to rest')
+if os.environ.get('MSS_FIGURES'):  # the clump against the femur: three views and a section
+    result.preview(os.path.join(os.environ['MSS_FIGURES'], 'quickstart_femur.png'), grain=femur, scale=1e-3)

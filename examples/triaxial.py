@@ -3,7 +3,7 @@
 # orientations, isotropic compaction to 100 kPa, then drained shearing (constant lateral stress) at an inertial
 # number of 5e-4. Prints the curve (compression positive) and what it gives: friction and dilatancy angles,
 # E50, the void ratio on the grains' exact volumes and on the clumps' own.
-# Run: yade -n -x examples/triaxial.py        (MSS_SHORT=1 for a short run)
+# Run: yade -n -x examples/triaxial.py        (MSS_SHORT=1 for a short run; MSS_FIGURES=DIR for a picture)
 import os
 
 from yade_mss import mssTemplate, triaxial
@@ -37,3 +37,17 @@ print('cost: %d steps of %.3g s (dt %.3g s), %d spheres, %.1f s' % (r.cost['step
                                                                      r.cost['wall_s']))
 if not (d['quasi_static'] and r.records[-1]['axial_strain'] >= (0.02 if short else 0.15)):
     raise SystemExit('the test was not quasi-static or stopped short of its strain')
+if os.environ.get('MSS_FIGURES'):  # the sheared specimen from the side, and its curves
+    from yade_mss.pictures import sideView
+    members = [(b.clumpId, b.id) for b in O.bodies if b is not None and b.isClumpMember]
+
+    def curves(ax):
+        e = [100 * x['axial_strain'] for x in r.records]
+        ax.plot(e, [x['q_over_p'] for x in r.records], label='q/p')
+        ax.plot(e, [100 * x['volumetric_strain'] for x in r.records], label='volumetric strain (%)')
+        ax.set_xlabel('axial strain (%)')
+        ax.legend()
+        ax.set_title('drained triaxial compression, 100 kPa')
+    sideView([tuple(O.bodies[i].state.pos) for c, i in members], [O.bodies[i].shape.radius for c, i in members],
+             [c for c, i in members], os.path.join(os.environ['MSS_FIGURES'], 'triaxial.png'),
+             'clumps of CT-scanned grains in a periodic cell, sheared', extra=curves)

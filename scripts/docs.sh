@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the manual into build/docs/html (Sphinx; every warning is an error): the command-line reference from
 # the option table and the results tables from bench/results (docs/gen_reference.py, into docs/_generated), the
+# gallery (docs/make_gallery.py: the examples run in YADE, into docs/_gallery), the
 # C++ API from the public headers (doxygen XML, through breathe), the Python API from the docstrings.
 # Then opens it in headless Chromium and checks what a reader sees. Needs a build (bash scripts/setup.sh).
 # usage: bash scripts/docs.sh
@@ -10,6 +11,8 @@ BUILD=${MSS_BUILD_DIR:-build}
 PY=/usr/bin/python3
 [ -f "$BUILD/py/yade_mss/_mss.so" ] || { echo "docs: no build in $BUILD: run bash scripts/setup.sh first" >&2; exit 1; }
 PYTHONPATH=$BUILD/py $PY docs/gen_reference.py docs/_generated
+# the gallery: every example run in YADE (short runs) and a batch's report, pages made from what they print and draw
+PYTHONPATH=$(realpath "$BUILD/py") MSS_BINARY=$(realpath "$BUILD/mss") $PY docs/make_gallery.py docs/_gallery
 $PY docs/gen_reference.py --check-readme README.md   # its figures are the newest bench rows, not typed
 XML=$BUILD/docs-xml
 rm -rf "$XML"
@@ -52,5 +55,9 @@ expect guide/architecture.html "check_imports.py"
 expect api/cli.html "--inertial-number"
 expect tutorials/triaxial.html "What the sphere count does"
 expect guide/export.html "_static/custom.css"   # code wraps, never clipped
+expect _gallery/index.html "The report of a batch"
+for ex in quickstart ct_specimen triaxial compare_clump crush_grain oedometer_crushing batch_report; do
+  expect _gallery/$ex.html "${ex}_1.png"   # each page shows its pictures
+done
 [ $fail -eq 0 ] || exit 1
 echo "docs: $BUILD/docs/html/index.html"
