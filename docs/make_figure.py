@@ -1,8 +1,11 @@
 """Draws docs/femur70.png, the README's picture: the femur mesh and 70 spheres three ways: unbounded (radii grow
 past the mesh wherever that lowers the mismatch), the default (no sphere more than one voxel beyond the mesh), and
 clipped (none beyond), with D (eq. 27) on an independent grid and the largest protrusion in voxels.
-usage: PYTHONPATH=build/py /usr/bin/python3 docs/make_figure.py   (build first; needs python3-matplotlib)"""
+The figures it shows are written into the PNG's text too (its Description), so that ``--check`` (run by
+scripts/docs.sh, in CI) computes them again with this build and fails where the stored picture is stale.
+usage: PYTHONPATH=build/py /usr/bin/python3 docs/make_figure.py [--check]   (build first; python3-matplotlib)"""
 import os
+import sys
 
 import matplotlib
 matplotlib.use('Agg')
@@ -33,19 +36,40 @@ def bumps(r):
     return r.metrics['protrusion'] / r.grid['voxelSize']
 
 
-def main():
+OUT = os.path.join(ROOT, 'docs', 'femur70.png')
+
+
+def clumps():
+    """The three clumps and the panels' titles (what the picture says, figures rounded as shown)."""
     tris = mesh_triangles(FEMUR)
     free = yade_mss.generate(FEMUR, nSpheres=70, resolution=103, maxProtrusion=float('inf'))
     bounded = yade_mss.generate(FEMUR, nSpheres=70, resolution=103)
     clipped = yade_mss.generate(FEMUR, nSpheres=70, resolution=103, clip=True)
-    fig = plt.figure(figsize=(15, 5.2))
-    lo, hi = tris.reshape(-1, 3).min(0), tris.reshape(-1, 3).max(0)
     panels = [('femur mesh (X-ray CT), %d triangles' % len(tris), None),
               ('unbounded: D = %.4f, bumps up to %.1f voxels' % (yade_mss.score(FEMUR, free)['dice'], bumps(free)),
                free),
               ('default: D = %.4f, at most %.1f voxel out' % (yade_mss.score(FEMUR, bounded)['dice'], bumps(bounded)),
                bounded),
               ('clipped: D = %.4f, none out' % yade_mss.score(FEMUR, clipped)['dice'], clipped)]
+    return tris, panels
+
+
+def check():
+    """Fails (exit 1) where docs/femur70.png says other figures than this build computes."""
+    from PIL import Image
+    stored = Image.open(OUT).text.get('Description', '')
+    now = ' | '.join(title for title, _ in clumps()[1])
+    if stored != now:
+        sys.exit('docs/femur70.png is stale: it shows\n  %s\nthis build computes\n  %s\nrun PYTHONPATH=build/py '
+                 '/usr/bin/python3 docs/make_figure.py' % (stored or '(no figures recorded)', now))
+    print('docs/femur70.png: its figures are this build\'s (%s)' % now)
+
+
+def main():
+    tris, panels = clumps()
+    free, bounded, clipped = (r for _, r in panels[1:])
+    fig = plt.figure(figsize=(15, 5.2))
+    lo, hi = tris.reshape(-1, 3).min(0), tris.reshape(-1, 3).max(0)
     colors = {id(free): '#4f7cac', id(bounded): '#b0704f', id(clipped): '#6a9f58'}
     for i, (title, r) in enumerate(panels):
         ax = fig.add_subplot(1, 4, i + 1, projection='3d')
@@ -61,10 +85,9 @@ def main():
         ax.set_axis_off()
         ax.set_title(title, fontsize=10)
     fig.subplots_adjust(left=0, right=1, bottom=0, top=0.93, wspace=0)
-    out = os.path.join(ROOT, 'docs', 'femur70.png')
-    fig.savefig(out, dpi=90)
-    print('wrote', out)
+    fig.savefig(OUT, dpi=90, metadata={'Description': ' | '.join(title for title, _ in panels)})
+    print('wrote', OUT)
 
 
 if __name__ == '__main__':
-    main()
+    check() if sys.argv[1:] == ['--check'] else main()

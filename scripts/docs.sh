@@ -14,6 +14,7 @@ PYTHONPATH=$BUILD/py $PY docs/gen_reference.py docs/_generated
 # the gallery: every example run in YADE (short runs) and a batch's report, pages made from what they print and draw
 PYTHONPATH=$(realpath "$BUILD/py") MSS_BINARY=$(realpath "$BUILD/mss") $PY docs/make_gallery.py docs/_gallery
 $PY docs/gen_reference.py --check-readme README.md   # its figures are the newest bench rows, not typed
+PYTHONPATH=$BUILD/py $PY docs/make_figure.py --check   # the front picture's figures are this build's
 XML=$BUILD/docs-xml
 rm -rf "$XML"
 mkdir -p "$XML"
