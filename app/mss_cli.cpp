@@ -563,11 +563,19 @@ int cmdCompare(const Args& a) {
     std::vector<mss::Comparison> rows;
     std::vector<std::string> errors;
     for (const std::string& f : files) {
-        // the error names the file at fault (a sphere file in another frame), not the grain
+        // the error names the file at fault (a sphere file in another frame), not the grain; but the grain's
+        // voxelisation (a triangle soup over the memory limit) is the grain's, whatever file is scored
         auto one = [&] {
             const mss::SphereSet s = mss::readSpheres(f, st.clumpId);
-            return namingInput(
-                f, [&] { return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o); });
+            return namingInput(f, [&] {
+                try {
+                    return voxels ? mss::compareSpheres(v, s, o) : mss::compareSpheres(mesh, s, o);
+                } catch (const std::invalid_argument& e) {
+                    if (std::string(e.what()).rfind("voxelizeMesh:", 0) == 0)
+                        throw std::invalid_argument(in + ": " + e.what() + " (the grain, not " + f + ")");
+                    throw;
+                }
+            });
         };
         if (files.size() == 1) {
             rows.push_back(one());

@@ -150,6 +150,17 @@ class CommandLine(unittest.TestCase):
                                 '--resolution', 100, '--max-work', 5)
             self.assertRefused(p, t, 'winding number', 'over the work limit of 5 s')
             self.assertFalse(os.path.exists(os.path.join(d, 'g.csv')))
+            # the soup of 300k triangles compared with a sphere file: the soup is named as the file at
+            # fault (the rows named the sphere file), and refused at the default memory limit
+            big = os.path.join(d, 'big_soup.obj')
+            with open(big, 'w') as f:
+                f.write(''.join('v %.5f %.5f %.5f\n' % tuple(v) for v in rng.random((900000, 3))))
+                f.write(''.join('f %d %d %d\n' % (3 * i + 1, 3 * i + 2, 3 * i + 3) for i in range(300000)))
+            s = os.path.join(d, 's.csv')
+            with open(s, 'w') as f:
+                f.write('x,y,z,r\n0.5,0.5,0.5,0.2\n0.3,0.4,0.5,0.1\n')  # in the soup's cube
+            p, t = self.run_mss('compare', big, s)
+            self.assertRefused(p, t, 'error: %s: voxelizeMesh' % big, 'triangle soup', '(the grain, not %s)' % s)
 
     def test_ctrl_c_stops_a_long_generation_and_writes_nothing(self):
         with tempfile.TemporaryDirectory() as d:
