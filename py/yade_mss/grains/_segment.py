@@ -125,9 +125,12 @@ def segmentScan(binary, h=None, markers=None, minVoxels=0, memoryLimit=None):
     _checkMemory(shape, memoryLimit)
     if markers is not None:
         markers = np.asarray(markers)
-        if markers.shape != shape or not np.issubdtype(markers.dtype, np.integer):
+        if markers.shape != shape or not (markers.dtype == bool or np.issubdtype(markers.dtype, np.integer)):
             raise ValueError('segment: markers must be an integer volume of the scan\'s shape %s, got %s of %s'
                              % (shape, markers.shape, markers.dtype))
+        if markers.dtype != bool and markers.min() < 0:
+            raise ValueError('segment: markers must be labels >= 0 (0: no marker), found %d' % markers.min())
+        markers = markers.astype(np.int64) if markers.dtype == bool else markers
     solid = np.asarray(binary) != 0
     pieces, n = ndimage.label(solid)
     sizes = np.bincount(pieces.ravel())

@@ -197,6 +197,8 @@ class BinaryScans(unittest.TestCase):
         self.assertIn('markers', info['method'])
         with self.assertRaisesRegex(ValueError, 'markers must be an integer volume of the scan'):
             segmentScan(scan, markers=cores[:10])
+        with self.assertRaisesRegex(ValueError, r'markers must be labels >= 0 \(0: no marker\), found -1'):
+            segmentScan(scan, markers=np.where(cores > 0, -1, 0))
 
 
 class SkippedGrains(unittest.TestCase):
