@@ -33,7 +33,8 @@ PKG=$STAGE/yade-mss
 DESTDIR=$PKG cmake --install build-deb --strip >> build-deb.log 2>&1 || { tail -20 build-deb.log; exit 1; }
 find "$PKG" -name __pycache__ -prune -exec rm -rf {} +
 
-# the documents every Debian package carries: the copyright, a changelog of the package, the README
+# the documents every Debian package carries: the copyright (the project has no licence yet: said so, none
+# invented), a changelog of the package, the README
 DOC=$PKG/usr/share/doc/yade-mss
 mkdir -p "$DOC"
 cat > "$DOC/copyright" << EOF
@@ -43,13 +44,10 @@ Source: the yade-mss repository
 
 Files: *
 Copyright: 2026 the yade-mss developers
-License: GPL-3+
- This program is free software: you can redistribute it and/or modify it under the terms of the GNU General
- Public License as published by the Free Software Foundation, either version 3 of the License, or (at your
- option) any later version.
- .
- On Debian systems, the complete text of the GNU General Public License version 3 can be found in
- /usr/share/common-licenses/GPL-3.
+License: not-chosen
+ The yade-mss developers have not chosen a licence for the project yet (the repository declares none); until
+ they do, no licence is granted here. The test data the repository bundles (not in this package) carry their
+ own licences, listed in its tests/data/README.md.
 EOF
 cat > "$STAGE/changelog" << EOF
 yade-mss ($VERSION) unstable; urgency=medium
@@ -94,7 +92,6 @@ Depends: ${shlibs:+$shlibs, }$PYDEPS
 Recommends: yade, python3-distributed, libeigen3-dev, libcgal-dev, libgmp-dev, libmpfr-dev
 Section: science
 Priority: optional
-Homepage: https://github.com/yade-mss/yade-mss
 Description: multi-sphere clumps of real grains for DEM simulations
  yade-mss turns a grain's triangle mesh or voxel volume into a clump of
  overlapping spheres that matches its shape closely with few spheres (the MSS

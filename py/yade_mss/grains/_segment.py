@@ -24,8 +24,8 @@ semi-axis and 10-15 % intra-grain porosity, 0.73 at 20 % porosity or for grains 
 
 import numpy as np
 
-from .. import _mss
 from ..base import integer, number, optional
+from . import _options
 
 SPECK_VOXELS = 27  # a solid piece smaller than a 3 x 3 x 3 cube is noise, not a grain
 CLOSE_FRACTION = 0.15  # open pores closed by a ball of this fraction of the typical inscribed radius
@@ -33,14 +33,9 @@ MERGE_RATIO = 0.85  # neighbours whose highest pass reaches this fraction of the
 SEGMENT_BYTES = 128  # bytes a voxel at the segmentation's peak: the transform, markers, watershed and copies
 
 
-def _defaultMemoryLimit():
-    """The option table's default --memory-limit, GiB (read from the core: the options module reads grains
-    through the volumes module)."""
-    return float(next(r['default'] for r in _mss.optionTable() if r['name'] == 'memoryLimit'))
-
-
 def _checkMemory(shape, memoryLimit):
-    limit = number('segment', 'memoryLimit', _defaultMemoryLimit() if memoryLimit is None else memoryLimit, 0.0)
+    limit = number('segment', 'memoryLimit', _options.default('memoryLimit', 'generate') if memoryLimit is None
+                   else memoryLimit, 0.0)
     need = float(np.prod(shape, dtype=float)) * SEGMENT_BYTES / 2 ** 30
     if need > limit:
         raise ValueError('segment: segmenting a scan of %s voxels needs about %.3g GiB (%d bytes a voxel, the whole '

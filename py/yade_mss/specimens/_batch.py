@@ -26,7 +26,8 @@ from ..base import (atomicWrite, flag, folderLock, integer, number, refuseLinked
                     requireRegularFile, slowPhase, split, vector3)
 from ..exports import MAX_TEMPLATES, writeTemplates
 from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, MssResult, binaryValue, contactsByLabel, generateWith,
-                      optionTable, pieces, readVolume, regions, scanContacts, segmentScan, slabVoxels, valueRange)
+                      SPECK_VOXELS, optionTable, pieces, readVolume, regions, scanContacts, segmentScan, slabVoxels,
+                      valueRange)
 from . import _manifest, _report
 from ._pools import WORKER_DIED, checkScheduler, executor, freeCores
 from ._report import COLUMNS
@@ -750,6 +751,10 @@ def _segmented(inputs, outdir, h, memoryLimit=None, markers=None, minVoxels=0):
             raise TypeError('batch: segmentMarkers must be a label volume or its .npy file, got %r' % (markers,))
         markers = readVolume(markers)
     labels, info = segmentScan(vol, h, markers, minVoxels, memoryLimit)
+    if info['grains'] == 0:  # said here: the volume is not empty, its pieces were all dropped
+        raise ValueError('batch: %s: segmenting left no grain: %d specks (pieces under %d voxels) and %d segments '
+                         'under --min-voxels %d were dropped' % (name, info['specks'], SPECK_VOXELS, info['small'],
+                                                                 minVoxels))
     path = None
     if outdir is not None:
         os.makedirs(outdir, exist_ok=True)

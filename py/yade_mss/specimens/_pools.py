@@ -61,9 +61,11 @@ def checkScheduler(where, scheduler, security=None):
     """Before any work: a Dask scheduler's address is SCHEME://HOST:PORT (tcp, tls, ws, wss; no spaces or control
     characters, a port in 1..65535), and a tls:// one comes with TLS (the files, a Security, or Dask's own
     configuration): Dask's own errors for these were a traceback or "invalid literal for int()"."""
-    if security is not None and not (type(security).__name__ == 'Security' or isinstance(security, (str, bool))):
-        raise TypeError('%s: security must be a distributed.Security (or True, or a path Dask takes), got %r'
-                        % (where, security))
+    if security is not None and not isinstance(security, bool):
+        from distributed.security import Security
+        if not isinstance(security, Security):
+            raise TypeError('%s: security must be a distributed.Security (or True: Dask\'s temporary credentials), '
+                            'got %r' % (where, security))
     if scheduler is None:
         return None
     from urllib.parse import urlsplit

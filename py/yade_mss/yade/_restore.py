@@ -170,8 +170,11 @@ def _restore(func, O, me, ids, explicit, resolution, recs):
 
 def _grownGrain(body, s):
     """The grain a breakable clump carries, grown by *s* as its record (its mesh is in the record's frame, whose
-    origin is member 0: it scales about it as the offsets do); None where it carries none."""
+    origin is member 0: it scales about it as the offsets do); None where it carries none; '' (dropped) where it
+    is not readable: kept, it would stand at the old size (mssSplit then says the clump carries no grain)."""
     g = grainOf(labelOf(body))
+    if g is False:
+        return ''
     return encodeGrain(g[0] * s, g[1]) if g else None
 
 

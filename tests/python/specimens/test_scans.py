@@ -188,6 +188,14 @@ class BinaryScans(unittest.TestCase):
             self.assertGreaterEqual(int(np.bincount(labels.ravel())[1:].min()), 100)  # no speck a grain
             self.assertGreater(info['specks'], 50)  # the scan's specks, dropped and counted
 
+    def test_a_scan_of_specks_only_says_so(self):
+        # every piece dropped: the batch says what was dropped, not that every voxel is 0
+        a = np.zeros((30, 30, 30), np.uint8)
+        a[5, 5, 5] = a[20, 20, 20] = 1
+        a[10:12, 10:12, 10:12] = 1
+        with self.assertRaisesRegex(ValueError, r'segmenting left no grain: 3 specks \(pieces under 27 voxels\)'):
+            batch(a, None, segment=True, nSpheres=3, progress=False)
+
     def test_markers_of_the_user_s_own_are_grown(self):
         scan, truth = porousScan((80, 80, 80), grains=12, size=(10, 16), seed=4)
         from scipy import ndimage
