@@ -7,7 +7,7 @@ Every layer above may use these names; they are not part of the user's API (:mod
 
 from ._args import INT64_MAX, INT_MAX, choice, flag, integer, number, numberList, optional, vector, vector3
 from ._files import (atomicWrite, cppPath, folderLock, memoryBytes, readNpy, readTiff, refuseLinkedFolders,
-                     refuseOverInputs, requireRegularFile, umask)
+                     refuseOverInputs, releaseFreed, requireRegularFile, umask)
 from ._keywords import split
 from ._rotations import quaternionMatrix, randomRotation
 from ._signals import exitStatus, restore as restoreSignals, stopOnce
@@ -15,6 +15,7 @@ from ._work import bar as progressBar, check as checkWork, checkSweep, slowPhase
 
 __all__ = ['INT64_MAX', 'INT_MAX', 'choice', 'flag', 'integer', 'number', 'numberList', 'optional', 'vector',
            'vector3', 'atomicWrite', 'cppPath', 'folderLock',
-           'memoryBytes', 'readNpy', 'readTiff', 'refuseLinkedFolders', 'refuseOverInputs', 'requireRegularFile',
+           'memoryBytes', 'readNpy', 'readTiff', 'refuseLinkedFolders', 'refuseOverInputs', 'releaseFreed',
+           'requireRegularFile',
            'umask', 'split', 'quaternionMatrix', 'randomRotation', 'progressBar', 'checkWork', 'checkSweep',
            'exitStatus', 'restoreSignals', 'stopOnce', 'slowPhase']

@@ -6,7 +6,7 @@ The user's names are re-exported by :mod:`yade_mss`; the rest is this layer's AP
 """
 
 from . import _options as optionTable
-from ._contacts import NEARBY_GAP, ScanContacts, contactPoints, contactsByLabel, findContacts, scanContacts
+from ._contacts import NEARBY_GAP, ContactIndex, ScanContacts, contactPoints, contactsByLabel, findContacts, scanContacts
 from ._generate import GENERATE_OPTIONS, compareMany, generate, generateWith, score
 from ._results import TEMPLATE_EXTENSIONS, ClumpSurface, MassProperties, MssResult, readSpheres
 from ._sources import MESH_EXT, Mesh, checkedPlane, flatArray, massProperties, readGrain
@@ -14,7 +14,7 @@ from ._segment import SPECK_VOXELS, segmentBinary, segmentScan
 from ._volumes import (VOLUME_EXT, Region, binaryValue, pieces, readVolume, regions, separated, slabVoxels,
                        valueRange)
 
-__all__ = ['optionTable', 'NEARBY_GAP', 'ScanContacts', 'contactPoints', 'contactsByLabel', 'findContacts',
+__all__ = ['optionTable', 'NEARBY_GAP', 'ContactIndex', 'ScanContacts', 'contactPoints', 'contactsByLabel', 'findContacts',
            'scanContacts', 'GENERATE_OPTIONS', 'compareMany', 'generate', 'generateWith', 'score',
            'TEMPLATE_EXTENSIONS', 'ClumpSurface', 'MassProperties', 'MssResult', 'readSpheres', 'MESH_EXT', 'Mesh',
            'checkedPlane', 'flatArray', 'massProperties', 'readGrain', 'VOLUME_EXT', 'Region', 'binaryValue',

@@ -24,6 +24,11 @@ def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None
     :param float gap: the contact tolerance, voxels, in [0, 8]: the gap between two grains' voxel cubes up to
         which they count as in contact; 0: shared faces only
     """
+    return list(_columns(labels, voxelSize, origin, memoryLimit, gap))
+
+
+def _columns(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None, gap=1.0):
+    """:func:`findContacts` as :class:`ScanContacts` (columns: a batch of 10^5 grains holds 10^6 contacts)."""
     a = labels if isinstance(labels, np.ndarray) else np.asarray(labels)
     if a.ndim != 3 or not (a.dtype == bool or np.issubdtype(a.dtype, np.integer)):
         raise ValueError('findContacts: labels must be a 3-D array of integers, got %s of %s' % (a.shape, a.dtype))
@@ -40,30 +45,63 @@ def findContacts(labels, voxelSize=1.0, origin=(0.0, 0.0, 0.0), memoryLimit=None
         if s.dtype == np.uint64 and s.size and s.max() > np.iinfo(np.int64).max:
             raise ValueError('findContacts: a label over 2^63 - 1')
         return np.asfortranarray(s, dtype=np.int64).tobytes(order='F')
-    return _mss.findContacts(read, tuple(int(n) for n in a.shape), float(voxelSize), [float(x) for x in origin],
-                             layers, gap)
+    return ScanContacts(_mss.findContacts(read, tuple(int(n) for n in a.shape), float(voxelSize),
+                                          [float(x) for x in origin], layers, gap), gap)
 
 
 NEARBY_GAP = 3.0  # voxels: where no two grains are within the tolerance, the gaps looked at to say why
 
 
-class ScanContacts(list):
-    """:func:`findContacts`' list for a batch, with the tolerance it used (*gap*, voxels) and, where it found no
-    pair, *nearby*: the least gaps (voxels) of the pairs of grains within NEARBY_GAP voxels, the report's why."""
+class ScanContacts(object):
+    """:func:`findContacts`' contacts as columns (numpy arrays, one entry a contact: ``a``, ``b``, ``faces``,
+    ``gaps``, ``points`` (n, 3), ``normals`` (n, 3)), with the tolerance it used (*gap*, voxels) and, where it
+    found no pair, *nearby*: the least gaps (voxels) of the pairs of grains within NEARBY_GAP voxels, the
+    report's why. Indexing or iterating gives findContacts' dicts, one at a time.
 
-    def __init__(self, contacts, gap, nearby=None):
-        list.__init__(self, contacts)
+    :param columns: a dict of those columns (arrays, or the bytes of int64 and double arrays as the core gives)
+    """
+
+    COLUMNS = (('a', 'a', np.int64, 1), ('b', 'b', np.int64, 1), ('faces', 'faces', np.int64, 1),
+               ('gaps', 'gap', np.float64, 1), ('points', 'point', np.float64, 3),
+               ('normals', 'normal', np.float64, 3))
+
+    def __init__(self, columns, gap, nearby=None):
+        for name, key, dtype, width in self.COLUMNS:
+            v = columns[key] if key in columns else columns[name]
+            v = np.frombuffer(v, dtype=dtype) if isinstance(v, bytes) else np.asarray(v, dtype=dtype)
+            setattr(self, name, v.reshape(-1, 3) if width == 3 else v.reshape(-1))
         self.gap, self.nearby = gap, nearby
+
+    def __len__(self):
+        return len(self.a)
+
+    def __getitem__(self, i):
+        return dict(a=int(self.a[i]), b=int(self.b[i]), faces=int(self.faces[i]), gap=float(self.gaps[i]),
+                    point=tuple(float(x) for x in self.points[i]), normal=tuple(float(x) for x in self.normals[i]))
+
+    def __iter__(self):
+        return (self[i] for i in range(len(self)))
+
+    def select(self, keep):
+        """The contacts where the boolean array *keep* is true, with the same tolerance."""
+        return ScanContacts({n: getattr(self, n)[keep] for n, _, _, _ in self.COLUMNS}, self.gap, self.nearby)
+
+    @staticmethod
+    def fromDicts(contacts, gap, nearby=None):
+        """From findContacts' dicts (as a contacts.csv gives them back)."""
+        c = list(contacts)
+        return ScanContacts({'a': [x['a'] for x in c], 'b': [x['b'] for x in c],
+                             'faces': [x['faces'] for x in c], 'gap': [x.get('gap', 0.0) for x in c],
+                             'point': [x['point'] for x in c], 'normal': [x['normal'] for x in c]}, gap, nearby)
 
 
 def scanContacts(labels, voxelSize, origin, memoryLimit, gap):
     """:class:`ScanContacts` of a labelled volume: findContacts at *gap*, and where it finds none (and the
     tolerance is under NEARBY_GAP) the gaps between the grains that are near each other all the same."""
-    found = findContacts(labels, voxelSize, origin, memoryLimit, gap)
-    nearby = None
-    if not found and gap < NEARBY_GAP:
-        nearby = sorted(c['gap'] for c in findContacts(labels, voxelSize, origin, memoryLimit, NEARBY_GAP))
-    return ScanContacts(found, gap, nearby)
+    found = _columns(labels, voxelSize, origin, memoryLimit, gap)
+    if not len(found) and gap < NEARBY_GAP:
+        found.nearby = sorted(float(g) for g in _columns(labels, voxelSize, origin, memoryLimit, NEARBY_GAP).gaps)
+    return found
 
 
 def contactPoints(contacts, label):
@@ -80,3 +118,28 @@ def contactsByLabel(contacts):
         out.setdefault(c['a'], []).append(list(c['point']) + [-x for x in c['normal']])
         out.setdefault(c['b'], []).append(list(c['point']) + list(c['normal']))
     return out
+
+
+class ContactIndex(object):
+    """The points each grain of a scan must reach (:func:`contactPoints` of every label), from
+    :class:`ScanContacts` as arrays: each contact's two ends (its point with the normal into a, then into b)
+    ordered by label, and each label's run of them found by bisection; a grain's points are made when it
+    asks, so that a batch holds none of them but for the grains in flight (12 bytes an end, not 56)."""
+
+    def __init__(self, contacts):
+        n = len(contacts)
+        labels = np.concatenate([contacts.a, contacts.b])
+        # by label, then in the contacts' order: the points in the order contactsByLabel gives them (a grain's
+        # input digest, and the order the core takes them in, as before)
+        order = np.lexsort((np.concatenate([np.arange(n), np.arange(n)]), labels))
+        self._contacts, self._labels = contacts, labels[order]
+        self._order = order.astype(np.int32 if 2 * n < 2 ** 31 else np.int64)
+
+    def __call__(self, label):
+        """The grain's points, an (n, 6) array (point, normal into the grain)."""
+        lo, hi = np.searchsorted(self._labels, [label, label + 1])
+        ends = self._order[lo:hi]
+        n = len(self._contacts)
+        c = ends % n
+        into = np.where(ends < n, -1.0, 1.0)[:, None]  # into a: against the normal, which points from a to b
+        return np.hstack([self._contacts.points[c], into * self._contacts.normals[c]])

@@ -213,10 +213,14 @@ class MssResult(object):
         if ext != '.npz':
             raise ValueError("MssResult.save: %s: unknown extension '%s' (expected .npz, .csv, .txt or .vtk, or a "
                              "template: .clu or .p3dat)" % (path, ext))
+        atomicWrite(path, lambda tmp: self._npz(tmp, compress), 'MssResult.save')
+
+    def _npz(self, file, compress=False):
+        """Writes the .npz that :meth:`load` reads to *file* (a path or a binary file object)."""
         meta = {'metrics': self.metrics, 'grid': self.grid, 'source': self.source,
                 'targetMass': self.targetMass._toDict() if self.targetMass is not None else None, 'version': 1}
-        atomicWrite(path, lambda tmp: (np.savez_compressed if compress else np.savez)(
-            tmp, centers=self.centers, radii=self.radii, meta=np.array(json.dumps(meta))), 'MssResult.save')
+        (np.savez_compressed if compress else np.savez)(file, centers=self.centers, radii=self.radii,
+                                                         meta=np.array(json.dumps(meta)))
 
     @staticmethod
     def load(path):

@@ -72,6 +72,8 @@ def slab(a, x0, x1):
 class Region(object):
     """One label of a volume: its bounding box (slices), voxel count, and whether it touches the border."""
 
+    __slots__ = ('label', 'box', 'voxels', 'touchesBorder')  # a batch holds one a grain: 10^5 and more
+
     def __init__(self, label, box, voxels, shape):
         self.label = int(label)
         self.box = box
@@ -81,21 +83,33 @@ class Region(object):
     def crop(self, labels, pad=2):
         """The label's voxels in its box, padded by *pad* empty voxels (the double zero hull, eq. 6), and the
         index of the crop's voxel (0, 0, 0) in the volume."""
-        sub = labels[self.box] == self.label
-        release(labels)
         start = np.array([s.start for s in self.box]) - pad
-        return np.pad(sub, pad), start
+        return self.cut(labels, pad, False)[0], start
+
+    def cut(self, labels, pad=2, neighbours=True):
+        """:meth:`crop`'s voxels and (with *neighbours*) :meth:`neighbours`', from one read of the box and its
+        margin: (crop, neighbours or None). Into zeroed arrays, not np.pad (a tenth of a millisecond a grain,
+        seconds for a scan's 10^4 grains)."""
+        lo = [max(0, s.start - pad) for s in self.box]
+        hi = [min(n, s.stop + pad) for s, n in zip(self.box, labels.shape)]
+        sub = np.asarray(labels[tuple(slice(a, b) for a, b in zip(lo, hi))])
+        release(labels)
+        shape = tuple(s.stop - s.start + 2 * pad for s in self.box)
+        into = tuple(slice(a - (s.start - pad), b - (s.start - pad)) for a, b, s in zip(lo, hi, self.box))
+        mine = sub == self.label
+        crop = np.zeros(shape, dtype=bool)
+        inner = tuple(slice(s.start - a, s.stop - a) for s, a in zip(self.box, lo))  # the box itself
+        crop[tuple(slice(pad, pad + s.stop - s.start) for s in self.box)] = mine[inner]
+        near = None
+        if neighbours:
+            near = np.zeros(shape, dtype=bool)  # beyond the volume: nobody
+            near[into] = (sub != 0) & ~mine
+        return crop, near
 
     def neighbours(self, labels, pad=2):
         """The other grains on the grid of :meth:`crop` (booleans): where no sphere may protrude by more than half
         the bound."""
-        lo = [max(0, s.start - pad) for s in self.box]
-        hi = [min(n, s.stop + pad) for s, n in zip(self.box, labels.shape)]
-        sub = labels[tuple(slice(a, b) for a, b in zip(lo, hi))]
-        widths = [(a - (s.start - pad), s.stop + pad - b) for a, b, s in zip(lo, hi, self.box)]
-        out = np.pad((sub != 0) & (sub != self.label), widths)
-        release(labels)
-        return out  # beyond the volume: nobody
+        return self.cut(labels, pad)[1]
 
 
 SLAB_VOXELS = 1 << 23  # findContacts reads the volume in slabs of about this many voxels (64 MB as int64)

@@ -12,6 +12,7 @@ At the end: ``assembly.txt`` (every sphere, ``x y z r clumpId``, with each clump
 
 import contextlib
 import hashlib
+import io
 import json
 import os
 import stat
@@ -23,9 +24,9 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..base import (atomicWrite, flag, folderLock, integer, number, refuseLinkedFolders, refuseOverInputs,
-                    requireRegularFile, slowPhase, split, vector3)
+                    releaseFreed, requireRegularFile, slowPhase, split, vector3)
 from ..exports import MAX_TEMPLATES, writeTemplates
-from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, MssResult, binaryValue, contactsByLabel, generateWith,
+from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, ContactIndex, MassProperties, MssResult, binaryValue, generateWith,
                       SPECK_VOXELS, optionTable, pieces, readVolume, regions, scanContacts, segmentScan, slabVoxels,
                       valueRange)
 from . import _manifest, _report
@@ -33,41 +34,84 @@ from ._pools import WORKER_DIED, checkScheduler, executor, freeCores
 from ._report import COLUMNS
 
 TOO_SMALL = 'exceeds the largest inscribed radius'  # the core's message when rMin leaves a grain no sphere
+RELEASE_EVERY = 1000  # grains between two hand-backs of freed memory (releaseFreed: a few ms)
+DIGEST = '_input'  # a row's key, from the worker to the batch: the grain's input digest (not a column)
 
 
 class GrainTask(object):
     """One grain to generate: a cropped sub-volume (with its world origin) or a file; small enough to send.
-    *digest*: of what it is made from (the crop's voxels, box and origin, or the file's bytes), so that a rerun
-    reuses a result only for the same input."""
+    *digest*: of what it is made from (the crop's voxels, box and origin, its contact points and neighbours, or
+    the file's bytes), so that a rerun reuses a result only for the same input; computed when first asked for
+    (where the grain runs, from the crop it cuts anyway).
+
+    A labelled volume's grain holds its *region*, the *volume* and the scan's contact *index* instead of its
+    arrays: its crop, neighbours and contact points are cut when asked for, so that a batch holds the voxels
+    and points of the grains in flight only (10^5 grains of a scan)."""
+
+    __slots__ = ('key', 'options', 'label', 'path', 'voxelSize', 'origin', 'voxels', 'touchesBorder', '_crop',
+                 '_neighbours', '_contacts', '_region', '_volume', '_index', '_digest')
 
     def __init__(self, key, options, label=None, path=None, crop=None, voxelSize=None, origin=None, voxels=0,
-                 touchesBorder=False, contacts=None, neighbours=None):
+                 touchesBorder=False, contacts=None, neighbours=None, region=None, volume=None, index=None):
         self.key, self.options, self.label, self.path = key, options, label, path
-        self.contacts = contacts  # the points its spheres must reach (its neighbours in the volume), or None
-        # crop and neighbours: arrays, or functions that cut them from a (memory-mapped) volume when asked, so
-        # that a batch holds the voxels of the grains in flight only
+        self._contacts = contacts  # the points its spheres must reach (its neighbours in the volume), or None
         self._crop, self._neighbours = crop, neighbours
+        self._region, self._volume, self._index = region, volume, index
         self.voxelSize, self.origin = voxelSize, origin
         self.voxels, self.touchesBorder = voxels, touchesBorder
-        self.digest = (_cropDigest(self.crop, voxelSize, origin, contacts, self.neighbours) if crop is not None
-                       else _fileDigest(path))
+        self._digest = None
 
     @property
     def crop(self):
-        return self._crop() if callable(self._crop) else self._crop
+        if self._crop is None and self._region is not None:
+            return self._region.crop(self._volume)[0]
+        return self._crop
 
     @property
     def neighbours(self):
-        return self._neighbours() if callable(self._neighbours) else self._neighbours
+        if self._neighbours is None and self._region is not None and self._index is not None:
+            return self._region.neighbours(self._volume)
+        return self._neighbours
+
+    @property
+    def contacts(self):
+        """The points to reach, 6 numbers each (point, normal into the grain), or None (contacts off, a file)."""
+        if self._contacts is None and self._index is not None:
+            return self._index(self.label)
+        return self._contacts
+
+    @property
+    def digest(self):
+        if self._digest is None:
+            crop = self.crop
+            self._digest = (_cropDigest(crop, self.voxelSize, self.origin, self.contacts, self.neighbours)
+                            if crop is not None else _fileDigest(self.path))
+        return self._digest
+
+    def cut(self):
+        """(crop, contact points, neighbours), each cut once (a scan's crop and neighbours from one read of its
+        box), and the digest from them."""
+        contacts = self.contacts
+        if self._crop is None and self._region is not None:
+            crop, near = self._region.cut(self._volume, 2, self._index is not None)
+        else:
+            crop = self.crop
+            near = self.neighbours if crop is not None else None
+        if self._digest is None:
+            self._digest = (_cropDigest(crop, self.voxelSize, self.origin, contacts, near) if crop is not None
+                            else _fileDigest(self.path))
+        return crop, contacts, near
 
     # A task travels (to a worker process, a Dask worker) with its voxels deflated, a boolean crop packed to a
     # bit a voxel first: Dask warned of every task over a megabyte ("Large object ... detected in task graph");
     # a grain's crop packs to about a hundredth. Other arrays (a grain's own volume file) keep their values.
     def __getstate__(self):
-        state = dict(self.__dict__)
+        state = {n: getattr(self, n) for n in self.__slots__}
+        state.update(_region=None, _volume=None, _index=None, _contacts=self.contacts)
         for name in ('_crop', '_neighbours'):
             a = getattr(self, name[1:])
             if a is None:
+                state[name] = None
                 continue
             a = np.ascontiguousarray(a)
             raw = np.packbits(a, axis=None).tobytes() if a.dtype == bool else a.tobytes()
@@ -83,14 +127,17 @@ class GrainTask(object):
                     state[name] = np.unpackbits(raw, count=int(np.prod(shape))).astype(bool).reshape(shape)
                 else:
                     state[name] = raw.view(np.dtype(dtype)).reshape(shape).copy()
-        self.__dict__.update(state)
+        for n in self.__slots__:
+            setattr(self, n, state.get(n))
 
 
 def _cropDigest(crop, voxelSize, origin, contacts=None, neighbours=None):
     a = np.ascontiguousarray(crop)
     h = hashlib.sha256()
+    # the points as lists of numbers: an array of them digests as the lists it replaced did
+    points = np.asarray(contacts, dtype=float).tolist() if contacts is not None and len(contacts) else []
     h.update(json.dumps({'shape': list(a.shape), 'dtype': a.dtype.str, 'voxelSize': voxelSize,
-                         'origin': [float(x) for x in origin], 'contacts': contacts or []}).encode())
+                         'origin': [float(x) for x in origin], 'contacts': points}).encode())
     h.update(a.tobytes())
     if neighbours is not None:
         h.update(np.ascontiguousarray(neighbours).tobytes())
@@ -133,10 +180,12 @@ def runGrain(task):
     t0 = time.perf_counter()
     try:
         opts = dict(task.options, threads=1)
-        crop = task.crop
+        crop, contacts, near = task.cut()
+        row[DIGEST] = task.digest  # the input's, for the record: taken off the row before it is stored
+        t0 = time.perf_counter()  # the grain's time is its generation's: cutting and digesting are the batch's
         if crop is not None:
-            r = generateWith(crop, dict(opts, voxelSize=task.voxelSize, origin=task.origin), task.contacts or [],
-                          task.neighbours)
+            points = np.asarray(contacts, dtype=float).tolist() if contacts is not None else []
+            r = generateWith(crop, dict(opts, voxelSize=task.voxelSize, origin=task.origin), points, near)
         else:
             r = generateWith(task.path, opts)
         r.grain = None  # the crop: held per grain it would grow with the volume; previews crop again
@@ -144,7 +193,8 @@ def runGrain(task):
         row.update(status='ok', spheres=len(r), dice=r.metrics['dice'], eta=r.metrics['eta'],
                    protrusion=r.metrics.get('protrusion', ''), r_min=r.metrics['smallestRadius'],
                    r_min_voxels=r.metrics['smallestRadius'] / h, thickness_voxels=r.metrics['inscribedRadius'] / h,
-                   contacts_ct=len(task.contacts or []), contact_spheres=r.metrics.get('contactsAdded', 0),
+                   contacts_ct=0 if contacts is None else len(contacts),
+                   contact_spheres=r.metrics.get('contactsAdded', 0),
                    seconds=time.perf_counter() - t0)
         return task.key, row, r
     except ValueError as e:
@@ -288,21 +338,20 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
         # no contact balls toward grains the batch skips (specks under --min-voxels, grains the border cuts with
         # --exclude-border): they are not in the assembly. A grain left out by labels= is another run's: its
         # neighbours keep their balls toward it, as each would alone (generate(volume, label=...))
-        points = contactsByLabel([c for c in found or [] if c['a'] not in why and c['b'] not in why])
+        index = None
+        if found is not None:
+            out = np.fromiter(why, dtype=np.int64, count=len(why))
+            index = ContactIndex(found.select(~(np.isin(found.a, out) | np.isin(found.b, out))))
         for reg in found_regions:
             k = 'label_%d' % reg.label
-            base = dict(_blank(), label=reg.label, voxels=reg.voxels, touches_border=int(reg.touchesBorder))
             if reg.label in why:
-                skipped[k] = dict(base, status='skipped', message=why[reg.label])
+                skipped[k] = dict(_blank(), label=reg.label, voxels=reg.voxels,
+                                  touches_border=int(reg.touchesBorder), status='skipped', message=why[reg.label])
             else:
                 start = np.array([s.start for s in reg.box]) - 2  # the crop's voxel (0, 0, 0), as reg.crop says
-                crop = (lambda reg=reg: reg.crop(vol)[0])
-                near = (lambda reg=reg: reg.neighbours(vol)) if found is not None else None
                 tasks.append(GrainTask(k, voxelOptions, label=reg.label, path=files[0] if array is None else None,
-                                       crop=crop, voxelSize=h, contacts=None if found is None else
-                                       points.get(reg.label, []), neighbours=near,
-                                       origin=(org + h * start).tolist(), voxels=reg.voxels,
-                                       touchesBorder=reg.touchesBorder))
+                                       voxelSize=h, origin=tuple((org + h * start).tolist()), voxels=reg.voxels,
+                                       touchesBorder=reg.touchesBorder, region=reg, volume=vol, index=index))
         return tasks, skipped, key, found
     if labels:
         raise ValueError('batch: --labels applies to one labelled volume')
@@ -336,6 +385,41 @@ class Batch(object):
     def __init__(self):
         self.rows, self.results, self.seconds, self.generated, self.reused = {}, {}, 0.0, 0, 0
         self.timeStep, self.setBy, self.upToDate, self._scan, self._scanFile = None, [], False, None, None
+        self.clumps = self.results  # what the batch's own passes read: centers, radii and targetMass a grain
+        self._stored, self._packed = False, None
+
+    def keep(self, key, result):
+        """Holds a generated grain: its result whole, or with an output folder (:meth:`storing`) its spheres and
+        mass properties packed (:class:`PackedClump`), the result read back from its file when asked for."""
+        if self._stored:
+            self.clumps[key] = PackedClump(result)
+        else:
+            self.results[key] = result
+
+    def storing(self):
+        """The grains' results are in the output folder: hold only what the batch's passes need of them (a
+        result whole, its metrics and grid, is several kB: 10^5 grains of a scan)."""
+        self._stored, self.clumps = True, {}
+
+    def packed(self):
+        """(spheres, offsets) of the clumps, in their order (:func:`yade_mss.specimens._report.packed`); with an
+        output folder the clumps become views of that one array (their own arrays are let go)."""
+        if self._packed is None:
+            self._packed = _report.packed(self.clumps)
+            if self._stored:
+                spheres, offsets = self._packed
+                for x, c in enumerate(self.clumps.values()):
+                    c._spheres = spheres[offsets[x]:offsets[x + 1]]
+        return self._packed
+
+    def finish(self, outdir, order):
+        """The results and clumps in key order (*order*: the sort key of a grain's key); with an output folder
+        the results are read from it when asked for."""
+        self.clumps = dict(sorted(self.clumps.items(), key=lambda kv: order(kv[0])))
+        if self._stored:
+            self.results = _StoredResults(outdir, self.clumps)
+        else:
+            self.results = self.clumps = dict(sorted(self.results.items(), key=lambda kv: order(kv[0])))
 
     @property
     def failed(self):
@@ -359,16 +443,51 @@ class Batch(object):
         self._scan = value
 
 
+class PackedClump(object):
+    """A grain's spheres and exact mass properties (unit density), in two arrays: what the batch's passes
+    (contacts, the assembly's files) read of an :class:`MssResult`, at a tenth of its memory."""
+
+    __slots__ = ('_spheres', '_mass')
+
+    def __init__(self, result):
+        self._spheres = np.column_stack([result.centers, result.radii])
+        m = result.targetMass
+        self._mass = np.concatenate([[m.volume], m.centroid, m.inertia.ravel()])
+
+    @property
+    def centers(self):
+        return self._spheres[:, :3]
+
+    @property
+    def radii(self):
+        return self._spheres[:, 3]
+
+    @property
+    def targetMass(self):
+        return MassProperties(self._mass[0], self._mass[1:4], self._mass[4:])
+
+    def __len__(self):
+        return len(self._spheres)
+
+
 class _StoredResults(Mapping):
-    """The results of a finished batch's grains, each read from OUTDIR/grains/KEY.npz when first asked for."""
+    """The results of a finished batch's grains, each read from OUTDIR/grains/KEY.npz when asked for (kept
+    once read: a caller asks for a few, or walks through them)."""
+
+    CACHED = 256  # results held once read: a walk through 10^5 grains holds these, not every one
 
     def __init__(self, outdir, keys):
-        self._outdir, self._keys, self._loaded = outdir, list(keys), {}
+        self._outdir, self._keys, self._loaded = outdir, dict.fromkeys(keys), {}
+
+    def __contains__(self, key):
+        return key in self._keys
 
     def __getitem__(self, key):
         if key not in self._loaded:
             if key not in self._keys:
                 raise KeyError(key)
+            if len(self._loaded) >= self.CACHED:
+                del self._loaded[next(iter(self._loaded))]
             self._loaded[key] = MssResult.load(os.path.join(self._outdir, 'grains', key + '.npz'))
         return self._loaded[key]
 
@@ -449,36 +568,44 @@ def grainRecord(outdir, key):
         return None
 
 
-def _done(outdir, key, optionsKey, digest):
-    """The row and result of a grain already done from the same input (*digest*) with these options, its files
-    as it wrote them (:func:`grainRecord`), or None: the grain is made again."""
-    found = grainRecord(outdir, key)
+def _done(outdir, task, optionsKey):
+    """The row and result of a grain already done from the same input (the *task*'s digest, computed only where
+    a record is found) with these options, its files as it wrote them (:func:`grainRecord`), or None: the grain
+    is made again."""
+    found = grainRecord(outdir, task.key)
     if found is None:
         return None
     meta, r = found
-    if meta.get('options') != optionsKey or meta.get('input') != digest or meta['row'].get('status') == 'failed':
+    if (meta.get('options') != optionsKey or meta['row'].get('status') == 'failed'
+            or meta.get('input') != task.digest):
         return None
     return meta['row'], r
 
 
 def _store(outdir, key, row, result, optionsKey, digest=None):
     """Writes a grain's files, then its record (grains/KEY.json, last: a grain without it is not done) with the
-    digest of each file and of its row, for the rerun to check (_done)."""
+    digest of each file and of its row, for the rerun to check (_done). Each file is made in memory and its
+    digest taken there: reading every file back cost the batch a tenth of its time."""
     g = os.path.join(outdir, 'grains')
     sums = {}
 
-    def digested(ext, write):
-        def put(p):
-            write(p)
-            sums[ext] = _fileDigest(p)
-        _atomic(os.path.join(g, key + '.' + ext), put)
+    def put(ext, data):
+        sums[ext] = hashlib.sha256(data).hexdigest()
+        _atomic(os.path.join(g, key + '.' + ext), lambda p: _write(p, data))
     png = getattr(result, 'png', None)
     if png is not None:
-        digested('png', lambda p: _write(p, png))
+        put('png', png)
         del result.png
     if result is not None:
-        digested('npz', lambda p: result.save(p, compress=False))
-        digested('csv', result.save)
+        f = io.BytesIO()
+        result._npz(f)
+        put('npz', f.getvalue())
+
+        def spheres(p):  # the core's sphere file, read back from the temporary file for its digest
+            result.save(p)
+            with open(p, 'rb') as f:
+                sums['csv'] = hashlib.sha256(f.read()).hexdigest()
+        _atomic(os.path.join(g, key + '.csv'), spheres)
     _atomic(os.path.join(g, key + '.json'), lambda p: _write(p, json.dumps({
         'options': optionsKey, 'input': digest, 'files': sums, 'row': row, 'rowSum': _manifest.contentDigest(row)})))
 
@@ -570,6 +697,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         scan = {}
         tasks, skipped, key, found = makeTasks(inputs, gen, voxelSize, origin, minVoxels, excludeBorder, labels,
                                                scan)
+        releaseFreed()  # the contact search's tables and slabs
         if segmented is not None:
             key = _optionsKey(key, {'segment': segmentH, 'segmentMarkers': _fileKey(segmentMarkers)})
         if format == 'liggghts':
@@ -579,19 +707,20 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         out = Batch()
         out.segmented = segmented
         if outdir is not None:
+            out.storing()
             os.makedirs(os.path.join(outdir, 'grains'), exist_ok=True)
             for k, row in skipped.items():
                 _store(outdir, k, row, None, key)
         out.rows.update(skipped)
         todo = []
         for t in tasks:
-            prior = _done(outdir, t.key, key, t.digest) if outdir is not None else None
+            prior = _done(outdir, t, key) if outdir is not None else None
             if prior is None:
                 todo.append(t)
             else:
                 out.rows[t.key], r = prior
                 if r is not None:
-                    out.results[t.key] = r
+                    out.keep(t.key, r)
         total, already = len(tasks) + len(skipped), len(tasks) - len(todo)
         bar = None
         if progress and sys.stderr.isatty():
@@ -603,18 +732,22 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         # no idle processes for few grains
         run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
         n = made = 0  # made: the grains this run generated (ok), not those it tried
-        digests = {t.key: t.digest for t in todo}
+        byKey = {t.key: t for t in todo}
         try:
             for k, row, r in run(todo):
+                digest, task = row.pop(DIGEST, None), byKey.pop(k)
                 # a grain whose worker died is not the grain's failure: nothing is written for it (the pool's stop,
                 # an interrupted batch's workers ending before the batch, must not look like a finished grain)
                 if outdir is not None and not row['message'].startswith(WORKER_DIED):
-                    _store(outdir, k, row, r, key, digests[k])
+                    _store(outdir, k, row, r, key, digest or task.digest)
+                task._digest = None  # written: not held for 10^5 grains
                 out.rows[k] = row
                 if r is not None:
-                    out.results[k] = r
+                    out.keep(k, r)
                 n += 1
                 made += row['status'] == 'ok'
+                if n % RELEASE_EVERY == 0:
+                    releaseFreed()  # the grains' results and crops come and go: the heap's holes given back
                 if bar is not None:
                     bar.update(1)
                 elif progress:
@@ -630,7 +763,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                 bar.close()
         out.generated, out.reused = made, already
         out.rows = dict(sorted(out.rows.items(), key=lambda kv: _order(kv[0])))
-        out.results = dict(sorted(out.results.items(), key=lambda kv: _order(kv[0])))
+        out.finish(outdir, _order)
         h = (1.0 if voxelSize is None else float(voxelSize)) * float(gen.get('scale') or 1.0)  # as makeTasks read it
         if found is not None:  # a labelled volume: its voxel edge, said in the summary with its unit
             out.voxelSize, out.voxelSizeGiven = h, voxelSize is not None or gen.get('scale') not in (None, 1.0)
@@ -638,6 +771,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         with slowPhase('batch: the contacts of %d grains in the assembly' % len(out.results), progress):
             _report.keptContacts(out, found, h)
             _report.annotate(out, gen, density, young)
+        releaseFreed()  # the grains' results as they came, the pairs' arrays
         if outdir is not None:
             if previews:
                 with slowPhase('batch: drawing the previews', progress):

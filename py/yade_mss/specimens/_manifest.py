@@ -16,9 +16,9 @@ import stat
 
 import numpy as np
 
-VERSION = 2
+VERSION = 3  # 3: the outputs as a count and a digest
 NAME = 'batch.json'
-MAX_BYTES = 1 << 30  # a manifest is rows and file identities: 10^5 grains take tens of MB
+MAX_BYTES = 1 << 30  # a manifest is mostly rows: 10^5 grains take tens of MB
 
 
 def _identity(path):
@@ -35,19 +35,30 @@ def inputIdentity(files=None, array=None):
 
 
 def outputs(outdir):
-    """Every regular file the batch left in *outdir* (the manifest aside), relative path -> identity."""
-    out = {}
-    for top, dirs, names in os.walk(outdir):
-        dirs[:] = [d for d in dirs if not os.path.islink(os.path.join(top, d))]
-        for n in names:
-            p = os.path.join(top, n)
-            rel = os.path.relpath(p, outdir)
-            if rel == NAME or n.startswith('.'):
+    """What the batch left in *outdir* (the manifest aside): the count of its regular files and a digest of
+    their relative paths and identities, folder by folder in name order (a listing of 10^5 grains' files
+    held whole cost a hundred MB)."""
+    h, n = hashlib.sha256(), 0
+    stack = ['']
+    while stack:
+        rel = stack.pop()
+        top = os.path.join(outdir, rel)
+        with os.scandir(top) as it:
+            names = sorted(e.name for e in it)
+        below = []
+        for name in names:
+            if rel == '' and name == NAME:
                 continue
+            p = os.path.join(top, name)
             st = os.lstat(p)
-            if stat.S_ISREG(st.st_mode):
-                out[rel] = [st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns]
-    return out
+            if stat.S_ISDIR(st.st_mode):  # a link to a folder is not walked
+                below.append(os.path.join(rel, name))
+            elif stat.S_ISREG(st.st_mode) and not name.startswith('.'):  # a lock, a temporary file: not outputs
+                n += 1
+                h.update(json.dumps([os.path.join(rel, name), st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns,
+                                     st.st_ctime_ns]).encode() + b'\n')
+        stack.extend(reversed(below))
+    return {'files': n, 'digest': h.hexdigest()}
 
 
 def forget(outdir):
@@ -62,19 +73,48 @@ def write(outdir, key, state, atomic):
     """Writes the manifest of a finished batch: its *key* (inputs and options), the files in *outdir* now and
     *state* (what the summary and the Python API give back)."""
     body = {'version': VERSION, 'key': key, 'outputs': outputs(outdir), 'state': state}
-    text = json.dumps(dict(body, sum=contentDigest(body)))
+    body['sum'] = contentDigest(body)
 
-    def put(p):
+    def put(p):  # piece by piece: the manifest of 10^5 grains is tens of MB of text
         with open(p, 'w') as f:
-            f.write(text)
+            for chunk in _chunks(body):
+                f.write(chunk)
     atomic(os.path.join(outdir, NAME), put)
 
 
 def contentDigest(data):
     """The digest of JSON-able *data* as read back from JSON (the same text before writing and after reading):
-    the manifest's own, a grain record's row."""
-    text = json.dumps(json.loads(json.dumps(data, default=str)), sort_keys=True)
-    return hashlib.sha256(text.encode()).hexdigest()
+    the manifest's own, a grain record's row. Their keys are text, so their JSON with sorted keys is the read
+    data's; the text is digested piece by piece (:func:`_chunks`), never whole (a manifest of 10^5 rows)."""
+    h = hashlib.sha256()
+    for chunk in _chunks(data):
+        h.update(chunk.encode())
+    return h.hexdigest()
+
+
+WHOLE = 256  # a dict or list of up to this many entries, below the top levels, is encoded in one piece
+
+
+def _chunks(data, depth=0):
+    """``json.dumps(data, sort_keys=True, default=str)`` in pieces (its keys are text): large dicts and lists,
+    and the top levels that hold them, entry by entry; the rest whole (the C encoder: a grain's row is one
+    piece)."""
+    if isinstance(data, dict) and (len(data) > WHOLE or (depth < 2 and any(
+            isinstance(v, (dict, list, tuple)) and len(v) > WHOLE for v in data.values()))):
+        yield '{'
+        for i, k in enumerate(sorted(data)):
+            yield (', ' if i else '') + json.dumps(k) + ': '
+            yield from _chunks(data[k], depth + 1)
+        yield '}'
+    elif isinstance(data, (list, tuple)) and len(data) > WHOLE:
+        yield '['
+        for i, v in enumerate(data):
+            if i:
+                yield ', '
+            yield from _chunks(v, depth + 1)
+        yield ']'
+    else:
+        yield json.dumps(data, sort_keys=True, default=str)
 
 
 def read(outdir):

@@ -35,30 +35,83 @@ def _number(v):
 KEPT_GAP = 0.5  # voxels: a scan's contact is kept when the two clumps' spheres come this close
 
 
+PAIR_BUDGET = 1 << 19  # sphere pairs a chunk of _gaps looks at at once (its arrays: about 40 MB)
+
+
+def packed(clumps):
+    """(spheres, offsets) of a batch's clumps in their order: every sphere as a row x y z r, and where each
+    clump's rows start (one more: the end). A batch that packed them already (its clumps are views of one
+    array) gives that array."""
+    parts = [np.column_stack([c.centers, c.radii]) for c in clumps.values()]
+    counts = np.array([len(p) for p in parts], dtype=np.int64)
+    offsets = np.concatenate([[0], np.cumsum(counts)])
+    return (np.concatenate(parts) if parts else np.zeros((0, 4))), offsets
+
+
+def _gaps(spheres, offsets, i, j):
+    """The least gap between the sphere sets of clumps i[n] and j[n] (packed: :func:`packed`), for every n,
+    (negative: they overlap by that much): all sphere pairs at once, by chunks of pairs of similar sizes."""
+    counts = np.diff(offsets)
+    out = np.empty(len(i))
+    if not len(i):
+        return out
+    size = np.maximum(counts[i], counts[j])
+    order = np.argsort(size, kind='stable')
+    pos = 0
+    while pos < len(order):
+        end = min(len(order), pos + max(1, PAIR_BUDGET // int(size[order[pos]]) ** 2))
+        m = int(size[order[end - 1]])
+        end = min(end, pos + max(1, PAIR_BUDGET // m ** 2))
+        m = int(size[order[end - 1]])
+        take = order[pos:end]
+        cols = np.arange(m)
+        sides = []
+        for idx, far in ((i[take], 1e150), (j[take], -1e150)):
+            rows = offsets[idx][:, None] + cols[None, :]
+            valid = cols[None, :] < counts[idx][:, None]
+            s = spheres[np.where(valid, rows, 0)]
+            s[~valid] = (far, far, far, 0.0)  # a padding sphere lies far from every other
+            sides.append(s)
+        a, b = sides
+        # |p - q|^2 = |p|^2 + |q|^2 - 2 p.q, the last a batched product; each pair about a point of its own
+        # (its first sphere), so that the sum does not lose the distance to the coordinates' size
+        ref = a[:, :1, :3].copy()
+        a[:, :, :3] -= ref
+        b[:, :, :3] -= ref
+        d2 = ((a[:, :, :3] ** 2).sum(axis=-1)[:, :, None] + (b[:, :, :3] ** 2).sum(axis=-1)[:, None, :]
+              - 2.0 * np.matmul(a[:, :, :3], b[:, :, :3].transpose(0, 2, 1)))
+        d = np.sqrt(np.maximum(d2, 0.0))
+        out[take] = (d - a[:, :, None, 3] - b[:, None, :, 3]).min(axis=(1, 2))
+        pos = end
+    return out
+
+
 def _gap(r1, r2):
     """The least gap between two sphere sets (negative: they overlap by that much)."""
     d = np.linalg.norm(r1.centers[:, None, :] - r2.centers[None, :, :], axis=-1)
     return float((d - r1.radii[:, None] - r2.radii[None, :]).min())
 
 
-def _assemblyPairs(results, tolerance):
-    """The pairs of keys whose clumps come within *tolerance* (world units) of each other, with their gaps: the
-    clumps' bounding balls narrow the pairs first (a k-d tree), the spheres decide."""
+def _assemblyPairs(spheres, offsets, tolerance):
+    """The pairs (i, j) of clumps (packed: :func:`packed`) that come within *tolerance* (world units) of each
+    other, and their gaps: the clumps' bounding balls narrow the pairs first (a k-d tree), the spheres decide."""
     from scipy.spatial import cKDTree
-    keys = list(results)
-    if len(keys) < 2:
-        return {}
-    centre = np.array([0.5 * (results[k].centers.min(axis=0) + results[k].centers.max(axis=0)) for k in keys])
-    reach = np.array([float((np.linalg.norm(results[k].centers - c, axis=1) + results[k].radii).max())
-                      for k, c in zip(keys, centre)])
-    out = {}
-    for i, j in cKDTree(centre).query_pairs(2 * reach.max() + tolerance):
-        if np.linalg.norm(centre[i] - centre[j]) > reach[i] + reach[j] + tolerance:
-            continue
-        g = _gap(results[keys[i]], results[keys[j]])
-        if g <= tolerance:
-            out[(keys[i], keys[j])] = g
-    return out
+    n = len(offsets) - 1
+    if n < 2:
+        return np.zeros((0, 2), dtype=np.int64), np.zeros(0)
+    start = offsets[:-1]
+    lo = np.minimum.reduceat(spheres[:, :3], start)
+    hi = np.maximum.reduceat(spheres[:, :3], start)
+    centre = 0.5 * (lo + hi)
+    owner = np.repeat(np.arange(n), np.diff(offsets))
+    reach = np.maximum.reduceat(np.linalg.norm(spheres[:, :3] - centre[owner], axis=1) + spheres[:, 3], start)
+    pairs = cKDTree(centre).query_pairs(2 * reach.max() + tolerance, output_type='ndarray')
+    i, j = pairs[:, 0], pairs[:, 1]
+    near = np.linalg.norm(centre[i] - centre[j], axis=1) <= reach[i] + reach[j] + tolerance
+    i, j = i[near], j[near]
+    g = _gaps(spheres, offsets, i, j)
+    close = g <= tolerance
+    return np.column_stack([i[close], j[close]]), g[close]
 
 
 def keptContacts(b, found, h):
@@ -67,51 +120,56 @@ def keptContacts(b, found, h):
     within the same contact gap of its clump, scan contacts or not), and the batch's ``contacts``: pairs in the
     scan, between two generated grains, kept, in the assembly; the coordination numbers (both counted with the
     same tolerance); the largest overlap of a kept pair (voxels); where the scan shows no pair, the gaps between
-    the grains near each other (``nearby``). Nothing without contacts (a folder of grains, or contacts off)."""
+    the grains near each other (``nearby``). Nothing without contacts (a folder of grains, or contacts off).
+    *found*: :class:`yade_mss.grains.ScanContacts` (columns: 10^6 contacts of 10^5 grains pass as arrays)."""
     b.contacts, b.scanContacts = None, found
     if found is None:
         return
     tolerance = float(getattr(found, 'gap', 0.0))
-    byLabel = {b.rows[k]['label']: k for k in b.results}
-    ct, kept, near, other, why = {}, {}, {}, {}, {}
-    both, keptPairs, overlap, lost = 0, 0, 0.0, {}
-    for c in found:
-        for lab in (c['a'], c['b']):
-            ct[lab] = ct.get(lab, 0) + 1
-        ka, kb = byLabel.get(c['a']), byLabel.get(c['b'])
-        if ka is None or kb is None:  # a contact with a grain not generated (skipped, failed): not lost
-            for lab, mine in ((c['a'], ka), (c['b'], kb)):
-                if mine is not None:
-                    other[lab] = other.get(lab, 0) + 1
-            continue
-        both += 1
-        g = _gap(b.results[ka], b.results[kb]) / h
-        if g <= KEPT_GAP:
-            keptPairs += 1
-            overlap = max(overlap, -g)
-            for lab in (c['a'], c['b']):
-                kept[lab] = kept.get(lab, 0) + 1
-        else:  # lost: why, as far as the scan tells
-            reason = lostReason(c, b.rows[ka], b.rows[kb])
-            lost[reason] = lost.get(reason, 0) + 1
-            for lab in (c['a'], c['b']):
-                why.setdefault(lab, {})[reason] = why.setdefault(lab, {}).get(reason, 0) + 1
-    assembly = _assemblyPairs(b.results, tolerance * h)
-    for ka, kb in assembly:
-        for k in (ka, kb):
-            near[k] = near.get(k, 0) + 1
+    keys = list(b.clumps)
+    n = len(keys)
+    spheres, offsets = b.packed()
+    labels = np.array([int(b.rows[k]['label']) for k in keys], dtype=np.int64)
+    order = np.argsort(labels)
+
+    def where(lab):  # each label's place among the generated grains, -1 where it was not generated
+        if not n:
+            return np.full(len(lab), -1)
+        at = np.minimum(np.searchsorted(labels[order], lab), n - 1)
+        return np.where(labels[order][at] == lab, order[at], -1)
+    ia, ib = where(found.a), where(found.b)
+    ends, many = np.unique(np.concatenate([found.a, found.b]), return_counts=True)
+    ct = dict(zip(ends.tolist(), many.tolist()))
+    # a contact with a grain not generated (skipped, failed) is not lost: counted apart, for the generated one
+    one = (ia >= 0) != (ib >= 0)
+    other = np.bincount(np.maximum(ia, ib)[one], minlength=n)
+    both = np.flatnonzero((ia >= 0) & (ib >= 0))
+    g = _gaps(spheres, offsets, ia[both], ib[both]) / h
+    keep = g <= KEPT_GAP
+    kept = np.bincount(np.concatenate([ia[both[keep]], ib[both[keep]]]), minlength=n)
+    overlap = max(0.0, float((-g[keep]).max())) if keep.any() else 0.0
+    why, lost = {}, {}
+    for c in both[~keep]:  # lost: why, as far as the scan tells
+        reason = lostReason(found[c], b.rows[keys[ia[c]]], b.rows[keys[ib[c]]])
+        lost[reason] = lost.get(reason, 0) + 1
+        for x in (ia[c], ib[c]):
+            why.setdefault(int(x), {})[reason] = why.setdefault(int(x), {}).get(reason, 0) + 1
+    assembly, _ = _assemblyPairs(spheres, offsets, tolerance * h)
+    near = np.bincount(assembly.ravel(), minlength=n)
+    at = {k: x for x, k in enumerate(keys)}
     for k, row in b.rows.items():
         lab = row['label']
         if lab != '':
+            x = at.get(k)
             row['contacts_ct'] = ct.get(lab, 0)
-            row['contacts_kept'] = kept.get(lab, 0) if k in b.results else ''
-            row['contacts_not_generated'] = other.get(lab, 0) if k in b.results else ''
-            row['contacts_assembly'] = near.get(k, 0) if k in b.results else ''
-            row['contacts_lost_why'] = reasonsText(why.get(lab, {})) if k in b.results else ''
-    n = max(1, len(b.results))
-    b.contacts = {'pairs': len(found), 'between': both, 'kept': keptPairs, 'overlap': overlap, 'gap': tolerance,
-                  'assembly': len(assembly), 'coordinationScan': 2.0 * both / n,
-                  'coordinationAssembly': 2.0 * len(assembly) / n, 'nearby': getattr(found, 'nearby', None),
+            row['contacts_kept'] = int(kept[x]) if x is not None else ''
+            row['contacts_not_generated'] = int(other[x]) if x is not None else ''
+            row['contacts_assembly'] = int(near[x]) if x is not None else ''
+            row['contacts_lost_why'] = reasonsText(why.get(x, {})) if x is not None else ''
+    m = max(1, n)
+    b.contacts = {'pairs': len(found), 'between': len(both), 'kept': int(keep.sum()), 'overlap': overlap,
+                  'gap': tolerance, 'assembly': len(assembly), 'coordinationScan': 2.0 * len(both) / m,
+                  'coordinationAssembly': 2.0 * len(assembly) / m, 'nearby': getattr(found, 'nearby', None),
                   'lost': lost}
 
 
@@ -166,8 +224,8 @@ def annotate(b, options, density, young):
     steps = {}
     for k, row in b.rows.items():
         r = _number(row.get('r_min'))
-        if row['status'] == 'ok' and r is None and k in b.results:  # a row of an earlier layout
-            r = float(b.results[k].radii.min())
+        if row['status'] == 'ok' and r is None and k in b.clumps:  # a row of an earlier layout
+            r = float(b.clumps[k].radii.min())
             row['r_min'] = r
         row['time_step'] = r * scale if row['status'] == 'ok' and r is not None else ''
         if row['time_step'] != '':
@@ -293,21 +351,21 @@ def writeOutputs(outdir, b, density, young):
             w.writeheader()
             w.writerows(rows)
     _atomic(os.path.join(outdir, 'grains.csv'), table)
-    ids = {k: (b.rows[k]['label'] if b.rows[k]['label'] != '' else i) for i, k in enumerate(b.results, 1)}
+    ids = {k: (b.rows[k]['label'] if b.rows[k]['label'] != '' else i) for i, k in enumerate(b.clumps, 1)}
 
     def assembly(p):
         with open(p, 'w') as f:
             f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
                     '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
                     'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
-            for k, r in b.results.items():
+            for k, r in b.clumps.items():
                 cid, m = int(ids[k]), r.targetMass
                 I = m.inertia
                 f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
                         % ((cid, m.volume) + tuple(float(x) for x in m.centroid)
                            + (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])))
-                for c, rad in zip(r.centers, r.radii):
-                    f.write('%r %r %r %r %d\n' % (float(c[0]), float(c[1]), float(c[2]), float(rad), cid))
+                end = ' %d\n' % cid
+                f.writelines(' '.join(map(repr, s)) + end for s in np.column_stack([r.centers, r.radii]).tolist())
     _atomic(os.path.join(outdir, 'assembly.txt'), assembly)
     _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
     if getattr(b, 'scanContacts', None) is not None:
@@ -315,9 +373,10 @@ def writeOutputs(outdir, b, density, young):
             with open(p, 'w', newline='') as f:
                 w = csv.writer(f)
                 w.writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
-                for c in b.scanContacts:
-                    w.writerow([c['a'], c['b'], c['faces'], '%r' % c.get('gap', 0.0)]
-                               + ['%r' % x for x in tuple(c['point']) + tuple(c['normal'])])
+                c = b.scanContacts
+                w.writerows([a, b_, faces, repr(g)] + [repr(x) for x in p + q] for a, b_, faces, g, p, q in zip(
+                    c.a.tolist(), c.b.tolist(), c.faces.tolist(), c.gaps.tolist(), c.points.tolist(),
+                    c.normals.tolist()))
         _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
     _report(outdir, b, density, young)
 
@@ -325,29 +384,35 @@ def writeOutputs(outdir, b, density, young):
 def writeVtk(path, b, ids):
     """The assembly for ParaView: legacy VTK polydata, one vertex per sphere with its radius (a Glyph filter's
     scale), its clump id, its grain's D and its smallest radius in voxels (what sets the time step)."""
-    centers = [r.centers for r in b.results.values()]
-    n = sum(len(c) for c in centers)
-    per = {'radius': [], 'clump_id': [], 'dice': [], 'grain_r_min_voxels': []}
-    for k, r in b.results.items():
-        row = b.rows[k]
-        per['radius'].append(r.radii)
-        per['clump_id'].append(np.full(len(r), int(ids[k])))
-        per['dice'].append(np.full(len(r), _number(row['dice']) or 0.0))
-        per['grain_r_min_voxels'].append(np.full(len(r), _number(row.get('r_min_voxels')) or 0.0))
+    spheres, offsets = b.packed()
+    counts = np.diff(offsets)
+    n = len(spheres)
+    keys = list(b.clumps)
+    per = {'radius': spheres[:, 3],
+           'clump_id': np.repeat(np.array([int(ids[k]) for k in keys], dtype=np.int64), counts),
+           'dice': np.repeat(np.array([_number(b.rows[k]['dice']) or 0.0 for k in keys]), counts),
+           'grain_r_min_voxels': np.repeat(np.array([_number(b.rows[k].get('r_min_voxels')) or 0.0 for k in keys]),
+                                           counts)}
     with open(path, 'w') as f:
         f.write('# vtk DataFile Version 3.0\nyade-mss assembly: spheres (radius, clump_id, dice)\nASCII\n'
                 'DATASET POLYDATA\nPOINTS %d double\n' % n)
-        for c in centers:
-            np.savetxt(f, c, fmt='%.17g')
+        _rows(f, spheres[:, :3], '%.17g %.17g %.17g\n')
         f.write('VERTICES %d %d\n' % (n, 2 * n))
-        np.savetxt(f, np.column_stack([np.ones(n, dtype=int), np.arange(n)]), fmt='%d')
+        _rows(f, np.arange(n)[:, None], '1 %d\n')
         # a FIELD: every array is read (a reader takes only the first of several SCALARS by default)
         f.write('POINT_DATA %d\nFIELD spheres %d\n' % (n, len(per)))
-        for name, parts in per.items():
+        for name, values in per.items():
             kind = 'int' if name == 'clump_id' else 'double'
             f.write('%s 1 %d %s\n' % (name, n, kind))
-            values = np.concatenate(parts) if parts else np.zeros(0)
-            np.savetxt(f, values, fmt='%d' if kind == 'int' else '%.17g')
+            _rows(f, values[:, None], '%d\n' if kind == 'int' else '%.17g\n')
+
+
+def _rows(f, a, line, chunk=1 << 16):
+    """Writes the rows of the 2-D array *a*, each as *line* formats it (np.savetxt's text, formatted a chunk of
+    rows at a time: savetxt formats row by row)."""
+    for x in range(0, len(a), chunk):
+        part = a[x:x + chunk]
+        f.write((line * len(part)) % tuple(part.ravel().tolist()))
 
 
 def _atomic(path, write):
@@ -494,10 +559,7 @@ def _report(outdir, b, density, young):
 
     def cls(k):
         return {'failed': 'bad', 'flagged': 'warn', 'too small': 'warn'}.get(b.kinds.get(k), '')
-    cells = ''.join('<tr class="%s"><td>%d</td>%s%s</tr>' % (cls(k), i, ''.join(
-        '<td class="%s">%s</td>' % (c, _html(b.rows[k].get(c, ''))) for c in _SHOWN), thumb(k))
-        for i, k in enumerate(b.ranked, 1))
-    page = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>'
+    head = ('<!doctype html><html><head><meta charset="utf-8"><title>mss batch</title><style>'
             'td,th{padding:2px 8px;font:12px sans-serif;vertical-align:top}tr:nth-child(even){background:#eee}'
             'tr.bad td{background:#f4c7c3}tr.warn td{background:#fce8b2}p.note{background:#fce8b2;padding:4px}'
             # the table fits the page: long texts wrap in columns wide enough to read, the rest scrolls
@@ -509,13 +571,21 @@ def _report(outdir, b, density, young):
             '%.2f s. Files: '
             '<a href="assembly.txt">assembly.txt</a>, <a href="assembly.vtk">assembly.vtk</a> (ParaView), '
             '<a href="grains.csv">grains.csv</a>.</p>%s%s<h2>Grains, worst first</h2><div class="grains"><table><tr>'
-            '<th>#</th>%s<th>preview</th></tr>%s</table></div></body></html>'
+            '<th>#</th>%s<th>preview</th></tr>'
             % (grains(len(rows)), counts['ok'], counts['skipped'], counts['failed'], b.seconds, grains(b.generated),
                ', %s reused from an earlier run with the same input and options' % grains(b.reused)
                if getattr(b, 'reused', 0) else '', generated,
                ''.join('<p class="note">%s</p>' % n for n in notes), _charts(outdir, b),
-               ''.join('<th>%s</th>' % c for c in _SHOWN), cells))
-    _atomic(os.path.join(outdir, 'report.html'), lambda p: _write(p, page))
+               ''.join('<th>%s</th>' % c for c in _SHOWN)))
+
+    def page(p):  # a row at a time: the table of 10^5 grains is tens of MB
+        with open(p, 'w') as f:
+            f.write(head)
+            f.writelines('<tr class="%s"><td>%d</td>%s%s</tr>' % (cls(k), i, ''.join(
+                '<td class="%s">%s</td>' % (c, _html(b.rows[k].get(c, ''))) for c in _SHOWN), thumb(k))
+                for i, k in enumerate(b.ranked, 1))
+            f.write('</table></div></body></html>')
+    _atomic(os.path.join(outdir, 'report.html'), page)
 
 
 def _html(v):

@@ -16,6 +16,7 @@ import unittest
 import numpy as np
 
 from yade_mss import batch, findContacts, generate, packedSpecimen, regions, voronoiBall
+from yade_mss.specimens import _manifest
 from yade_mss.specimens._report import gapsText
 from yade_mss.grains import segmentBinary, segmentScan, separated
 from yade_mss.specimens import bestOverlap, porousScan
@@ -313,7 +314,10 @@ class Reruns(unittest.TestCase):
             np.testing.assert_array_equal(swapped.results[keys[1]].radii, other.results[keys[1]].radii)
             with open(os.path.join(out, 'batch.json')) as f:
                 meta = json.load(f)
-            self.assertEqual(meta['version'], 2)
+            self.assertEqual(meta['version'], _manifest.VERSION)
+            # every file but the manifest and hidden ones (the lock), each in the digest
+            self.assertEqual(meta['outputs']['files'], sum(1 for _, _, f in os.walk(out) for n in f
+                                                           if not n.startswith('.')) - 1)
 
     def test_a_rerun_checks_every_file_it_reuses(self):
         """The attack: a grain's CSV copied over another's (or truncated), an edited grain record or manifest, a
