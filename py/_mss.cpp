@@ -853,6 +853,12 @@ void writeSpheres(const py::object& centers, const py::object& radii, const std:
     mss::writeSpheres(spheres(centers, radii), path);
 }
 
+/// writeSpheres' text for @p path's extension, as bytes (written and digested by the caller).
+py::object formatSpheres(const py::object& centers, const py::object& radii, const std::string& path) {
+    const std::string text = mss::formatSpheres(spheres(centers, radii), path);
+    return py::object(py::handle<>(PyBytes_FromStringAndSize(text.data(), Py_ssize_t(text.size()))));
+}
+
 // A message may quote bytes of a file that are not UTF-8 (0xB5...): decode with backslash escapes, so that
 // the Python exception always carries the message (PyErr_SetString would leave it empty).
 void setError(PyObject* type, const char* what) {
@@ -984,4 +990,5 @@ BOOST_PYTHON_MODULE(_mss) {
              py::arg("minTurning")));
     py::def("readSpheres", readSpheres, (py::arg("path"), py::arg("clumpId") = -1));
     py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
+    py::def("formatSpheres", formatSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
 }

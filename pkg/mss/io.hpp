@@ -58,6 +58,10 @@ TriangleMesh readMesh(const std::string& path);
 /// unwritable path.
 void writeSpheres(const SphereSet& s, const std::string& path);
 
+/// The text writeSpheres writes to @p path (by its extension), for a caller that writes it itself (a batch
+/// digests each grain's file as it makes it). @throws std::invalid_argument as writeSpheres.
+std::string formatSpheres(const SphereSet& s, const std::string& path);
+
 /// Writes a mesh by extension: .stl (binary), .obj (full precision), .ply (binary little-endian, doubles),
 /// atomically. @throws std::invalid_argument on a mesh validateMesh refuses, an unknown extension or an
 /// unwritable path.

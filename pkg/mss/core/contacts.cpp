@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 #include <unordered_map>
 #include <utility>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace mss {
 
@@ -51,6 +56,45 @@ struct Stencil {
     }
 };
 
+using Key = std::pair<std::int64_t, std::int64_t>;
+
+struct KeyHash {
+    std::size_t operator()(const Key& k) const {
+        const std::uint64_t h = std::uint64_t(k.first) * 0x9E3779B97F4A7C15ull ^ std::uint64_t(k.second);
+        return std::size_t(h ^ (h >> 29));
+    }
+};
+
+/// A hashed map of pairs with the last one asked for at hand: the voxel pairs of one contact come one after
+/// another (along a row of voxels), so it answers most asks (a scan of 10^4 grains asks 4 10^7 times; a
+/// tree's lookups were half the time). Its elements stay where they are (rehashing moves none).
+template <class Value> struct PairMap {
+    std::unordered_map<Key, Value, KeyHash> map;
+    Value* last = nullptr;
+    Key lastKey{0, 0};
+
+    Value& at(std::int64_t a, std::int64_t b) {
+        if (last == nullptr || lastKey.first != a || lastKey.second != b) {
+            lastKey = {a, b};
+            last = &map[lastKey];
+        }
+        return *last;
+    }
+};
+
+/// Where a pair's point lies: the least (distance to the centroid, midpoint, axis, sign) over its voxel pairs
+/// at the least gap, a total order, so that the choice is the same whatever order the pairs come in (threads,
+/// slabs).
+struct Spot {
+    double best = std::numeric_limits<double>::infinity();
+    Half at{0, 0, 0};
+    int axis = 0, sign = 1;
+
+    bool before(const Spot& o) const {
+        return std::tie(best, at, axis, sign) < std::tie(o.best, o.at, o.axis, o.sign);
+    }
+};
+
 } // namespace
 
 struct ContactFinder::Pairs {
@@ -60,36 +104,24 @@ struct ContactFinder::Pairs {
         std::int64_t least = -1; ///< the least squared gap of a voxel pair
         std::size_t nearest = 0; ///< voxel pairs at the least gap
         Half sum{0, 0, 0};       ///< the sum of their midpoints
-        double best = std::numeric_limits<double>::infinity();
-        Half at{0, 0, 0};
-        int axis = 0, sign = 1;
-    };
-    struct Hash {
-        std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& k) const {
-            const std::uint64_t h = std::uint64_t(k.first) * 0x9E3779B97F4A7C15ull ^ std::uint64_t(k.second);
-            return std::size_t(h ^ (h >> 29));
+        Spot spot;               ///< the point (locate)
+
+        /// Adds @p o's voxel pairs (another part of the volume's) to these.
+        void merge(const Pair& o) {
+            faces += o.faces;
+            for (std::size_t e = 0; e < 3; ++e) normals[e] += o.normals[e];
+            if (o.least < 0) return;
+            if (least < 0 || o.least < least) least = o.least, nearest = 0, sum = {0, 0, 0};
+            if (o.least == least) {
+                nearest += o.nearest;
+                for (std::size_t e = 0; e < 3; ++e) sum[e] += o.sum[e];
+            }
         }
     };
-    // hashed: a scan of 10^4 grains asks for a pair 4 10^7 times (a tree's lookups were half the time);
-    // contacts() gives them sorted
-    std::unordered_map<std::pair<std::int64_t, std::int64_t>, Pair, Hash> pairs;
+    // hashed, contacts() gives them sorted
+    std::unordered_map<Key, Pair, KeyHash> pairs;
     Stencil stencil;
     explicit Pairs(double gap) : stencil(gap) {}
-
-    /// The pair (a, b), made where new. The voxel pairs of one contact come one after another (along a
-    /// row of voxels, offset after offset), so the last one found answers most asks: a map lookup each cost
-    /// a scan of 10^7 voxels seconds. A hashed map's elements stay where they are (rehashing moves none).
-    Pair& at(std::int64_t a, std::int64_t b) {
-        if (last == nullptr || a != lastA || b != lastB) {
-            last = &pairs[{a, b}];
-            lastA = a, lastB = b;
-        }
-        return *last;
-    }
-
-private:
-    Pair* last = nullptr;
-    std::int64_t lastA = 0, lastB = 0;
 };
 
 ContactFinder::ContactFinder(const GridSpec& volume, double gap) : volume_(volume) {
@@ -106,40 +138,46 @@ int ContactFinder::margin() const {
 
 namespace {
 
-/// Calls @p f(a, b, midpoint, offset a to b, squared gap) for every pair of voxels of two different non-zero
-/// labels within the stencil, both on their grain's boundary (a face neighbour of another value: the least
-/// gap between two grains is always between two such voxels), @p p in the slab's layers first ..
-/// first + own - 1. The slab's layer 0 is the volume's layer @p x0.
-template <class F>
-void eachPair(const LabelGrid& slab, long long x0, int first, int own, const Stencil& st, bool faces, F&& f) {
+/// The boundary voxels of the slab (a face neighbour of another value: the least gap between two grains is
+/// always between two such voxels), where the slab knows their neighbours (the caller gives margin() layers
+/// on each side of those it owns).
+std::vector<char> edgesOf(const LabelGrid& slab) {
     const GridSpec& g = slab.spec;
     const long long nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
     const auto at = [&](long long i, long long j, long long k) -> std::int64_t {
         if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return 0;
         return slab.labels[std::size_t(i + nx * (j + ny * k))];
     };
-    // the boundary voxels of the slab, where the slab knows their neighbours (the layers beyond them: the
-    // caller gives margin() layers on each side of those it owns)
-    std::vector<char> edge;
-    if (!faces) {
-        edge.assign(slab.labels.size(), 0);
-        for (long long k = 0; k < nz; ++k)
-            for (long long j = 0; j < ny; ++j)
-                for (long long i = 0; i < nx; ++i) {
-                    const std::int64_t l = at(i, j, k);
-                    if (l == 0) continue;
-                    edge[std::size_t(i + nx * (j + ny * k))] = at(i - 1, j, k) != l || at(i + 1, j, k) != l ||
-                                                               at(i, j - 1, k) != l || at(i, j + 1, k) != l ||
-                                                               at(i, j, k - 1) != l || at(i, j, k + 1) != l;
-                }
-    }
-    // offset by offset along each row of voxels: two contiguous runs compared, the inner loop of a scan of
-    // 10^7 voxels (a voxel at a time through its stencil cost a 10^4-grain scan 5 s). The callers' sums and
-    // least-of choices do not depend on the order the pairs come in.
-    const std::int64_t* L = slab.labels.data();
-    const char* E = faces ? nullptr : edge.data();
-    std::vector<char> hit(std::size_t(std::max<long long>(nx, 1)));
+    std::vector<char> edge(slab.labels.size(), 0);
+#pragma omp parallel for schedule(static)
     for (long long k = 0; k < nz; ++k)
+        for (long long j = 0; j < ny; ++j)
+            for (long long i = 0; i < nx; ++i) {
+                const std::int64_t l = at(i, j, k);
+                if (l == 0) continue;
+                edge[std::size_t(i + nx * (j + ny * k))] = at(i - 1, j, k) != l || at(i + 1, j, k) != l ||
+                                                           at(i, j - 1, k) != l || at(i, j + 1, k) != l ||
+                                                           at(i, j, k - 1) != l || at(i, j, k + 1) != l;
+            }
+    return edge;
+}
+
+/// Calls @p f(a, b, midpoint, offset a to b, sign, squared gap) for every pair of voxels of two different
+/// non-zero labels within the stencil, both on their grain's boundary (@p edge; none for shared faces), the
+/// first in the slab's layers first .. first + own - 1 and in its planes k0 .. k1 - 1. The slab's layer 0 is
+/// the volume's layer @p x0.
+template <class F>
+void eachPair(const LabelGrid& slab, const std::vector<char>& edge, long long x0, int first, int own,
+              const Stencil& st, long long k0, long long k1, F&& f) {
+    const GridSpec& g = slab.spec;
+    const long long nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
+    // offset by offset along each row of voxels: two contiguous runs compared, the inner loop of a scan of
+    // 10^7 voxels (a voxel at a time through its stencil took longer). The callers' sums and least-of
+    // choices do not depend on the order the pairs come in.
+    const std::int64_t* L = slab.labels.data();
+    const char* E = st.faces ? nullptr : edge.data();
+    std::vector<char> hit(std::size_t(std::max<long long>(nx, 1)));
+    for (long long k = k0; k < k1; ++k)
         for (long long j = 0; j < ny; ++j) {
             const long long row = nx * (j + ny * k);
             for (const Stencil::Offset& o : st.offsets) {
@@ -149,8 +187,8 @@ void eachPair(const LabelGrid& slab, long long x0, int first, int own, const Ste
                 const long long lo = std::max<long long>(first, -o.d[0]);
                 const long long hi = std::min<long long>(first + own, nx - o.d[0]);
                 if (hi <= lo) continue;
-                // first which voxels of the run have another grain there (a loop the compiler vectorises:
-                // nearly none do), then those alone
+                // first which voxels of the run have another grain there (a loop without branches: nearly
+                // none do), then those alone
                 const std::int64_t* A = L + row + lo;
                 const std::int64_t* B = A + step;
                 const long long n = hi - lo;
@@ -171,49 +209,93 @@ void eachPair(const LabelGrid& slab, long long x0, int first, int own, const Ste
         }
 }
 
+/// The parts a slab of @p nz planes is cut into, one a thread (OpenMP's).
+int partsOf(long long nz) {
+#ifdef _OPENMP
+    return int(std::max<long long>(1, std::min<long long>(omp_get_max_threads(), nz)));
+#else
+    (void)nz;
+    return 1;
+#endif
+}
+
+/// Runs @p work(t, k0, k1) for parts t = 0 .. n - 1 of the slab's @p nz planes, on n threads. Each part's
+/// results go to its own table, merged by the caller in part order.
+template <class W> void byPlanes(long long nz, int n, W&& work) {
+#pragma omp parallel for schedule(static, 1) num_threads(n)
+    for (int t = 0; t < n; ++t) work(t, nz * t / n, nz * (t + 1) / n);
+}
+
 } // namespace
 
 void ContactFinder::count(const LabelGrid& slab, long long x0, int first, int own) {
     if (slab.labels.size() != slab.spec.size())
         throw std::invalid_argument("findContacts: the labels do not fill the grid");
-    const bool faces = pairs_->stencil.faces;
-    eachPair(slab, x0, first, own, pairs_->stencil, faces,
-             [&](std::int64_t a, std::int64_t b, const Half& mid, const int* d, int sign, std::int64_t g2) {
-                 Pairs::Pair& p = pairs_->at(a, b);
-                 ++p.faces;
-                 for (int e = 0; e < 3; ++e) p.normals[std::size_t(e)] += sign * d[e];
-                 if (p.least < 0 || g2 < p.least) p.least = g2, p.nearest = 0, p.sum = {0, 0, 0};
-                 if (g2 == p.least) {
-                     ++p.nearest;
-                     for (int e = 0; e < 3; ++e) p.sum[std::size_t(e)] += mid[std::size_t(e)];
-                 }
-             });
+    const Stencil& st = pairs_->stencil;
+    const std::vector<char> edge = st.faces ? std::vector<char>() : edgesOf(slab);
+    const int n = partsOf(slab.spec.dims[2]);
+    std::vector<PairMap<Pairs::Pair>> parts(static_cast<std::size_t>(n));
+    byPlanes(slab.spec.dims[2], n, [&](int t, long long k0, long long k1) {
+        PairMap<Pairs::Pair>& m = parts[std::size_t(t)];
+        eachPair(
+            slab, edge, x0, first, own, st, k0, k1,
+            [&](std::int64_t a, std::int64_t b, const Half& mid, const int* d, int sign, std::int64_t g2) {
+                Pairs::Pair& p = m.at(a, b);
+                ++p.faces;
+                for (int e = 0; e < 3; ++e) p.normals[std::size_t(e)] += sign * d[e];
+                if (p.least < 0 || g2 < p.least) p.least = g2, p.nearest = 0, p.sum = {0, 0, 0};
+                if (g2 == p.least) {
+                    ++p.nearest;
+                    for (int e = 0; e < 3; ++e) p.sum[std::size_t(e)] += mid[std::size_t(e)];
+                }
+            });
+    });
+    for (int t = 0; t < n; ++t)
+        for (const auto& kv : parts[std::size_t(t)].map) pairs_->pairs[kv.first].merge(kv.second);
 }
 
 void ContactFinder::locate(const LabelGrid& slab, long long x0, int first, int own) {
     // the midpoint of a pair at the least gap nearest the centroid of all of them: on a flat facet its
     // middle, where both grains have the most room for a ball through it (across a separating line, the
     // line's middle); on a tie the least (x, y, z), so that the choice is the volume's alone, whatever the
-    // slabs
-    const bool faces = pairs_->stencil.faces;
-    eachPair(slab, x0, first, own, pairs_->stencil, faces,
-             [&](std::int64_t a, std::int64_t b, const Half& mid, const int* d, int sign, std::int64_t g2) {
-                 Pairs::Pair& p = pairs_->at(a, b);
-                 if (g2 != p.least) return;
-                 double dist = 0;
-                 for (int e = 0; e < 3; ++e) {
-                     const double x =
-                         double(mid[std::size_t(e)]) - double(p.sum[std::size_t(e)]) / double(p.nearest);
-                     dist += x * x;
-                 }
-                 if (dist < p.best || (dist == p.best && mid < p.at)) {
-                     p.best = dist, p.at = mid;
-                     p.axis = int(
-                         std::max_element(d, d + 3, [](int u, int v) { return std::abs(u) < std::abs(v); }) -
-                         d);
-                     p.sign = sign * (d[p.axis] > 0 ? 1 : -1);
-                 }
-             });
+    // slabs and threads
+    const Stencil& st = pairs_->stencil;
+    const std::vector<char> edge = st.faces ? std::vector<char>() : edgesOf(slab);
+    const auto& pairs = pairs_->pairs; // read only here: every pair was counted
+    const int n = partsOf(slab.spec.dims[2]);
+    std::vector<PairMap<Spot>> parts(static_cast<std::size_t>(n));
+    byPlanes(slab.spec.dims[2], n, [&](int t, long long k0, long long k1) {
+        PairMap<Spot>& m = parts[std::size_t(t)];
+        const Pairs::Pair* p = nullptr;
+        Key key{0, 0};
+        eachPair(
+            slab, edge, x0, first, own, st, k0, k1,
+            [&](std::int64_t a, std::int64_t b, const Half& mid, const int* d, int sign, std::int64_t g2) {
+                if (p == nullptr || key.first != a || key.second != b) {
+                    key = {a, b};
+                    p = &pairs.at(key);
+                }
+                if (g2 != p->least) return;
+                Spot s;
+                s.best = 0;
+                for (int e = 0; e < 3; ++e) {
+                    const double x =
+                        double(mid[std::size_t(e)]) - double(p->sum[std::size_t(e)]) / double(p->nearest);
+                    s.best += x * x;
+                }
+                s.at = mid;
+                s.axis = int(
+                    std::max_element(d, d + 3, [](int u, int v) { return std::abs(u) < std::abs(v); }) - d);
+                s.sign = sign * (d[s.axis] > 0 ? 1 : -1);
+                Spot& mine = m.at(a, b);
+                if (s.before(mine)) mine = s;
+            });
+    });
+    for (int t = 0; t < n; ++t)
+        for (const auto& kv : parts[std::size_t(t)].map) {
+            Spot& s = pairs_->pairs.at(kv.first).spot;
+            if (kv.second.before(s)) s = kv.second;
+        }
 }
 
 std::vector<LabelContact> ContactFinder::contacts() const {
@@ -225,12 +307,14 @@ std::vector<LabelContact> ContactFinder::contacts() const {
     std::sort(keys.begin(), keys.end()); // in (a, b) order, whatever the hashing
     for (const auto& key : keys) {
         const Pairs::Pair& p = pairs_->pairs.at(key);
+        const Spot& spot = p.spot;
         LabelContact c;
         c.a = key.first;
         c.b = key.second;
         c.faces = p.faces;
         c.gap = std::sqrt(double(p.least));
-        c.point = volume_.origin + 0.5 * volume_.h * Vec3(double(p.at[0]), double(p.at[1]), double(p.at[2]));
+        c.point = volume_.origin +
+                  0.5 * volume_.h * Vec3(double(spot.at[0]), double(spot.at[1]), double(spot.at[2]));
         // the patch's mean normal: a facet oblique to the axes is a staircase of voxel faces, whose own
         // normals (the axes) point into the steps; a ball along the mean one stays clear of them (on a
         // Voronoi specimen the contact balls along the face's axis had radii of 0.7-0.9 voxels and set the
@@ -240,7 +324,7 @@ std::vector<LabelContact> ContactFinder::contacts() const {
             c.normal.normalize();
         else { // offsets whose sum cancels: the chosen pair's main axis
             c.normal = Vec3::Zero();
-            c.normal[p.axis] = p.sign;
+            c.normal[spot.axis] = spot.sign;
         }
         out.push_back(c);
     }

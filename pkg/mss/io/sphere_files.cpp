@@ -19,13 +19,18 @@
 
 namespace mss {
 
-void writeSpheres(const SphereSet& s, const std::string& path) {
+std::string formatSpheres(const SphereSet& s, const std::string& path) {
     validateSpheres(s, "writeSpheres");
     const FileFormat* f = findFormat(path, FileKind::Spheres);
     if (!f || !f->formatSpheres)
         throw std::invalid_argument("writeSpheres: " + path + ": unknown extension '" + fileExtension(path) +
                                     "' (expected " + formatList(FileKind::Spheres, true) + ")");
-    detail::writeFileAtomically("writeSpheres", path, f->formatSpheres(s));
+    return f->formatSpheres(s);
+}
+
+void writeSpheres(const SphereSet& s, const std::string& path) {
+    const std::string text = formatSpheres(s, path);
+    detail::writeFileAtomically("writeSpheres", path, text);
 }
 
 namespace {

@@ -1,6 +1,7 @@
 """Files written whole or not at all: an exclusive temporary file beside the target, then a rename."""
 
 import os
+import secrets
 import stat
 import tempfile
 
@@ -12,11 +13,12 @@ def umask():
     return mask
 
 
-def atomicWrite(path, write, where):
+def atomicWrite(path, write, where, data=None):
     """Calls ``write(tmp)`` on a new temporary path beside *path* (created exclusively, O_CREAT|O_EXCL, under an
     unpredictable name, with the same extension), then renames it onto *path*; nothing is left behind if
     anything fails. Only a regular file or a new path is replaced: a symbolic link, device, FIFO or directory
-    at *path* is refused. An OSError becomes RuntimeError('WHERE: PATH: cannot write ...')."""
+    at *path* is refused. An OSError becomes RuntimeError('WHERE: PATH: cannot write ...'). *data*: bytes
+    written instead of calling *write* (None then), through the descriptor the file was made with."""
     path = os.fspath(path)
     try:
         st = os.lstat(path)
@@ -27,17 +29,28 @@ def atomicWrite(path, write, where):
     if st is not None and not stat.S_ISREG(st.st_mode):
         raise RuntimeError('%s: %s: exists and is not a regular file (a link, device, FIFO or directory): not '
                            'replaced' % (where, path))
-    folder = os.path.dirname(path) or '.'
-    try:
-        fd, tmp = tempfile.mkstemp(prefix='.%s.' % os.path.basename(path)[:64], suffix=os.path.splitext(path)[1],
-                                   dir=folder)
-    except OSError as e:
-        raise RuntimeError('%s: %s: cannot write (%s)' % (where, path, e))
+    folder, name = os.path.split(path)
+    fd = tmp = None
+    for _ in range(100):  # as mkstemp: another name where one exists (a batch writes 10^5 files: no fchmod)
+        tmp = os.path.join(folder, '.%s.%s%s' % (name[:64], secrets.token_hex(6), os.path.splitext(path)[1]))
+        try:  # an ordinary new file's permissions (0666 less the umask), never through a link planted there
+            fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, 'O_NOFOLLOW', 0), 0o666)
+            break
+        except FileExistsError:
+            continue
+        except OSError as e:
+            raise RuntimeError('%s: %s: cannot write (%s)' % (where, path, e))
+    if fd is None:
+        raise RuntimeError('%s: %s: cannot write (no free temporary name beside it)' % (where, path))
     try:  # from here on a Ctrl-C or an error leaves no temporary file behind
-        os.fchmod(fd, 0o666 & ~umask())  # as an ordinary new file, not mkstemp's 0600
+        if data is not None:
+            view = memoryview(data)
+            while view:
+                view = view[os.write(fd, view):]
         os.close(fd)
         fd = None
-        write(tmp)
+        if data is None:
+            write(tmp)
         os.replace(tmp, path)
     except BaseException as e:
         if fd is not None:

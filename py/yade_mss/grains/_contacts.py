@@ -137,9 +137,13 @@ class ContactIndex(object):
 
     def __call__(self, label):
         """The grain's points, an (n, 6) array (point, normal into the grain)."""
-        lo, hi = np.searchsorted(self._labels, [label, label + 1])
+        lo = int(self._labels.searchsorted(label))
+        hi = int(self._labels.searchsorted(label, 'right'))
         ends = self._order[lo:hi]
         n = len(self._contacts)
         c = ends % n
-        into = np.where(ends < n, -1.0, 1.0)[:, None]  # into a: against the normal, which points from a to b
-        return np.hstack([self._contacts.points[c], into * self._contacts.normals[c]])
+        out = np.empty((hi - lo, 6))
+        out[:, :3] = self._contacts.points[c]
+        out[:, 3:] = self._contacts.normals[c]
+        out[ends < n, 3:] *= -1.0  # into a: against the normal, which points from a to b
+        return out

@@ -215,6 +215,10 @@ class MssResult(object):
                              "template: .clu or .p3dat)" % (path, ext))
         atomicWrite(path, lambda tmp: self._npz(tmp, compress), 'MssResult.save')
 
+    def _sphereFile(self, ext):
+        """The bytes :meth:`save` writes to a sphere file of extension *ext* (.csv, .txt, .vtk)."""
+        return _mss.formatSpheres(self.centers.ravel().tolist(), self.radii.tolist(), 'spheres' + ext)
+
     def _npz(self, file, compress=False):
         """Writes the .npz that :meth:`load` reads to *file* (a path or a binary file object)."""
         meta = {'metrics': self.metrics, 'grid': self.grid, 'source': self.source,

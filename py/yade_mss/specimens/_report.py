@@ -93,8 +93,9 @@ def _gap(r1, r2):
 
 
 def _assemblyPairs(spheres, offsets, tolerance):
-    """The pairs (i, j) of clumps (packed: :func:`packed`) that come within *tolerance* (world units) of each
-    other, and their gaps: the clumps' bounding balls narrow the pairs first (a k-d tree), the spheres decide."""
+    """The pairs (i, j), i < j, of clumps (packed: :func:`packed`) that may come within *tolerance* (world
+    units) of each other, and their gaps: the clumps' bounding balls narrow the pairs (a k-d tree), the spheres
+    give the gaps (those over *tolerance* included: the caller keeps what it needs)."""
     from scipy.spatial import cKDTree
     n = len(offsets) - 1
     if n < 2:
@@ -106,12 +107,10 @@ def _assemblyPairs(spheres, offsets, tolerance):
     owner = np.repeat(np.arange(n), np.diff(offsets))
     reach = np.maximum.reduceat(np.linalg.norm(spheres[:, :3] - centre[owner], axis=1) + spheres[:, 3], start)
     pairs = cKDTree(centre).query_pairs(2 * reach.max() + tolerance, output_type='ndarray')
-    i, j = pairs[:, 0], pairs[:, 1]
+    i, j = np.minimum(pairs[:, 0], pairs[:, 1]), np.maximum(pairs[:, 0], pairs[:, 1])
     near = np.linalg.norm(centre[i] - centre[j], axis=1) <= reach[i] + reach[j] + tolerance
     i, j = i[near], j[near]
-    g = _gaps(spheres, offsets, i, j)
-    close = g <= tolerance
-    return np.column_stack([i[close], j[close]]), g[close]
+    return np.column_stack([i, j]), _gaps(spheres, offsets, i, j)
 
 
 def keptContacts(b, found, h):
@@ -144,7 +143,15 @@ def keptContacts(b, found, h):
     one = (ia >= 0) != (ib >= 0)
     other = np.bincount(np.maximum(ia, ib)[one], minlength=n)
     both = np.flatnonzero((ia >= 0) & (ib >= 0))
-    g = _gaps(spheres, offsets, ia[both], ib[both]) / h
+    # the clumps' pairs within the larger of the two tolerances, each with its gap, once: the scan's pairs
+    # among them are kept or not by their gap, those beyond it are not kept
+    pairs, gaps = _assemblyPairs(spheres, offsets, max(tolerance, KEPT_GAP) * h)
+    code = pairs[:, 0] * max(1, n) + pairs[:, 1]
+    order = np.argsort(code)
+    code, gaps = code[order], gaps[order]
+    want = np.minimum(ia[both], ib[both]) * max(1, n) + np.maximum(ia[both], ib[both])
+    at = np.minimum(np.searchsorted(code, want), max(0, len(code) - 1))
+    g = np.where(code[at] == want, gaps[at], np.inf) / h if len(code) else np.full(len(want), np.inf)
     keep = g <= KEPT_GAP
     kept = np.bincount(np.concatenate([ia[both[keep]], ib[both[keep]]]), minlength=n)
     overlap = max(0.0, float((-g[keep]).max())) if keep.any() else 0.0
@@ -154,7 +161,7 @@ def keptContacts(b, found, h):
         lost[reason] = lost.get(reason, 0) + 1
         for x in (ia[c], ib[c]):
             why.setdefault(int(x), {})[reason] = why.setdefault(int(x), {}).get(reason, 0) + 1
-    assembly, _ = _assemblyPairs(spheres, offsets, tolerance * h)
+    assembly = pairs[order][gaps <= tolerance * h]
     near = np.bincount(assembly.ravel(), minlength=n)
     at = {k: x for x, k in enumerate(keys)}
     for k, row in b.rows.items():
