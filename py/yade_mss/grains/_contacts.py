@@ -126,14 +126,17 @@ class ContactIndex(object):
     ordered by label, and each label's run of them found by bisection; a grain's points are made when it
     asks, so that a batch holds none of them but for the grains in flight (12 bytes an end, not 56)."""
 
-    def __init__(self, contacts):
+    def __init__(self, contacts, keep=None):
+        """*keep*: a boolean a contact, those to index (default: all); the contacts are not copied."""
         n = len(contacts)
-        labels = np.concatenate([contacts.a, contacts.b])
+        kept = np.arange(n) if keep is None else np.flatnonzero(keep)
+        labels = np.concatenate([contacts.a[kept], contacts.b[kept]])
+        ends = np.concatenate([kept, kept + n])  # an end: a contact's number, plus n for its b side
         # by label, then in the contacts' order: the points in the order contactsByLabel gives them (a grain's
         # input digest, and the order the core takes them in, as before)
-        order = np.lexsort((np.concatenate([np.arange(n), np.arange(n)]), labels))
+        order = np.lexsort((np.concatenate([kept, kept]), labels))
         self._contacts, self._labels = contacts, labels[order]
-        self._order = order.astype(np.int32 if 2 * n < 2 ** 31 else np.int64)
+        self._order = ends[order].astype(np.int32 if 2 * n < 2 ** 31 else np.int64)
 
     def __call__(self, label):
         """The grain's points, an (n, 6) array (point, normal into the grain)."""

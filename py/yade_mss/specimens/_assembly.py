@@ -98,6 +98,8 @@ def _ordered(a, b):
 
 
 def _scanPairs(contacts):
+    if hasattr(contacts, 'a'):  # columns (ScanContacts): no dict a contact
+        return list(zip(contacts.a.tolist(), contacts.b.tolist()))
     return [(int(c['a']), int(c['b'])) for c in contacts]
 
 

@@ -26,7 +26,8 @@ import numpy as np
 from ..base import (atomicWrite, flag, folderLock, integer, number, refuseLinkedFolders, refuseOverInputs,
                     releaseFreed, requireRegularFile, slowPhase, split, vector3)
 from ..exports import MAX_TEMPLATES, writeTemplates
-from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, ContactIndex, MassProperties, MssResult, binaryValue, generateWith,
+from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, ContactIndex, MassProperties, MssResult,
+                      ScanContacts, binaryValue, generateWith,
                       SPECK_VOXELS, optionTable, pieces, readVolume, regions, scanContacts, segmentScan, slabVoxels,
                       valueRange)
 from . import _manifest, _report
@@ -341,7 +342,7 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
         index = None
         if found is not None:
             out = np.fromiter(why, dtype=np.int64, count=len(why))
-            index = ContactIndex(found.select(~(np.isin(found.a, out) | np.isin(found.b, out))))
+            index = ContactIndex(found, ~(np.isin(found.a, out) | np.isin(found.b, out)))
         for reg in found_regions:
             k = 'label_%d' % reg.label
             if reg.label in why:
@@ -390,33 +391,28 @@ class Batch(object):
 
     def keep(self, key, result):
         """Holds a generated grain: its result whole, or with an output folder (:meth:`storing`) its spheres and
-        mass properties packed (:class:`PackedClump`), the result read back from its file when asked for."""
+        mass properties packed (:class:`PackedClumps`), the result read back from its file when asked for."""
         if self._stored:
-            self.clumps[key] = PackedClump(result)
+            self.clumps.add(key, result)
         else:
             self.results[key] = result
 
     def storing(self):
         """The grains' results are in the output folder: hold only what the batch's passes need of them (a
         result whole, its metrics and grid, is several kB: 10^5 grains of a scan)."""
-        self._stored, self.clumps = True, {}
+        self._stored, self.clumps = True, PackedClumps()
 
     def packed(self):
-        """(spheres, offsets) of the clumps, in their order (:func:`yade_mss.specimens._report.packed`); with an
-        output folder the clumps become views of that one array (their own arrays are let go)."""
+        """(spheres, offsets) of the clumps, in their order (:func:`yade_mss.specimens._report.packed`)."""
         if self._packed is None:
-            self._packed = _report.packed(self.clumps)
-            if self._stored:
-                spheres, offsets = self._packed
-                for x, c in enumerate(self.clumps.values()):
-                    c._spheres = spheres[offsets[x]:offsets[x + 1]]
+            self._packed = self.clumps.packed() if self._stored else _report.packed(self.clumps)
         return self._packed
 
     def finish(self, outdir, order):
         """The results and clumps in key order (*order*: the sort key of a grain's key); with an output folder
         the results are read from it when asked for."""
-        self.clumps = dict(sorted(self.clumps.items(), key=lambda kv: order(kv[0])))
         if self._stored:
+            self.clumps = self.clumps.ordered(order)
             self.results = _StoredResults(outdir, self.clumps)
         else:
             self.results = self.clumps = dict(sorted(self.results.items(), key=lambda kv: order(kv[0])))
@@ -427,15 +423,17 @@ class Batch(object):
 
     @property
     def scanContacts(self):
-        """The scan's contacts (:func:`findContacts`' dicts), or None (a folder of grains, contacts off); read
-        from the output folder's contacts.csv when the batch was up to date."""
+        """The scan's contacts (:class:`yade_mss.grains.ScanContacts`: columns; indexing or iterating gives
+        :func:`findContacts`' dicts), or None (a folder of grains, contacts off); read from the output folder's
+        contacts.csv when the batch was up to date."""
         if self._scan is None and self._scanFile is not None:
             import csv
             with open(self._scanFile, newline='') as f:
-                self._scan = [dict(a=int(r['a']), b=int(r['b']), faces=int(r['faces']), gap=float(r['gap']),
-                                   point=(float(r['x']), float(r['y']), float(r['z'])),
-                                   normal=(float(r['nx']), float(r['ny']), float(r['nz'])))
-                              for r in csv.DictReader(f)]
+                self._scan = ScanContacts.fromDicts(
+                    (dict(a=int(r['a']), b=int(r['b']), faces=int(r['faces']), gap=float(r['gap']),
+                          point=(float(r['x']), float(r['y']), float(r['z'])),
+                          normal=(float(r['nx']), float(r['ny']), float(r['nz']))) for r in csv.DictReader(f)),
+                    (getattr(self, 'contacts', None) or {}).get('gap', 1.0))
         return self._scan
 
     @scanContacts.setter
@@ -443,16 +441,83 @@ class Batch(object):
         self._scan = value
 
 
-class PackedClump(object):
-    """A grain's spheres and exact mass properties (unit density), in two arrays: what the batch's passes
-    (contacts, the assembly's files) read of an :class:`MssResult`, at a tenth of its memory."""
+class PackedClumps(Mapping):
+    """The generated grains' spheres and exact mass properties (unit density), packed: every sphere a row
+    x y z r of one growing array, every grain's mass properties a row of another; {key: a view with the
+    ``centers``, ``radii`` and ``targetMass`` of an :class:`MssResult`}, made when asked for. What the batch's
+    passes (contacts, the assembly's files) read of its results: a result, or arrays of each grain's own, cost
+    10^5 grains kilobytes each."""
+
+    MASS = 13  # volume, centroid (3), inertia (9)
+
+    def __init__(self):
+        self._at = {}  # key -> its place
+        self._spheres, self._mass = np.empty((1024, 4)), np.empty((256, self.MASS))
+        self._starts, self._counts = np.empty(256, dtype=np.int64), np.empty(256, dtype=np.int64)
+        self._rows = 0
+
+    def add(self, key, result):
+        n, x = len(result.radii), len(self._at)
+        # grown in place by a quarter (realloc: a large block is remapped, not copied), no view of them held
+        # until the grains are all in
+        if self._rows + n > len(self._spheres):
+            self._spheres.resize((max(self._rows + n, len(self._spheres) * 5 // 4), 4), refcheck=False)
+        if x == len(self._mass):
+            for a in (self._mass, self._starts, self._counts):
+                a.resize((len(a) * 5 // 4,) + a.shape[1:], refcheck=False)
+        self._spheres[self._rows:self._rows + n, :3] = result.centers
+        self._spheres[self._rows:self._rows + n, 3] = result.radii
+        m = result.targetMass
+        self._mass[x, 0], self._mass[x, 1:4], self._mass[x, 4:] = m.volume, m.centroid, m.inertia.ravel()
+        self._starts[x], self._counts[x] = self._rows, n
+        self._rows += n
+        self._at[key] = x
+
+    def __getitem__(self, key):
+        x = self._at[key]
+        return _Clump(self._spheres[self._starts[x]:self._starts[x] + self._counts[x]], self._mass[x])
+
+    def __contains__(self, key):
+        return key in self._at
+
+    def __iter__(self):
+        return iter(self._at)
+
+    def __len__(self):
+        return len(self._at)
+
+    def ordered(self, order):
+        """The same grains in key order (*order*: the sort key of a key), packed in that order: where they came
+        out of order (workers), the arrays are copied once."""
+        keys = sorted(self._at, key=order)
+        places = np.array([self._at[k] for k in keys], dtype=np.int64)
+        if np.all(places == np.arange(len(places))):
+            self._at = {k: x for x, k in enumerate(keys)}
+            return self
+        out = PackedClumps()
+        out._mass, counts = self._mass[places], self._counts[places]
+        rows = np.concatenate([np.arange(s, s + c) for s, c in zip(self._starts[places], counts)]) \
+            if len(places) else np.zeros(0, dtype=np.int64)
+        out._spheres = self._spheres[rows]
+        out._counts = counts
+        out._starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+        out._rows, out._at = len(rows), {k: x for x, k in enumerate(keys)}
+        return out
+
+    def packed(self):
+        """(spheres, offsets): :func:`yade_mss.specimens._report.packed`'s, without a copy (in key order after
+        :meth:`ordered`)."""
+        n = len(self._at)
+        return self._spheres[:self._rows], np.concatenate([self._starts[:n], [self._rows]]).astype(np.int64)
+
+
+class _Clump(object):
+    """One grain of :class:`PackedClumps`: views of its rows."""
 
     __slots__ = ('_spheres', '_mass')
 
-    def __init__(self, result):
-        self._spheres = np.column_stack([result.centers, result.radii])
-        m = result.targetMass
-        self._mass = np.concatenate([[m.volume], m.centroid, m.inertia.ravel()])
+    def __init__(self, spheres, mass):
+        self._spheres, self._mass = spheres, mass
 
     @property
     def centers(self):

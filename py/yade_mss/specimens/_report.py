@@ -40,9 +40,9 @@ PAIR_BUDGET = 1 << 19  # sphere pairs a chunk of _gaps looks at at once (its arr
 
 def packed(clumps):
     """(spheres, offsets) of a batch's clumps in their order: every sphere as a row x y z r, and where each
-    clump's rows start (one more: the end). A batch that packed them already (its clumps are views of one
-    array) gives that array."""
-    parts = [np.column_stack([c.centers, c.radii]) for c in clumps.values()]
+    clump's rows start (one more: the end). A batch with an output folder packs them as they come
+    (:class:`yade_mss.specimens._batch.PackedClumps`)."""
+    parts = [np.column_stack([c.centers, c.radii]) for c in clumps.values()]  # results in memory: few
     counts = np.array([len(p) for p in parts], dtype=np.int64)
     offsets = np.concatenate([[0], np.cumsum(counts)])
     return (np.concatenate(parts) if parts else np.zeros((0, 4))), offsets
@@ -104,13 +104,26 @@ def _assemblyPairs(spheres, offsets, tolerance):
     lo = np.minimum.reduceat(spheres[:, :3], start)
     hi = np.maximum.reduceat(spheres[:, :3], start)
     centre = 0.5 * (lo + hi)
-    owner = np.repeat(np.arange(n), np.diff(offsets))
-    reach = np.maximum.reduceat(np.linalg.norm(spheres[:, :3] - centre[owner], axis=1) + spheres[:, 3], start)
+    # each sphere's reach from its clump's centre, a chunk of spheres at a time (10^6 spheres and more)
+    far = np.empty(len(spheres))
+    for x in range(0, len(spheres), CHUNK):
+        rows = np.arange(x, min(x + CHUNK, len(spheres)))
+        owner = np.searchsorted(offsets, rows, side='right') - 1
+        far[rows] = np.linalg.norm(spheres[rows, :3] - centre[owner], axis=1) + spheres[rows, 3]
+    reach = np.maximum.reduceat(far, start)
+    del far
     pairs = cKDTree(centre).query_pairs(2 * reach.max() + tolerance, output_type='ndarray')
-    i, j = np.minimum(pairs[:, 0], pairs[:, 1]), np.maximum(pairs[:, 0], pairs[:, 1])
-    near = np.linalg.norm(centre[i] - centre[j], axis=1) <= reach[i] + reach[j] + tolerance
-    i, j = i[near], j[near]
-    return np.column_stack([i, j]), _gaps(spheres, offsets, i, j)
+    keep = []
+    for x in range(0, len(pairs), CHUNK):
+        i, j = pairs[x:x + CHUNK].min(axis=1), pairs[x:x + CHUNK].max(axis=1)
+        near = np.linalg.norm(centre[i] - centre[j], axis=1) <= reach[i] + reach[j] + tolerance
+        keep.append(np.column_stack([i[near], j[near]]))
+    del pairs
+    pairs = np.concatenate(keep) if keep else np.zeros((0, 2), dtype=np.int64)
+    return pairs, _gaps(spheres, offsets, pairs[:, 0], pairs[:, 1])
+
+
+CHUNK = 1 << 18  # rows of the arrays above handled at once: their temporaries stay a few MB
 
 
 def keptContacts(b, found, h):
@@ -381,9 +394,11 @@ def writeOutputs(outdir, b, density, young):
                 w = csv.writer(f)
                 w.writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
                 c = b.scanContacts
-                w.writerows([a, b_, faces, repr(g)] + [repr(x) for x in p + q] for a, b_, faces, g, p, q in zip(
-                    c.a.tolist(), c.b.tolist(), c.faces.tolist(), c.gaps.tolist(), c.points.tolist(),
-                    c.normals.tolist()))
+                for x in range(0, len(c), CHUNK):  # a chunk's lists at a time: 10^6 contacts as lists are 300 MB
+                    part = slice(x, x + CHUNK)
+                    w.writerows([a, b_, faces, repr(g)] + [repr(v) for v in p + q] for a, b_, faces, g, p, q in zip(
+                        c.a[part].tolist(), c.b[part].tolist(), c.faces[part].tolist(), c.gaps[part].tolist(),
+                        c.points[part].tolist(), c.normals[part].tolist()))
         _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
     _report(outdir, b, density, young)
 
