@@ -210,3 +210,32 @@ TEST(Contacts, GrainsAcrossALineReachItsMiddleAndTouch) {
         EXPECT_LE(setGap(both[0], both[1]), -0.1 * g.spec.h + 1e-12) << "share " << share;
     }
 }
+
+#ifdef _OPENMP
+#include <omp.h>
+
+TEST(Contacts, ThreadsGiveTheOneThreadsAnswer) {
+    // the slab's planes are shared among threads, each with its own table, merged: the same contacts (and the
+    // same point of each, whatever voxel pair each thread saw first) on 1, 2, 3 and 7 threads
+    LabelGrid g;
+    g.spec.dims = {13, 11, 23};
+    g.spec.h = 0.5;
+    unsigned seed = 11;
+    for (std::size_t q = 0; q < g.spec.size(); ++q) {
+        seed = seed * 1103515245u + 12345u;
+        const unsigned r = (seed >> 16) % 7;
+        g.labels.push_back(r < 2 ? 0 : std::int64_t(r));
+    }
+    const int before = omp_get_max_threads();
+    for (double gap : {0.0, 1.0, 2.0}) {
+        omp_set_num_threads(1);
+        const std::vector<LabelContact> one = findContacts(g, gap);
+        ASSERT_FALSE(one.empty());
+        for (int n : {2, 3, 7}) {
+            omp_set_num_threads(n);
+            EXPECT_EQ(findContacts(g, gap), one) << "gap " << gap << ", threads " << n;
+        }
+    }
+    omp_set_num_threads(before);
+}
+#endif

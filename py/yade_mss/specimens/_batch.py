@@ -647,16 +647,18 @@ def _done(outdir, task, optionsKey):
     return meta['row'], r
 
 
-def _store(outdir, key, row, result, optionsKey, digest=None):
+def _store(outdir, key, row, result, optionsKey, digest=None, write=None):
     """Writes a grain's files, then its record (grains/KEY.json, last: a grain without it is not done) with the
     digest of each file and of its row, for the rerun to check (_done). Each file is made in memory and its
-    digest taken there: reading every file back cost the batch a tenth of its time."""
+    digest taken there: reading every file back cost the batch a tenth of its time. *write* (path, bytes):
+    writes a file whole (default: :func:`atomicWrite` here; the batch's :class:`_Files` on a thread)."""
     g = os.path.join(outdir, 'grains')
     sums = {}
+    write = write or (lambda path, data: atomicWrite(path, None, 'batch', data))
 
     def put(ext, data):
         sums[ext] = hashlib.sha256(data).hexdigest()
-        atomicWrite(os.path.join(g, key + '.' + ext), None, 'batch', data)
+        write(os.path.join(g, key + '.' + ext), data)
     png = getattr(result, 'png', None)
     if png is not None:
         put('png', png)
@@ -666,9 +668,51 @@ def _store(outdir, key, row, result, optionsKey, digest=None):
         result._npz(f)
         put('npz', f.getvalue())
         put('csv', result._sphereFile('.csv'))
-    atomicWrite(os.path.join(g, key + '.json'), None, 'batch', json.dumps({
+    write(os.path.join(g, key + '.json'), json.dumps({
         'options': optionsKey, 'input': digest, 'files': sums, 'row': row,
         'rowSum': _manifest.contentDigest(row)}).encode())
+
+
+class _Files(object):
+    """Writes files whole (:func:`atomicWrite`), in the order they are handed over, on a thread of its own: the
+    batch makes a grain's bytes and goes on to the next grain while the disk takes them (the system calls let
+    go of the GIL). At most QUEUE files wait; the first error is raised in the batch, at the next file or at
+    :meth:`close`, which waits until every file handed over is written. A grain's record comes after its
+    files, so an interrupted batch leaves no record of files not written."""
+
+    QUEUE = 256
+
+    def __init__(self):
+        import queue
+        import threading
+        self._error, self._queue = None, queue.Queue(self.QUEUE)
+        self._thread = threading.Thread(target=self._run, name='mss batch files', daemon=True)
+        self._thread.start()
+
+    def _run(self):
+        while True:
+            item = self._queue.get()
+            if item is None:
+                return
+            if self._error is None:  # after an error the rest is dropped: those grains are not done
+                try:
+                    atomicWrite(item[0], None, 'batch', item[1])
+                except BaseException as e:  # noqa: BLE001 (raised in the batch's thread)
+                    self._error = e
+
+    def _raise(self):
+        if self._error is not None:
+            e, self._error = self._error, None
+            raise e
+
+    def write(self, path, data):
+        self._raise()
+        self._queue.put((path, data))
+
+    def close(self):
+        self._queue.put(None)
+        self._thread.join()
+        self._raise()
 
 
 @optionTable.documented('batch')
@@ -794,13 +838,14 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
         n = made = 0  # made: the grains this run generated (ok), not those it tried
         byKey = {t.key: t for t in todo}
+        files = _Files() if outdir is not None else None
         try:
             for k, row, r in run(todo):
                 digest, task = row.pop(DIGEST, None), byKey.pop(k)
                 # a grain whose worker died is not the grain's failure: nothing is written for it (the pool's stop,
                 # an interrupted batch's workers ending before the batch, must not look like a finished grain)
                 if outdir is not None and not row['message'].startswith(WORKER_DIED):
-                    _store(outdir, k, row, r, key, digest or task.digest)
+                    _store(outdir, k, row, r, key, digest or task.digest, files.write)
                 task._digest = None  # written: not held for 10^5 grains
                 out.rows[k] = row
                 if r is not None:
@@ -820,6 +865,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                         '%.4f' % row['dice'] if row['dice'] != '' else '-', row['message'][:80]), flush=True)
         finally:
             close()
+            if files is not None:
+                files.close()  # every grain's files written (or the first error raised) before the outputs
             if bar is not None:
                 bar.close()
         out.generated, out.reused = made, already

@@ -1,0 +1,106 @@
+"""The parts that keep a batch of 10^5 grains small and quick, each against what it replaced: the contact index
+against contactsByLabel, the packed clumps against the results, the manifest's piecewise digest against the
+digest of the whole text, the file thread's order and errors. The figures themselves are bench/batch_scale.py's."""
+
+import hashlib
+import json
+import os
+import tempfile
+import unittest
+
+import numpy as np
+
+from yade_mss import batch, generate, packedSpecimen
+from yade_mss.grains import ContactIndex, ScanContacts, contactsByLabel, findContacts, scanContacts
+from yade_mss.specimens import _manifest
+from yade_mss.specimens._batch import PackedClumps, _Files, _order
+from yade_mss.specimens._report import packed
+
+
+class ContactsAsColumns(unittest.TestCase):
+    def setUp(self):
+        self.L = packedSpecimen((40, 40, 40), grains=30, size=(4, 7), seed=2)
+
+    def test_columns_give_the_dicts_and_each_grains_points(self):
+        found = scanContacts(self.L, 0.5, (1.0, 2.0, 3.0), None, 1.0)
+        dicts = findContacts(self.L, 0.5, (1.0, 2.0, 3.0))
+        self.assertGreater(len(dicts), 20)
+        self.assertEqual(list(found), dicts)
+        self.assertEqual(list(ScanContacts.fromDicts(dicts, 1.0)), dicts)
+        keep = found.a % 3 != 0  # contacts with some grains left out, as a batch leaves out the skipped ones
+        index, byLabel = ContactIndex(found, keep), contactsByLabel([c for c, k in zip(dicts, keep) if k])
+        for label in range(1, int(self.L.max()) + 2):
+            want = np.array(byLabel.get(label, []), dtype=float).reshape(-1, 6)
+            np.testing.assert_array_equal(index(label), want)  # the same numbers, in the same order
+
+
+class Packed(unittest.TestCase):
+    def test_packed_clumps_hold_what_the_results_hold_in_key_order(self):
+        results = {}
+        for n, k in enumerate(['label_10', 'label_2', 'label_1', 'label_7']):  # as workers give them
+            a = np.zeros((12, 12, 12), dtype=bool)
+            a[2:6 + n, 3:9, 2:10] = True
+            results[k] = generate(a, nSpheres=3 + n, voxelSize=0.1, origin=(n, 0, 0))
+        p = PackedClumps()
+        for k, r in results.items():
+            p.add(k, r)
+        p = p.ordered(_order)
+        self.assertEqual(list(p), ['label_1', 'label_2', 'label_7', 'label_10'])
+        spheres, offsets = p.packed()
+        whole, whereEach = packed({k: results[k] for k in p})
+        np.testing.assert_array_equal(spheres, whole)
+        np.testing.assert_array_equal(offsets, whereEach)
+        for k in p:
+            np.testing.assert_array_equal(p[k].centers, results[k].centers)
+            np.testing.assert_array_equal(p[k].radii, results[k].radii)
+            np.testing.assert_array_equal(p[k].targetMass.inertia, results[k].targetMass.inertia)
+            self.assertEqual(p[k].targetMass.volume, results[k].targetMass.volume)
+
+    def test_a_batch_with_a_folder_gives_its_results_from_their_files(self):
+        L = packedSpecimen((30, 30, 30), grains=8, size=(4, 6), seed=4)
+        with tempfile.TemporaryDirectory() as d:
+            stored = batch(L, os.path.join(d, 'o'), workers=2, nSpheres=4, progress=False)
+            held = batch(L, None, workers=1, nSpheres=4, progress=False)
+            self.assertEqual(list(stored.results), list(held.results))
+            for k in held.results:
+                np.testing.assert_array_equal(stored.results[k].radii, held.results[k].radii)
+                self.assertEqual(stored.results[k].metrics['dice'], held.results[k].metrics['dice'])
+            self.assertEqual(stored.contacts, held.contacts)  # the same passes over packed spheres
+
+
+class Manifest(unittest.TestCase):
+    def test_the_piecewise_digest_is_the_digest_of_the_text_read_back(self):
+        rows = {'label_%d' % i: {'dice': 0.1 * i, 'spheres': np.int64(i), 'problems': 'thin; "q"',
+                                 'seconds': np.float64(i) / 3, 'n': None} for i in range(700)}
+        data = {'version': 3, 'state': {'rows': rows, 'ranked': list(rows), 'timeStep': 1e-5, 'nan': float('nan')},
+                'key': {'inputs': [['a', 1, 2]]}}
+        whole = json.dumps(json.loads(json.dumps(data, default=str)), sort_keys=True)
+        self.assertEqual(_manifest.contentDigest(data), hashlib.sha256(whole.encode()).hexdigest())
+        self.assertEqual(json.loads(''.join(_manifest._chunks(data))), json.loads(whole))
+
+
+class FileThread(unittest.TestCase):
+    def test_files_are_written_in_order_and_an_error_reaches_the_batch(self):
+        with tempfile.TemporaryDirectory() as d:
+            f = _Files()
+            for i in range(600):  # more than its queue holds
+                f.write(os.path.join(d, 'f%d.bin' % i), b'%d' % i)
+            f.close()
+            self.assertEqual(sorted(os.listdir(d)), sorted('f%d.bin' % i for i in range(600)))
+            with open(os.path.join(d, 'f599.bin'), 'rb') as g:
+                self.assertEqual(g.read(), b'599')
+            f = _Files()
+            f.write(os.path.join(d, 'missing', 'x.bin'), b'x')  # a folder that is not there
+            with self.assertRaisesRegex(RuntimeError, 'cannot write'):
+                f.close()
+            f = _Files()
+            f.write(os.path.join(d, 'missing', 'y.bin'), b'y')
+            f._thread.join(0.5)
+            with self.assertRaisesRegex(RuntimeError, 'cannot write'):
+                for i in range(100):  # the next file hears of it
+                    f.write(os.path.join(d, 'g%d.bin' % i), b'g')
+            f.close()
+
+
+if __name__ == '__main__':
+    unittest.main()
