@@ -229,9 +229,9 @@ def _failedRow(task, message):
     return task.key, dict(_row(task), status='failed', message=message), None
 
 
-def _executor(workers, scheduler, security=None, connectTimeout=5.0):
+def _executor(workers, scheduler, security=None, connectTimeout=5.0, tasks=None):
     """Where the grains run (:func:`yade_mss.specimens._pools.executor`), with this module's grain work."""
-    return executor(workers, scheduler, runGrain, runGrains, _failedRow, security, connectTimeout)
+    return executor(workers, scheduler, runGrain, runGrains, _failedRow, security, connectTimeout, tasks)
 
 
 def runGrains(tasks):
@@ -835,7 +835,8 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
             print('batch: %d grains, %d done before, %d skipped, %d to generate'
                   % (total, already, len(skipped), len(todo)), flush=True)
         # no idle processes for few grains
-        run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout)
+        # local workers are forked with the list (and the mapped scan): each cuts its grains' crops itself
+        run, close = _executor(min(workers, max(1, len(todo))), scheduler, security, connectTimeout, todo)
         n = made = 0  # made: the grains this run generated (ok), not those it tried
         byKey = {t.key: t for t in todo}
         files = _Files() if outdir is not None else None

@@ -89,10 +89,11 @@ def checkScheduler(where, scheduler, security=None):
     return scheduler
 
 
-def executor(workers, scheduler, runOne, runMany, failed, security=None, connectTimeout=5.0):
+def executor(workers, scheduler, runOne, runMany, failed, security=None, connectTimeout=5.0, tasks=None):
     """(submit-all function yielding results as they finish, closer): *runOne* (a task) runs a grain,
     *runMany* (a list of tasks) several, as Dask's tasks; *failed* (task, message) is the row of a grain whose
-    worker died."""
+    worker died. *tasks*: the list the submit function will be given, known now: local workers are forked with
+    it and get each task's place in it, not the task (a grain's crop is cut in its worker, not sent)."""
     if scheduler:
         try:
             from distributed import Client, as_completed
@@ -120,12 +121,13 @@ def executor(workers, scheduler, runOne, runMany, failed, security=None, connect
         return run, client.close
     if workers == 1:
         return (lambda tasks: (runOne(t) for t in tasks)), (lambda: None)
-    pool = _LocalPool(workers, runOne, failed)
+    pool = _LocalPool(workers, runOne, failed, tasks)
     return pool.run, pool.close
 
 
-def _workerLoop(conn, runOne):
-    """A local worker: grains in, rows and results out, over its own pipe, until it gets None."""
+def _workerLoop(conn, runOne, tasks=None):
+    """A local worker: grains in (or their places in *tasks*, the list it was forked with), rows and results
+    out, over its own pipe, until it gets None."""
     _oneThread()
     while True:
         try:
@@ -134,7 +136,7 @@ def _workerLoop(conn, runOne):
             return
         if task is None:
             return
-        conn.send(runOne(task))
+        conn.send(runOne(tasks[task] if tasks is not None else task))
 
 
 class _LocalPool(object):
@@ -144,28 +146,32 @@ class _LocalPool(object):
     needs no __main__ guard (spawn would import it again in every child); each child runs on one OpenMP thread
     (GNU OpenMP hangs in a forked child that asks for the parent's thread pool)."""
 
-    def __init__(self, n, runOne, failed):
-        self.failed = failed
+    def __init__(self, n, runOne, failed, tasks=None):
+        self.failed, self.tasks = failed, tasks
         import multiprocessing
         ctx = multiprocessing.get_context('fork')
         self.workers = []
         for _ in range(n):
             mine, theirs = ctx.Pipe(duplex=True)
-            proc = ctx.Process(target=_workerLoop, args=(theirs, runOne), daemon=True)
+            proc = ctx.Process(target=_workerLoop, args=(theirs, runOne, tasks), daemon=True)
             proc.start()
             theirs.close()  # only the child holds its end: its death is EOF here
             self.workers.append([proc, mine, None])  # process, pipe, the task it has
 
     def run(self, tasks):
         from multiprocessing.connection import wait
+        known = self.tasks is not None
+        if known and tasks is not self.tasks:
+            raise ValueError('_LocalPool.run: its workers were forked with another list of tasks')
         todo = list(reversed(tasks))
+        place = {id(t): x for x, t in enumerate(tasks)} if known else None
         live = list(self.workers)
 
         def give(w):
             if todo:
                 w[2] = todo.pop()
-                try:
-                    w[1].send(w[2])
+                try:  # the task's place where the worker has the list: its crop is cut there, not here
+                    w[1].send(place[id(w[2])] if known else w[2])
                 except (OSError, ValueError):
                     pass  # dead already: wait() sees its sentinel
         for w in live:
