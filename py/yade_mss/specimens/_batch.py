@@ -496,12 +496,13 @@ class PackedClumps(Mapping):
             return self
         out = PackedClumps()
         out._mass, counts = self._mass[places], self._counts[places]
-        rows = np.concatenate([np.arange(s, s + c) for s, c in zip(self._starts[places], counts)]) \
-            if len(places) else np.zeros(0, dtype=np.int64)
-        out._spheres = self._spheres[rows]
-        out._counts = counts
         out._starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
-        out._rows, out._at = len(rows), {k: x for x, k in enumerate(keys)}
+        out._spheres = np.empty((int(counts.sum()), 4))
+        for x, (s, c) in enumerate(zip(self._starts[places].tolist(), counts.tolist())):  # no index array
+            out._spheres[out._starts[x]:out._starts[x] + c] = self._spheres[s:s + c]
+        self._spheres = None  # let go before the next pass
+        out._counts = counts
+        out._rows, out._at = len(out._spheres), {k: x for x, k in enumerate(keys)}
         return out
 
     def packed(self):
