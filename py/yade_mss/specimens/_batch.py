@@ -375,6 +375,10 @@ def makeTasks(inputs, options, voxelSize=None, origin=None, minVoxels=0, exclude
 class Batch(object):
     """What a batch did: rows (one per grain, in key order) and the results of the grains that are ok.
 
+    :ivar rows: {key: row}, the columns of grains.csv
+    :ivar results: {key: :class:`MssResult`} of the grains that are ok; with an output folder each is read from
+        its grains/KEY.npz when asked for (a batch of 10^5 grains holds their spheres packed, not their results)
+    :ivar scanContacts: the scan's contacts (:class:`yade_mss.grains.ScanContacts`), or None
     :ivar seconds: this run's wall time
     :ivar generated: grains generated in this run (ok: a grain that failed is not generated)
     :ivar reused: grains whose results an earlier run of the same input and options had written
