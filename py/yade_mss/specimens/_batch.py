@@ -652,6 +652,15 @@ def _done(outdir, task, optionsKey):
     return meta['row'], r
 
 
+def _digestOf(task):
+    """The digest of a grain whose run did not take one (it failed before: a file gone, unreadable): None where
+    it cannot be taken either; the grain's failure is recorded all the same (a failure is never reused)."""
+    try:
+        return task.digest
+    except (OSError, ValueError):
+        return None
+
+
 def _store(outdir, key, row, result, optionsKey, digest=None, write=None):
     """Writes a grain's files, then its record (grains/KEY.json, last: a grain without it is not done) with the
     digest of each file and of its row, for the rerun to check (_done). Each file is made in memory and its
@@ -851,7 +860,7 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
                 # a grain whose worker died is not the grain's failure: nothing is written for it (the pool's stop,
                 # an interrupted batch's workers ending before the batch, must not look like a finished grain)
                 if outdir is not None and not row['message'].startswith(WORKER_DIED):
-                    _store(outdir, k, row, r, key, digest or task.digest, files.write)
+                    _store(outdir, k, row, r, key, digest or _digestOf(task), files.write)
                 task._digest = None  # written: not held for 10^5 grains
                 out.rows[k] = row
                 if r is not None:

@@ -104,3 +104,20 @@ class FileThread(unittest.TestCase):
 
 if __name__ == '__main__':
     unittest.main()
+
+
+class DigestTakenWhereItRuns(unittest.TestCase):
+    def test_a_grain_that_cannot_be_read_is_a_failed_row_not_the_batchs_end(self):
+        # its digest is taken where it runs; one that fails there (a folder named like a mesh) has none, and the
+        # batch records the failure instead of taking the digest again and stopping on it
+        data = os.environ['MSS_TEST_DATA']
+        mesh = next(f for f in sorted(os.listdir(data)) if f.endswith('.stl'))
+        with tempfile.TemporaryDirectory() as d:
+            src = os.path.join(d, 'in')
+            os.makedirs(os.path.join(src, 'b.stl'))
+            with open(os.path.join(data, mesh), 'rb') as f, open(os.path.join(src, 'a.stl'), 'wb') as g:
+                g.write(f.read())
+            b = batch([src], os.path.join(d, 'out'), nSpheres=4, progress=False, workers=1)
+            self.assertEqual(b.rows['file_a.stl']['status'], 'ok')
+            self.assertEqual(b.rows['file_b.stl']['status'], 'failed')
+            self.assertIn('b.stl', b.rows['file_b.stl']['message'])
