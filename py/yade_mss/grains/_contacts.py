@@ -82,10 +82,6 @@ class ScanContacts(object):
     def __iter__(self):
         return (self[i] for i in range(len(self)))
 
-    def select(self, keep):
-        """The contacts where the boolean array *keep* is true, with the same tolerance."""
-        return ScanContacts({n: getattr(self, n)[keep] for n, _, _, _ in self.COLUMNS}, self.gap, self.nearby)
-
     @staticmethod
     def fromDicts(contacts, gap, nearby=None):
         """From findContacts' dicts (as a contacts.csv gives them back)."""

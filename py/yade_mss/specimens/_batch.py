@@ -248,11 +248,6 @@ def _atomic(path, write):
     atomicWrite(path, write, 'batch')
 
 
-def _write(path, data):
-    with open(path, 'wb' if isinstance(data, bytes) else 'w') as f:
-        f.write(data)
-
-
 def _inputs(inputs):
     """Files from the arguments: files as given, directories by their supported files (sorted)."""
     files = []
