@@ -687,20 +687,30 @@ class _Files(object):
     batch makes a grain's bytes and goes on to the next grain while the disk takes them (the system calls let
     go of the GIL). At most QUEUE files wait; the first error is raised in the batch, at the next file or at
     :meth:`close`, which waits until every file handed over is written. A grain's record comes after its
-    files, so an interrupted batch leaves no record of files not written."""
+    files, so an interrupted batch leaves no record of files not written.
+
+    No Python-level lock is taken in the batch's thread (a deque, and a bare lock as the thread's wake-up): a
+    Ctrl-C that lands between a ``with lock:``'s acquire and its block leaves the lock held (queue.Queue's), and
+    the batch hung in close() after the interrupt."""
 
     QUEUE = 256
 
     def __init__(self):
-        import queue
+        import _thread
+        import collections
         import threading
-        self._error, self._queue = None, queue.Queue(self.QUEUE)
+        self._error, self._items = None, collections.deque()
+        self._wake = _thread.allocate_lock()
+        self._wake.acquire()  # held while there is nothing to do: released to wake the thread
         self._thread = threading.Thread(target=self._run, name='mss batch files', daemon=True)
         self._thread.start()
 
     def _run(self):
         while True:
-            item = self._queue.get()
+            if not self._items:
+                self._wake.acquire(timeout=0.05)  # a wake-up lost to a race costs a twentieth of a second
+                continue
+            item = self._items.popleft()
             if item is None:
                 return
             if self._error is None:  # after an error the rest is dropped: those grains are not done
@@ -714,12 +724,21 @@ class _Files(object):
             e, self._error = self._error, None
             raise e
 
+    def _put(self, item):
+        self._items.append(item)
+        try:
+            self._wake.release()
+        except RuntimeError:
+            pass  # awake already
+
     def write(self, path, data):
         self._raise()
-        self._queue.put((path, data))
+        while len(self._items) >= self.QUEUE and self._thread.is_alive():
+            time.sleep(0.001)  # the disk is behind: the batch waits, its memory stays bounded
+        self._put((path, data))
 
     def close(self):
-        self._queue.put(None)
+        self._put(None)
         self._thread.join()
         self._raise()
 

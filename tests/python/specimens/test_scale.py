@@ -5,7 +5,9 @@ digest of the whole text, the file thread's order and errors. The figures themse
 import hashlib
 import json
 import os
+import signal
 import tempfile
+import threading
 import unittest
 
 import numpy as np
@@ -100,6 +102,35 @@ class FileThread(unittest.TestCase):
                 for i in range(100):  # the next file hears of it
                     f.write(os.path.join(d, 'g%d.bin' % i), b'g')
             f.close()
+
+    def test_a_ctrl_c_anywhere_in_a_write_never_hangs_the_close(self):
+        # the bug: SIGINT to `mss batch` alone hung it for good: the interrupt landed inside queue.Queue.put,
+        # between a `with lock:`'s acquire and its block, and left the queue's lock held; close() then waited on it
+        def interrupt(signum, frame):
+            raise KeyboardInterrupt
+        old = signal.signal(signal.SIGALRM, interrupt)
+        rng = np.random.default_rng(5)
+        try:
+            with tempfile.TemporaryDirectory() as d:
+                for trial in range(300):
+                    f = _Files()
+                    f.QUEUE = 4  # full at once: the batch waits on it, as on a slow disk
+                    signal.setitimer(signal.ITIMER_REAL, float(rng.uniform(1e-5, 2e-3)))
+                    try:
+                        for i in range(10 ** 6):
+                            f.write(os.path.join(d, 'f%d.bin' % (i % 50)), b'x')
+                    except KeyboardInterrupt:
+                        pass
+                    finally:
+                        signal.setitimer(signal.ITIMER_REAL, 0)
+                    closer = threading.Thread(target=f.close, daemon=True)
+                    closer.start()
+                    closer.join(10)
+                    self.assertFalse(closer.is_alive(), 'close() hung after an interrupt (trial %d)' % trial)
+                left = [n for n in os.listdir(d) if n.startswith('.')]
+                self.assertEqual(left, [])  # every file written whole or not begun: no temporary file left
+        finally:
+            signal.signal(signal.SIGALRM, old)
 
 
 if __name__ == '__main__':
