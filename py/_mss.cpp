@@ -592,6 +592,42 @@ py::dict findContacts(const py::object& read, const py::object& shape, double vo
     return out;
 }
 
+/// The numbers in the bytes @p data (numpy's tobytes()), as a vector of T; @p what names them in the error.
+template <class T> std::vector<T> numbersOf(const py::object& data, const char* what) {
+    char* buf = nullptr;
+    Py_ssize_t len = 0;
+    if (!PyBytes_Check(data.ptr()) || PyBytes_AsStringAndSize(data.ptr(), &buf, &len) != 0 ||
+        std::size_t(len) % sizeof(T) != 0)
+        throw std::invalid_argument(std::string("clumpGaps: ") + what + " must be the bytes of an array of " +
+                                    std::to_string(sizeof(T)) + "-byte numbers");
+    std::vector<T> v(std::size_t(len) / sizeof(T));
+    if (!v.empty()) std::memcpy(v.data(), buf, std::size_t(len));
+    return v;
+}
+
+/// mss::clumpGaps of packed clumps: @p spheres the bytes of an (n, 4) double array (x y z r a row), @p offsets
+/// of int64 (clumps + 1), @p i and @p j of int64; the gaps as the bytes of doubles.
+py::object clumpGaps(const py::object& spheres, const py::object& offsets, const py::object& i,
+                     const py::object& j) {
+    const std::vector<double> rows = numbersOf<double>(spheres, "the spheres");
+    if (rows.size() % 4 != 0) throw std::invalid_argument("clumpGaps: the spheres must be rows of x y z r");
+    mss::SphereSet s;
+    s.centers.resize(rows.size() / 4);
+    s.radii.resize(rows.size() / 4);
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        s.centers[k] = mss::Vec3(rows[4 * k], rows[4 * k + 1], rows[4 * k + 2]);
+        s.radii[k] = rows[4 * k + 3];
+    }
+    const std::vector<std::int64_t> o = numbersOf<std::int64_t>(offsets, "the offsets");
+    const std::vector<std::int64_t> a = numbersOf<std::int64_t>(i, "i"), b = numbersOf<std::int64_t>(j, "j");
+    std::vector<double> out;
+    {
+        WithoutGil unlocked;
+        out = mss::clumpGaps(s, o, a, b);
+    }
+    return bytesOf(out);
+}
+
 // with planes: the part of the solid on their allowed side (a fragment)
 const char* const kNothingLeft =
     "massProperties: no part of the solid lies on the allowed side of the planes";
@@ -990,5 +1026,7 @@ BOOST_PYTHON_MODULE(_mss) {
              py::arg("minTurning")));
     py::def("readSpheres", readSpheres, (py::arg("path"), py::arg("clumpId") = -1));
     py::def("writeSpheres", writeSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
+    py::def("clumpGaps", clumpGaps, (py::arg("spheres"), py::arg("offsets"), py::arg("i"), py::arg("j")),
+            "The least gap between packed clumps i[n] and j[n] (bytes in and out).");
     py::def("formatSpheres", formatSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
 }

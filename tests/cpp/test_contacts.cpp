@@ -1,9 +1,15 @@
 #include "mss/generate.hpp"
+#include "mss/spheres.hpp"
 #include "mss/voxelize.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+
+#include <omp.h>
 
 using namespace mss;
 
@@ -239,3 +245,62 @@ TEST(Contacts, ThreadsGiveTheOneThreadsAnswer) {
     omp_set_num_threads(before);
 }
 #endif
+
+TEST(ClumpGaps, EachPairsLeastGapAgainstEverySpherePair) {
+    // random packed clumps of 1..12 spheres; every pair's gap against the plain double loop, on 1 and 2
+    // threads; overlaps come out negative, an empty clump +inf
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    SphereSet s;
+    std::vector<std::int64_t> offsets{0};
+    for (int c = 0; c < 40; ++c) {
+        const int n = c == 7 ? 0 : 1 + int(u(rng) * 12);
+        const Vec3 at(4 * u(rng), 4 * u(rng), 4 * u(rng));
+        for (int k = 0; k < n; ++k) s.add(at + Vec3(u(rng), u(rng), u(rng)), 0.1 + 0.4 * u(rng));
+        offsets.push_back(std::int64_t(s.size()));
+    }
+    std::vector<std::int64_t> i, j;
+    for (int a = 0; a < 40; ++a)
+        for (int b = a + 1; b < 40; ++b) i.push_back(a), j.push_back(b);
+    int overlapping = 0;
+    const int before = omp_get_max_threads();
+    for (int threads : {1, 2}) {
+        omp_set_num_threads(threads);
+        const std::vector<double> got = clumpGaps(s, offsets, i, j);
+        ASSERT_EQ(got.size(), i.size());
+        for (std::size_t x = 0; x < i.size(); ++x) {
+            double want = std::numeric_limits<double>::infinity();
+            for (std::int64_t p = offsets[std::size_t(i[x])]; p < offsets[std::size_t(i[x]) + 1]; ++p)
+                for (std::int64_t q = offsets[std::size_t(j[x])]; q < offsets[std::size_t(j[x]) + 1]; ++q)
+                    want = std::min(want, (s.centers[std::size_t(p)] - s.centers[std::size_t(q)]).norm() -
+                                              s.radii[std::size_t(p)] - s.radii[std::size_t(q)]);
+            EXPECT_EQ(got[x], want) << i[x] << " " << j[x];
+            overlapping += threads == 1 && want < 0;
+        }
+    }
+    omp_set_num_threads(before);
+    EXPECT_GT(overlapping, 10); // the test sees overlaps and gaps both
+    EXPECT_TRUE(std::isinf(clumpGaps(s, offsets, {7}, {8})[0]));
+}
+
+TEST(ClumpGaps, BadOffsetsAndIndicesAreNamed) {
+    SphereSet s;
+    s.add(Vec3(0, 0, 0), 1);
+    s.add(Vec3(3, 0, 0), 1);
+    EXPECT_EQ(clumpGaps(s, {0, 1, 2}, {0}, {1})[0], 1.0);
+    const auto fails = [&](const std::vector<std::int64_t>& o, const std::vector<std::int64_t>& i,
+                           const std::vector<std::int64_t>& j, const std::string& says) {
+        try {
+            clumpGaps(s, o, i, j);
+            ADD_FAILURE() << "no error for " << says;
+        } catch (const std::invalid_argument& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+        }
+    };
+    fails({0, 1}, {0}, {0}, "the offsets must run from 0 to the number of spheres (2)");
+    fails({0, 2, 1, 2}, {0}, {1}, "in order");
+    fails({}, {}, {}, "the offsets");
+    fails({0, 1, 2}, {0}, {2}, "clump 2 of 2");
+    fails({0, 1, 2}, {-1}, {1}, "clump -1 of 2");
+    fails({0, 1, 2}, {0, 1}, {1}, "2 first clumps but 1 second ones");
+}

@@ -1,6 +1,8 @@
 #include "mss/spheres.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -36,6 +38,46 @@ void validateSpheres(const SphereSet& s, const std::string& where) {
             throw std::invalid_argument(os.str());
         }
     }
+}
+
+std::vector<double> clumpGaps(const SphereSet& spheres, const std::vector<std::int64_t>& offsets,
+                              const std::vector<std::int64_t>& i, const std::vector<std::int64_t>& j) {
+    if (spheres.centers.size() != spheres.radii.size())
+        throw std::invalid_argument("clumpGaps: " + std::to_string(spheres.centers.size()) + " centres but " +
+                                    std::to_string(spheres.radii.size()) + " radii");
+    if (offsets.empty() || offsets.front() != 0 || offsets.back() != std::int64_t(spheres.size()) ||
+        !std::is_sorted(offsets.begin(), offsets.end()))
+        throw std::invalid_argument("clumpGaps: the offsets must run from 0 to the number of spheres (" +
+                                    std::to_string(spheres.size()) + "), in order");
+    if (i.size() != j.size())
+        throw std::invalid_argument("clumpGaps: " + std::to_string(i.size()) + " first clumps but " +
+                                    std::to_string(j.size()) + " second ones");
+    const std::int64_t clumps = std::int64_t(offsets.size()) - 1;
+    for (const std::vector<std::int64_t>* v : {&i, &j})
+        for (std::int64_t k : *v)
+            if (k < 0 || k >= clumps)
+                throw std::invalid_argument("clumpGaps: clump " + std::to_string(k) + " of " +
+                                            std::to_string(clumps));
+    std::vector<double> out(i.size());
+    const long long n = static_cast<long long>(i.size());
+#pragma omp parallel for schedule(static)
+    for (long long x = 0; x < n; ++x) {
+        const std::size_t a0 = std::size_t(offsets[std::size_t(i[std::size_t(x)])]);
+        const std::size_t a1 = std::size_t(offsets[std::size_t(i[std::size_t(x)]) + 1]);
+        const std::size_t b0 = std::size_t(offsets[std::size_t(j[std::size_t(x)])]);
+        const std::size_t b1 = std::size_t(offsets[std::size_t(j[std::size_t(x)]) + 1]);
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t p = a0; p < a1; ++p)
+            for (std::size_t q = b0; q < b1; ++q) {
+                // the square root only where this pair could beat the best: most cannot
+                const double reach = best + spheres.radii[p] + spheres.radii[q];
+                const double d2 = (spheres.centers[p] - spheres.centers[q]).squaredNorm();
+                if (reach <= 0 || d2 >= reach * reach) continue; // it cannot go under best
+                best = std::min(best, std::sqrt(d2) - spheres.radii[p] - spheres.radii[q]);
+            }
+        out[std::size_t(x)] = best;
+    }
+    return out;
 }
 
 } // namespace mss

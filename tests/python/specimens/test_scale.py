@@ -16,7 +16,7 @@ from yade_mss import batch, generate, packedSpecimen
 from yade_mss.grains import ContactIndex, ScanContacts, contactsByLabel, findContacts, scanContacts
 from yade_mss.specimens import _manifest
 from yade_mss.specimens._batch import PackedClumps, _Files, _order
-from yade_mss.specimens._report import packed
+from yade_mss.specimens._report import _gap, _gaps, packed
 
 
 class ContactsAsColumns(unittest.TestCase):
@@ -57,6 +57,20 @@ class Packed(unittest.TestCase):
             np.testing.assert_array_equal(p[k].radii, results[k].radii)
             np.testing.assert_array_equal(p[k].targetMass.inertia, results[k].targetMass.inertia)
             self.assertEqual(p[k].targetMass.volume, results[k].targetMass.volume)
+
+    def test_the_cores_gaps_are_the_gaps_of_every_sphere_pair(self):
+        # the core's clumpGaps replaced numpy's batched products: each pair's gap against the plain pairwise one
+        L = packedSpecimen((40, 40, 40), grains=20, size=(4, 8), seed=6)
+        b = batch(L, None, workers=1, nSpheres=6, progress=False)
+        spheres, offsets = packed(b.results)
+        keys = list(b.results)
+        i, j = np.triu_indices(len(keys), 1)
+        got = _gaps(spheres, offsets, i, j)
+        want = [_gap(b.results[keys[x]], b.results[keys[y]]) for x, y in zip(i, j)]
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-12)
+        self.assertTrue((got < 0).any() and (got > 1).any())  # overlapping clumps and clumps far apart
+        with self.assertRaisesRegex(ValueError, 'clumpGaps: clump %d of %d' % (len(keys), len(keys))):
+            _gaps(spheres, offsets, [0], [len(keys)])
 
     def test_a_batch_with_a_folder_gives_its_results_from_their_files(self):
         L = packedSpecimen((30, 30, 30), grains=8, size=(4, 6), seed=4)
