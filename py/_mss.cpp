@@ -605,8 +605,8 @@ template <class T> std::vector<T> numbersOf(const py::object& data, const char* 
     return v;
 }
 
-/// mss::clumpGaps of packed clumps: @p spheres the bytes of an (n, 4) double array (x y z r a row), @p offsets
-/// of int64 (clumps + 1), @p i and @p j of int64; the gaps as the bytes of doubles.
+/// mss::clumpGaps of packed clumps: @p spheres the bytes of an (n, 4) double array (x y z r a row), @p
+/// offsets of int64 (clumps + 1), @p i and @p j of int64; the gaps as the bytes of doubles.
 py::object clumpGaps(const py::object& spheres, const py::object& offsets, const py::object& i,
                      const py::object& j) {
     const std::vector<double> rows = numbersOf<double>(spheres, "the spheres");

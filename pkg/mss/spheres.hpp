@@ -37,8 +37,8 @@ void validateSpheres(const SphereSet& s, const std::string& where);
 /// no sphere). The clumps are packed: clump k's spheres are @p spheres' offsets[k] .. offsets[k + 1] - 1. A
 /// batch's kept contacts and its assembly's pairs (10^5 pairs of clumps of 20 spheres: numpy's batched
 /// products took a second); OpenMP over the pairs.
-/// @throws std::invalid_argument for offsets that do not run from 0 to the spheres' count in order, or a clump
-/// index out of range, or @p i and @p j of different lengths.
+/// @throws std::invalid_argument for offsets that do not run from 0 to the spheres' count in order, or a
+/// clump index out of range, or @p i and @p j of different lengths.
 std::vector<double> clumpGaps(const SphereSet& spheres, const std::vector<std::int64_t>& offsets,
                               const std::vector<std::int64_t>& i, const std::vector<std::int64_t>& j);
 

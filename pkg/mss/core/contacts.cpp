@@ -171,40 +171,69 @@ void eachPair(const LabelGrid& slab, const std::vector<char>& edge, long long x0
               const Stencil& st, long long k0, long long k1, F&& f) {
     const GridSpec& g = slab.spec;
     const long long nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
-    // offset by offset along each row of voxels: two contiguous runs compared, the inner loop of a scan of
-    // 10^7 voxels (a voxel at a time through its stencil took longer). The callers' sums and least-of
-    // choices do not depend on the order the pairs come in.
+    // offset by offset along each row of voxels: two contiguous runs compared, a loop without branches over
+    // the row (a voxel at a time through its stencil took longer), into each voxel's bit mask of the offsets
+    // that hit; then the hits voxel by voxel, so that a voxel's partners (mostly one grain across the line)
+    // come one after another and the callers' last-pair caches answer (offset by offset, the pair changed at
+    // nearly every hit: hashed lookups were most of the time). The callers' sums and least-of choices do not
+    // depend on the order the pairs come in.
     const std::int64_t* L = slab.labels.data();
     const char* E = st.faces ? nullptr : edge.data();
-    std::vector<char> hit(std::size_t(std::max<long long>(nx, 1)));
+    const std::size_t width = std::size_t(std::max<long long>(nx, 1));
+    const std::size_t offsets = st.offsets.size(), words = (offsets + 63) / 64;
+    std::vector<std::uint64_t> mask(words * width);
+    std::vector<long long> steps(offsets);
+    for (std::size_t oi = 0; oi < offsets; ++oi) {
+        const int* d = st.offsets[oi].d;
+        steps[oi] = d[0] + nx * (d[1] + ny * d[2]);
+    }
     for (long long k = k0; k < k1; ++k)
         for (long long j = 0; j < ny; ++j) {
             const long long row = nx * (j + ny * k);
-            for (const Stencil::Offset& o : st.offsets) {
+            std::fill(mask.begin(), mask.end(), std::uint64_t(0));
+            long long from = nx, to = 0; // the voxels of the row that may have a hit
+            for (std::size_t oi = 0; oi < offsets; ++oi) {
+                const Stencil::Offset& o = st.offsets[oi];
                 const long long J = j + o.d[1], K = k + o.d[2];
-                if (J < 0 || K < 0 || J >= ny || K >= nz) continue;
-                const long long step = o.d[0] + nx * (o.d[1] + ny * o.d[2]);
                 const long long lo = std::max<long long>(first, -o.d[0]);
                 const long long hi = std::min<long long>(first + own, nx - o.d[0]);
-                if (hi <= lo) continue;
-                // first which voxels of the run have another grain there (a loop without branches: nearly
-                // none do), then those alone
-                const std::int64_t* A = L + row + lo;
-                const std::int64_t* B = A + step;
-                const long long n = hi - lo;
-                for (long long t = 0; t < n; ++t)
-                    hit[std::size_t(t)] = char((A[t] != 0) & (B[t] != 0) & (A[t] != B[t]));
-                for (long long t = 0; t < n; ++t) {
-                    if (!hit[std::size_t(t)]) continue;
-                    const long long i = lo + t, q = row + i;
-                    const std::int64_t here = L[q], there = L[q + step];
-                    if (E != nullptr && (!E[q] || !E[q + step])) continue;
-                    const Half mid{2 * (x0 + i) + o.d[0], 2 * j + o.d[1], 2 * k + o.d[2]};
-                    if (here < there)
-                        f(here, there, mid, o.d, 1, o.gap2);
+                if (J < 0 || K < 0 || J >= ny || K >= nz || hi <= lo) continue;
+                const std::int64_t* A = L + row;
+                const std::int64_t* B = A + steps[oi];
+                // straight into the masks (a voxel's word of them: the stencil of a gap under 2 voxels has 62
+                // offsets, one word; larger ones several), 64-bit lanes throughout: the loops vectorise
+                std::uint64_t* M = mask.data() + oi / 64;
+                const unsigned bit = unsigned(oi % 64);
+                if (E != nullptr) { // an edge voxel is never background: both on edges and the labels apart
+                    const char* EA = E + row;
+                    const char* EB = EA + steps[oi];
+                    if (words == 1)
+                        for (long long i = lo; i < hi; ++i)
+                            M[i] |= std::uint64_t(EA[i] & EB[i] & (A[i] != B[i])) << bit;
                     else
-                        f(there, here, mid, o.d, -1, o.gap2);
+                        for (long long i = lo; i < hi; ++i)
+                            M[std::size_t(i) * words] |= std::uint64_t(EA[i] & EB[i] & (A[i] != B[i])) << bit;
+                } else {
+                    for (long long i = lo; i < hi; ++i) // shared faces: three offsets, one word
+                        M[i] |= std::uint64_t((A[i] != 0) & (B[i] != 0) & (A[i] != B[i])) << bit;
                 }
+                from = std::min(from, lo);
+                to = std::max(to, hi);
+            }
+            for (long long i = from; i < to; ++i) {
+                const long long q = row + i;
+                const std::int64_t here = L[q];
+                for (std::size_t w = 0; w < words; ++w)
+                    for (std::uint64_t m = mask[std::size_t(i) * words + w]; m != 0; m &= m - 1) {
+                        const std::size_t oi = 64 * w + std::size_t(__builtin_ctzll(m));
+                        const Stencil::Offset& o = st.offsets[oi];
+                        const std::int64_t there = L[q + steps[oi]];
+                        const Half mid{2 * (x0 + i) + o.d[0], 2 * j + o.d[1], 2 * k + o.d[2]};
+                        if (here < there)
+                            f(here, there, mid, o.d, 1, o.gap2);
+                        else
+                            f(there, here, mid, o.d, -1, o.gap2);
+                    }
             }
         }
 }
