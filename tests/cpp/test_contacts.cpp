@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <random>
 #include <string>
 
@@ -303,4 +304,59 @@ TEST(ClumpGaps, BadOffsetsAndIndicesAreNamed) {
     fails({0, 1, 2}, {0}, {2}, "clump 2 of 2");
     fails({0, 1, 2}, {-1}, {1}, "clump -1 of 2");
     fails({0, 1, 2}, {0, 1}, {1}, "2 first clumps but 1 second ones");
+}
+
+TEST(Contacts, EveryVoxelPairCountedAsThePlainLoopCountsIt) {
+    // the oracle: every pair of boundary voxels of two grains, looked at one by one; the search's voxel pairs
+    // (faces) and least gaps must be its own, for stencils of one word of offsets and of several (gap 3.5)
+    LabelGrid g;
+    g.spec.dims = {12, 9, 10};
+    g.spec.h = 1.0;
+    unsigned seed = 5;
+    for (std::size_t q = 0; q < g.spec.size(); ++q) {
+        seed = seed * 1103515245u + 12345u;
+        const unsigned r = (seed >> 16) % 9;
+        g.labels.push_back(r < 3 ? 0 : std::int64_t(r % 4 + 1));
+    }
+    const int nx = g.spec.dims[0], ny = g.spec.dims[1], nz = g.spec.dims[2];
+    const auto at = [&](int i, int j, int k) -> std::int64_t {
+        if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return 0;
+        return g.labels[g.spec.index(i, j, k)];
+    };
+    const auto edge = [&](int i, int j, int k) {
+        const std::int64_t l = at(i, j, k);
+        return l != 0 && (at(i - 1, j, k) != l || at(i + 1, j, k) != l || at(i, j - 1, k) != l ||
+                          at(i, j + 1, k) != l || at(i, j, k - 1) != l || at(i, j, k + 1) != l);
+    };
+    for (double gap : {1.0, 2.0, 3.5}) {
+        std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::size_t, std::int64_t>> want;
+        const int reach = int(std::floor(gap)) + 1;
+        for (int k = 0; k < nz; ++k)
+            for (int j = 0; j < ny; ++j)
+                for (int i = 0; i < nx; ++i)
+                    for (int z = -reach; z <= reach; ++z)
+                        for (int y = -reach; y <= reach; ++y)
+                            for (int x = -reach; x <= reach; ++x) {
+                                if (!(z > 0 || (z == 0 && (y > 0 || (y == 0 && x > 0))))) continue;
+                                std::int64_t g2 = 0;
+                                for (int v : {x, y, z})
+                                    g2 += std::int64_t(std::max(std::abs(v) - 1, 0)) *
+                                          std::max(std::abs(v) - 1, 0);
+                                if (double(g2) > gap * gap * (1 + 1e-12)) continue;
+                                const std::int64_t a = at(i, j, k), b = at(i + x, j + y, k + z);
+                                if (a == 0 || b == 0 || a == b || !edge(i, j, k) ||
+                                    !edge(i + x, j + y, k + z))
+                                    continue;
+                                auto& w = want[{std::min(a, b), std::max(a, b)}];
+                                if (w.first == 0 || g2 < w.second) w.second = g2;
+                                ++w.first;
+                            }
+        const std::vector<LabelContact> got = findContacts(g, gap);
+        ASSERT_EQ(got.size(), want.size()) << "gap " << gap;
+        for (const LabelContact& c : got) {
+            const auto& w = want.at({c.a, c.b});
+            EXPECT_EQ(c.faces, w.first) << c.a << "-" << c.b << ", gap " << gap;
+            EXPECT_EQ(c.gap, std::sqrt(double(w.second))) << c.a << "-" << c.b << ", gap " << gap;
+        }
+    }
 }
