@@ -12,7 +12,6 @@ At the end: ``assembly.txt`` (every sphere, ``x y z r clumpId``, with each clump
 
 import contextlib
 import hashlib
-import io
 import json
 import os
 import stat
@@ -504,6 +503,11 @@ class PackedClumps(Mapping):
         out._rows, out._at = len(out._spheres), {k: x for x, k in enumerate(keys)}
         return out
 
+    def masses(self):
+        """The mass properties of the clumps, a row each in their order (:data:`MASS` numbers: volume, centroid,
+        inertia row by row)."""
+        return self._mass[np.fromiter(self._at.values(), dtype=np.int64, count=len(self._at))]
+
     def packed(self):
         """(spheres, offsets): :func:`yade_mss.specimens._report.packed`'s, without a copy (in key order after
         :meth:`ordered`)."""
@@ -673,9 +677,7 @@ def _store(outdir, key, row, result, optionsKey, digest=None, write=None):
         put('png', png)
         del result.png
     if result is not None:
-        f = io.BytesIO()
-        result._npz(f)
-        put('npz', f.getvalue())
+        put('npz', result._npzBytes())
         put('csv', result._sphereFile('.csv'))
     write(os.path.join(g, key + '.json'), json.dumps({
         'options': optionsKey, 'input': digest, 'files': sums, 'row': row,

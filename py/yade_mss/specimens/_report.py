@@ -350,14 +350,15 @@ def writeOutputs(outdir, b, density, young):
             f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
                     '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
                     'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
-            for k, r in b.clumps.items():
-                cid, m = int(ids[k]), r.targetMass
-                I = m.inertia
+            spheres, offsets = b.packed()
+            # volume, centroid, then the inertia's xx yy zz xy xz yz, of each clump's row of masses()
+            heads = _masses(b.clumps)[:, [0, 1, 2, 3, 4, 8, 12, 5, 6, 9]].tolist()
+            for x, (k, head) in enumerate(zip(b.clumps, heads)):
+                cid, lo, hi = int(ids[k]), int(offsets[x]), int(offsets[x + 1])
+                # '%r' is repr: a float's shortest text that reads back the same
                 f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
-                        % ((cid, m.volume) + tuple(float(x) for x in m.centroid)
-                           + (I[0, 0], I[1, 1], I[2, 2], I[0, 1], I[0, 2], I[1, 2])))
-                end = ' %d\n' % cid
-                f.writelines(' '.join(map(repr, s)) + end for s in np.column_stack([r.centers, r.radii]).tolist())
+                        % ((cid,) + tuple(head)))
+                f.write(('%%r %%r %%r %%r %d\n' % cid) * (hi - lo) % tuple(spheres[lo:hi].ravel().tolist()))
     _atomic(os.path.join(outdir, 'assembly.txt'), assembly)
     _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
     if getattr(b, 'scanContacts', None) is not None:
@@ -366,13 +367,25 @@ def writeOutputs(outdir, b, density, young):
                 w = csv.writer(f)
                 w.writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
                 c = b.scanContacts
-                for x in range(0, len(c), CHUNK):  # a chunk's lists at a time: 10^6 contacts as lists are 300 MB
+                for x in range(0, len(c), CHUNK):  # a chunk at a time: 10^6 contacts as lists are 300 MB
                     part = slice(x, x + CHUNK)
-                    w.writerows([a, b_, faces, repr(g)] + [repr(v) for v in p + q] for a, b_, faces, g, p, q in zip(
-                        c.a[part].tolist(), c.b[part].tolist(), c.faces[part].tolist(), c.gaps[part].tolist(),
-                        c.points[part].tolist(), c.normals[part].tolist()))
+                    rows = np.empty((len(c.a[part]), 10), dtype=object)  # the csv module's text, formatted at once
+                    for col, v in enumerate((c.a[part], c.b[part], c.faces[part], c.gaps[part])):
+                        rows[:, col] = v.tolist()
+                    rows[:, 4:7], rows[:, 7:] = c.points[part].tolist(), c.normals[part].tolist()
+                    f.write(('%d,%d,%d,%r,%r,%r,%r,%r,%r,%r\r\n' * len(rows)) % tuple(rows.ravel().tolist()))
         _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
     _report(outdir, b, density, young)
+
+
+def _masses(clumps):
+    """Each clump's mass properties at unit density, a row each in the clumps' order: volume, centroid (3),
+    inertia (9, row by row); packed clumps give their own array."""
+    if hasattr(clumps, 'masses'):
+        return clumps.masses()
+    rows = [[m.volume] + m.centroid.tolist() + m.inertia.ravel().tolist()
+            for m in (c.targetMass for c in clumps.values())]
+    return np.array(rows, dtype=float).reshape(-1, 13)
 
 
 def writeVtk(path, b, ids):

@@ -52,7 +52,10 @@ class Packed(unittest.TestCase):
         whole, whereEach = packed({k: results[k] for k in p})
         np.testing.assert_array_equal(spheres, whole)
         np.testing.assert_array_equal(offsets, whereEach)
-        for k in p:
+        masses = p.masses()
+        for x, k in enumerate(p):
+            m = results[k].targetMass
+            np.testing.assert_array_equal(masses[x], np.concatenate([[m.volume], m.centroid, m.inertia.ravel()]))
             np.testing.assert_array_equal(p[k].centers, results[k].centers)
             np.testing.assert_array_equal(p[k].radii, results[k].radii)
             np.testing.assert_array_equal(p[k].targetMass.inertia, results[k].targetMass.inertia)
