@@ -217,7 +217,9 @@ class MssResult(object):
 
     def _sphereFile(self, ext):
         """The bytes :meth:`save` writes to a sphere file of extension *ext* (.csv, .txt, .vtk)."""
-        return _mss.formatSpheres(self.centers.ravel().tolist(), self.radii.tolist(), 'spheres' + ext)
+        # the arrays themselves (the core reads their buffers): lists of their numbers cost a grain 50 us
+        return _mss.formatSpheres(np.ascontiguousarray(self.centers, dtype=np.float64).ravel(),
+                                  np.ascontiguousarray(self.radii, dtype=np.float64), 'spheres' + ext)
 
     def _npz(self, file, compress=False):
         """Writes the .npz that :meth:`load` reads to *file* (a path or a binary file object)."""

@@ -165,8 +165,8 @@ class _LocalPool(object):
             self.workers.append([proc, mine, []])  # process, pipe, the grains it has (oldest first)
 
     def run(self, tasks):
+        import select
         from collections import deque
-        from multiprocessing.connection import wait
         known = self.tasks is not None
         if known and tasks is not self.tasks:
             raise ValueError('_LocalPool.run: its workers were forked with another list of tasks')
@@ -174,6 +174,13 @@ class _LocalPool(object):
         todo = deque(range(len(tasks))) if known else deque(tasks)
         task = tasks.__getitem__ if known else (lambda t: t)
         live = list(self.workers)
+        # one poll set for the run, each worker's pipe and death (its sentinel) in it: multiprocessing's wait()
+        # made and filled a selector a grain
+        poller, owner = select.poll(), {}
+        for x, w in enumerate(live):
+            for fd in (w[1].fileno(), w[0].sentinel):
+                poller.register(fd, select.POLLIN)
+                owner[fd] = x
 
         def give(w):
             while todo and len(w[2]) < self.AHEAD:
@@ -181,25 +188,29 @@ class _LocalPool(object):
                 try:
                     w[1].send(w[2][-1])
                 except (OSError, ValueError):
-                    return  # dead already: wait() sees its sentinel
+                    return  # dead already: its sentinel says so
         for w in live:
             give(w)
         while any(w[2] for w in live):
-            ready = wait([w[1] for w in live if w[2]] + [w[0].sentinel for w in live if w[2]])
-            for w in list(live):
-                if not w[2] or not (w[1] in ready or w[0].sentinel in ready):
+            events = poller.poll()
+            piped = {owner[fd] for fd, _ in events if fd == self.workers[owner[fd]][1].fileno()}
+            for x in sorted({owner[fd] for fd, _ in events}):
+                w = self.workers[x]
+                if w not in live:
                     continue
                 try:
                     result = w[1].recv() if w[1].poll() else None
                 except (EOFError, OSError):
                     result = None
-                if result is None and w[0].is_alive() and w[1] not in ready:
+                if result is None and w[0].is_alive() and x not in piped:
                     continue
                 if result is None:  # killed (or out of memory) before its grains were done
                     live.remove(w)
+                    for fd in (w[1].fileno(), w[0].sentinel):
+                        poller.unregister(fd)
                     lost, w[2] = w[2], []
-                    for x in lost:
-                        yield self.failed(task(x), WORKER_DIED[0] + ' (killed, or out of memory) before this '
+                    for t in lost:
+                        yield self.failed(task(t), WORKER_DIED[0] + ' (killed, or out of memory) before this '
                                           'grain was done; run the batch again to retry it')
                     if not live:  # nobody left: the rest fail too, the batch ends
                         while todo:
