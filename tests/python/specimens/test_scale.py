@@ -15,7 +15,7 @@ import numpy as np
 from yade_mss import batch, generate, packedSpecimen
 from yade_mss.grains import ContactIndex, ScanContacts, contactsByLabel, findContacts, scanContacts
 from yade_mss.specimens import _manifest
-from yade_mss.specimens._batch import PackedClumps, _Files, _order
+from yade_mss.specimens._batch import PackedClumps, _Files, _InOrder, _order
 from yade_mss.specimens._report import _gap, _gaps, packed
 
 
@@ -85,6 +85,31 @@ class Packed(unittest.TestCase):
                 np.testing.assert_array_equal(stored.results[k].radii, held.results[k].radii)
                 self.assertEqual(stored.results[k].metrics['dice'], held.results[k].metrics['dice'])
             self.assertEqual(stored.contacts, held.contacts)  # the same passes over packed spheres
+
+
+class InOrder(unittest.TestCase):
+    def test_results_are_handed_on_in_the_tasks_order_whatever_order_they_come_in(self):
+        # workers finish a few grains out of order: held until those before them are in (packed in key order,
+        # no copy of every sphere at the end); a grain without a result (failed) lets the next ones go on
+        keys = ['label_%d' % i for i in range(1, 41)]
+        rng = np.random.default_rng(3)
+        came = [keys[i] for i in np.argsort(np.arange(40) + rng.uniform(0, 4, 40))]  # each a few places off
+        self.assertNotEqual(came, keys)
+        kept = []
+        o = _InOrder(keys, lambda k, r: kept.append((k, r)))
+        for k in came:
+            o.add(k, None if k == 'label_7' else k.upper())
+        o.flush()
+        self.assertEqual(kept, [(k, k.upper()) for k in keys if k != 'label_7'])
+        # past HELD held (Dask's own order) they go on as they come, none lost
+        kept = []
+        o = _InOrder(keys, lambda k, r: kept.append(k))
+        o.HELD = 5
+        for k in reversed(keys):
+            o.add(k, k)
+        o.flush()
+        self.assertEqual(sorted(kept), sorted(keys))
+        self.assertEqual(kept[:6], list(reversed(keys))[:6])
 
 
 class Manifest(unittest.TestCase):
