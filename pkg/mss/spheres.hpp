@@ -34,12 +34,13 @@ void validateSpheres(const SphereSet& s, const std::string& where);
 
 /// The least gap between the spheres of clumps i[n] and j[n], for every n: the least |c_p - c_q| - r_p - r_q
 /// over a sphere p of the one and q of the other (negative: they overlap by that much; +inf where a clump has
-/// no sphere). The clumps are packed: clump k's spheres are @p spheres' offsets[k] .. offsets[k + 1] - 1. A
-/// batch's kept contacts and its assembly's pairs (10^5 pairs of clumps of 20 spheres: numpy's batched
-/// products took a second); OpenMP over the pairs.
-/// @throws std::invalid_argument for offsets that do not run from 0 to the spheres' count in order, or a
-/// clump index out of range, or @p i and @p j of different lengths.
-std::vector<double> clumpGaps(const SphereSet& spheres, const std::vector<std::int64_t>& offsets,
-                              const std::vector<std::int64_t>& i, const std::vector<std::int64_t>& j);
+/// no sphere). The clumps are packed: @p rows holds @p spheres rows x y z r, clump k's are rows offsets[k] ..
+/// offsets[k + 1] - 1 (a view: a batch's 10^6 spheres are not copied). A batch's kept contacts and its
+/// assembly's pairs (numpy's batched products of padded pairs took ten times as long); OpenMP over the pairs.
+/// @throws std::invalid_argument for offsets that do not run from 0 to @p spheres in order, or a clump index
+/// out of range, or @p i and @p j of different lengths.
+std::vector<double> clumpGaps(const double* rows, std::size_t spheres,
+                              const std::vector<std::int64_t>& offsets, const std::vector<std::int64_t>& i,
+                              const std::vector<std::int64_t>& j);
 
 } // namespace mss

@@ -247,6 +247,16 @@ TEST(Contacts, ThreadsGiveTheOneThreadsAnswer) {
 }
 #endif
 
+namespace {
+/// @p s as packed rows x y z r, as clumpGaps reads them.
+std::vector<double> rowsOf(const SphereSet& s) {
+    std::vector<double> rows;
+    for (std::size_t k = 0; k < s.size(); ++k)
+        rows.insert(rows.end(), {s.centers[k].x(), s.centers[k].y(), s.centers[k].z(), s.radii[k]});
+    return rows;
+}
+} // namespace
+
 TEST(ClumpGaps, EachPairsLeastGapAgainstEverySpherePair) {
     // random packed clumps of 1..12 spheres; every pair's gap against the plain double loop, on 1 and 2
     // threads; overlaps come out negative, an empty clump +inf
@@ -267,7 +277,7 @@ TEST(ClumpGaps, EachPairsLeastGapAgainstEverySpherePair) {
     const int before = omp_get_max_threads();
     for (int threads : {1, 2}) {
         omp_set_num_threads(threads);
-        const std::vector<double> got = clumpGaps(s, offsets, i, j);
+        const std::vector<double> got = clumpGaps(rowsOf(s).data(), s.size(), offsets, i, j);
         ASSERT_EQ(got.size(), i.size());
         for (std::size_t x = 0; x < i.size(); ++x) {
             double want = std::numeric_limits<double>::infinity();
@@ -281,18 +291,18 @@ TEST(ClumpGaps, EachPairsLeastGapAgainstEverySpherePair) {
     }
     omp_set_num_threads(before);
     EXPECT_GT(overlapping, 10); // the test sees overlaps and gaps both
-    EXPECT_TRUE(std::isinf(clumpGaps(s, offsets, {7}, {8})[0]));
+    EXPECT_TRUE(std::isinf(clumpGaps(rowsOf(s).data(), s.size(), offsets, {7}, {8})[0]));
 }
 
 TEST(ClumpGaps, BadOffsetsAndIndicesAreNamed) {
     SphereSet s;
     s.add(Vec3(0, 0, 0), 1);
     s.add(Vec3(3, 0, 0), 1);
-    EXPECT_EQ(clumpGaps(s, {0, 1, 2}, {0}, {1})[0], 1.0);
+    EXPECT_EQ(clumpGaps(rowsOf(s).data(), s.size(), {0, 1, 2}, {0}, {1})[0], 1.0);
     const auto fails = [&](const std::vector<std::int64_t>& o, const std::vector<std::int64_t>& i,
                            const std::vector<std::int64_t>& j, const std::string& says) {
         try {
-            clumpGaps(s, o, i, j);
+            clumpGaps(rowsOf(s).data(), s.size(), o, i, j);
             ADD_FAILURE() << "no error for " << says;
         } catch (const std::invalid_argument& e) {
             EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();

@@ -40,15 +40,13 @@ void validateSpheres(const SphereSet& s, const std::string& where) {
     }
 }
 
-std::vector<double> clumpGaps(const SphereSet& spheres, const std::vector<std::int64_t>& offsets,
-                              const std::vector<std::int64_t>& i, const std::vector<std::int64_t>& j) {
-    if (spheres.centers.size() != spheres.radii.size())
-        throw std::invalid_argument("clumpGaps: " + std::to_string(spheres.centers.size()) + " centres but " +
-                                    std::to_string(spheres.radii.size()) + " radii");
-    if (offsets.empty() || offsets.front() != 0 || offsets.back() != std::int64_t(spheres.size()) ||
+std::vector<double> clumpGaps(const double* rows, std::size_t spheres,
+                              const std::vector<std::int64_t>& offsets, const std::vector<std::int64_t>& i,
+                              const std::vector<std::int64_t>& j) {
+    if (offsets.empty() || offsets.front() != 0 || offsets.back() != std::int64_t(spheres) ||
         !std::is_sorted(offsets.begin(), offsets.end()))
         throw std::invalid_argument("clumpGaps: the offsets must run from 0 to the number of spheres (" +
-                                    std::to_string(spheres.size()) + "), in order");
+                                    std::to_string(spheres) + "), in order");
     if (i.size() != j.size())
         throw std::invalid_argument("clumpGaps: " + std::to_string(i.size()) + " first clumps but " +
                                     std::to_string(j.size()) + " second ones");
@@ -62,19 +60,20 @@ std::vector<double> clumpGaps(const SphereSet& spheres, const std::vector<std::i
     const long long n = static_cast<long long>(i.size());
 #pragma omp parallel for schedule(static)
     for (long long x = 0; x < n; ++x) {
-        const std::size_t a0 = std::size_t(offsets[std::size_t(i[std::size_t(x)])]);
-        const std::size_t a1 = std::size_t(offsets[std::size_t(i[std::size_t(x)]) + 1]);
-        const std::size_t b0 = std::size_t(offsets[std::size_t(j[std::size_t(x)])]);
-        const std::size_t b1 = std::size_t(offsets[std::size_t(j[std::size_t(x)]) + 1]);
+        const std::size_t a = std::size_t(i[std::size_t(x)]), b = std::size_t(j[std::size_t(x)]);
         double best = std::numeric_limits<double>::infinity();
-        for (std::size_t p = a0; p < a1; ++p)
-            for (std::size_t q = b0; q < b1; ++q) {
+        for (std::size_t p = std::size_t(offsets[a]); p < std::size_t(offsets[a + 1]); ++p) {
+            const double* P = rows + 4 * p;
+            for (std::size_t q = std::size_t(offsets[b]); q < std::size_t(offsets[b + 1]); ++q) {
+                const double* Q = rows + 4 * q;
                 // the square root only where this pair could beat the best: most cannot
-                const double reach = best + spheres.radii[p] + spheres.radii[q];
-                const double d2 = (spheres.centers[p] - spheres.centers[q]).squaredNorm();
+                const double reach = best + P[3] + Q[3];
+                const double dx = P[0] - Q[0], dy = P[1] - Q[1], dz = P[2] - Q[2];
+                const double d2 = dx * dx + dy * dy + dz * dz;
                 if (reach <= 0 || d2 >= reach * reach) continue; // it cannot go under best
-                best = std::min(best, std::sqrt(d2) - spheres.radii[p] - spheres.radii[q]);
+                best = std::min(best, std::sqrt(d2) - P[3] - Q[3]);
             }
+        }
         out[std::size_t(x)] = best;
     }
     return out;
