@@ -75,6 +75,31 @@ class Packed(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, 'clumpGaps: clump %d of %d' % (len(keys), len(keys))):
             _gaps(spheres, offsets, [0], [len(keys)])
 
+    def test_the_assemblys_pairs_slab_by_slab_are_every_near_pair_once(self):
+        # the candidates are found a slab of clumps at a time along x (all at once, 10^5 clumps' were 200 MB):
+        # with slabs of 7 clumps, the same pairs as with one slab, each once, and every pair of clumps within
+        # the tolerance among them (against the plain pairwise gap)
+        from yade_mss.specimens import _report
+        L = packedSpecimen((40, 40, 40), grains=30, size=(4, 7), seed=8)
+        b = batch(L, None, workers=1, nSpheres=5, progress=False)
+        spheres, offsets = packed(b.results)
+        keys = list(b.results)
+        old = _report.SLAB_CLUMPS
+        try:
+            found = {}
+            for slab in (1 << 13, 7):
+                _report.SLAB_CLUMPS = slab
+                pairs, gaps = _report._assemblyPairs(spheres, offsets, 1.0)
+                found[slab] = dict(zip(map(tuple, pairs.tolist()), gaps.tolist()))
+                self.assertEqual(len(found[slab]), len(pairs))  # each once
+        finally:
+            _report.SLAB_CLUMPS = old
+        self.assertEqual(found[7], found[1 << 13])
+        within = {(x, y) for x in range(len(keys)) for y in range(x + 1, len(keys))
+                  if _gap(b.results[keys[x]], b.results[keys[y]]) <= 1.0}
+        self.assertGreater(len(within), 20)
+        self.assertTrue(within <= set(found[7]))
+
     def test_a_batch_with_a_folder_gives_its_results_from_their_files(self):
         L = packedSpecimen((30, 30, 30), grains=8, size=(4, 6), seed=4)
         with tempfile.TemporaryDirectory() as d:
@@ -85,6 +110,8 @@ class Packed(unittest.TestCase):
                 np.testing.assert_array_equal(stored.results[k].radii, held.results[k].radii)
                 self.assertEqual(stored.results[k].metrics['dice'], held.results[k].metrics['dice'])
             self.assertEqual(stored.contacts, held.contacts)  # the same passes over packed spheres
+            rows = list(stored.rows.values())  # rows from workers share the batch's key strings (2 kB a grain)
+            self.assertTrue(all(a is b for a, b in zip(rows[0], rows[-1])))
 
 
 class InOrder(unittest.TestCase):
