@@ -682,9 +682,9 @@ def _store(outdir, key, row, result, optionsKey, digest=None, write=None):
     # the row's text once: its digest is contentDigest's (a row is flat: one piece, the whole text's) and the
     # record holds the same text (two encodings of it were a tenth of the batch's own time a grain)
     text = json.dumps(row, sort_keys=True, default=str)
-    write(os.path.join(g, key + '.json'), ('{"options": %s, "input": %s, "files": %s, "row": %s, "rowSum": "%s"}' % (
-        json.dumps(optionsKey), json.dumps(digest), json.dumps(sums), text,
-        hashlib.sha256(text.encode()).hexdigest())).encode())
+    record = '{"options": %s, "input": %s, "files": %s, "row": %s, "rowSum": "%s"}' % (
+        json.dumps(optionsKey), json.dumps(digest), json.dumps(sums), text, hashlib.sha256(text.encode()).hexdigest())
+    write(os.path.join(g, key + '.json'), record.encode())
 
 
 def _shared(row):

@@ -382,7 +382,8 @@ def writeOutputs(outdir, b, density, young):
                 c = b.scanContacts
                 for x in range(0, len(c), CHUNK):  # a chunk at a time: 10^6 contacts as lists are 300 MB
                     part = slice(x, x + CHUNK)
-                    rows = np.empty((len(c.a[part]), 10), dtype=object)  # the csv module's text, formatted at once
+                    # the csv module's text, a chunk formatted at once
+                    rows = np.empty((len(c.a[part]), 10), dtype=object)
                     for col, v in enumerate((c.a[part], c.b[part], c.faces[part], c.gaps[part])):
                         rows[:, col] = v.tolist()
                     rows[:, 4:7], rows[:, 7:] = c.points[part].tolist(), c.normals[part].tolist()
