@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -36,6 +37,22 @@ LabelGrid twoBoxes(int nx, int ny, int nz, int split, int line = 0) {
             for (int i = 2; i < nx + 2; ++i)
                 g.labels[g.spec.index(i, j, k)] = i < split ? 1 : (i < split + line ? 0 : 2);
     g.labels[g.spec.index(nx + 6, 1, 1)] = 7; // touches nobody
+    return g;
+}
+
+/// A grid of random labels: a draw r in 0 .. kinds - 1 a voxel (a linear congruential sequence from @p seed),
+/// background where r < empty, else @p label(r).
+template <class L>
+LabelGrid randomLabels(std::array<int, 3> dims, double h, unsigned seed, unsigned kinds, unsigned empty,
+                       L label) {
+    LabelGrid g;
+    g.spec.dims = dims;
+    g.spec.h = h;
+    for (std::size_t q = 0; q < g.spec.size(); ++q) {
+        seed = seed * 1103515245u + 12345u;
+        const unsigned r = (seed >> 16) % kinds;
+        g.labels.push_back(r < empty ? 0 : label(r));
+    }
     return g;
 }
 
@@ -224,15 +241,7 @@ TEST(Contacts, GrainsAcrossALineReachItsMiddleAndTouch) {
 TEST(Contacts, ThreadsGiveTheOneThreadsAnswer) {
     // the slab's planes are shared among threads, each with its own table, merged: the same contacts (and the
     // same point of each, whatever voxel pair each thread saw first) on 1, 2, 3 and 7 threads
-    LabelGrid g;
-    g.spec.dims = {13, 11, 23};
-    g.spec.h = 0.5;
-    unsigned seed = 11;
-    for (std::size_t q = 0; q < g.spec.size(); ++q) {
-        seed = seed * 1103515245u + 12345u;
-        const unsigned r = (seed >> 16) % 7;
-        g.labels.push_back(r < 2 ? 0 : std::int64_t(r));
-    }
+    const LabelGrid g = randomLabels({13, 11, 23}, 0.5, 11, 7, 2, [](unsigned r) { return std::int64_t(r); });
     const int before = omp_get_max_threads();
     for (double gap : {0.0, 1.0, 2.0}) {
         omp_set_num_threads(1);
@@ -319,15 +328,8 @@ TEST(ClumpGaps, BadOffsetsAndIndicesAreNamed) {
 TEST(Contacts, EveryVoxelPairCountedAsThePlainLoopCountsIt) {
     // the oracle: every pair of boundary voxels of two grains, looked at one by one; the search's voxel pairs
     // (faces) and least gaps must be its own, for stencils of one word of offsets and of several (gap 3.5)
-    LabelGrid g;
-    g.spec.dims = {12, 9, 10};
-    g.spec.h = 1.0;
-    unsigned seed = 5;
-    for (std::size_t q = 0; q < g.spec.size(); ++q) {
-        seed = seed * 1103515245u + 12345u;
-        const unsigned r = (seed >> 16) % 9;
-        g.labels.push_back(r < 3 ? 0 : std::int64_t(r % 4 + 1));
-    }
+    const LabelGrid g =
+        randomLabels({12, 9, 10}, 1.0, 5, 9, 3, [](unsigned r) { return std::int64_t(r % 4 + 1); });
     const int nx = g.spec.dims[0], ny = g.spec.dims[1], nz = g.spec.dims[2];
     const auto at = [&](int i, int j, int k) -> std::int64_t {
         if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return 0;
