@@ -74,6 +74,17 @@ class Packed(unittest.TestCase):
         self.assertTrue((got < 0).any() and (got > 1).any())  # overlapping clumps and clumps far apart
         with self.assertRaisesRegex(ValueError, 'clumpGaps: clump %d of %d' % (len(keys), len(keys))):
             _gaps(spheres, offsets, [0], [len(keys)])
+        from yade_mss import _mss
+        raw = np.asarray(offsets, dtype=np.int64).tobytes()
+        pair = np.zeros(1, dtype=np.int64).tobytes()
+        for bad, says in ((spheres.astype(np.float32), 'rows x y z r of float64'),
+                          (np.zeros((1, 3)), 'rows x y z r of float64'),
+                          (spheres[:, :3], 'a C-contiguous array of float64'),
+                          (spheres.tolist(), 'a C-contiguous array of float64')):
+            with self.assertRaisesRegex(ValueError, 'clumpGaps: the spheres must be ' + says):
+                _mss.clumpGaps(bad, raw, pair, pair)
+        with self.assertRaisesRegex(ValueError, 'clumpGaps: the offsets must be the bytes of an array of 8-byte'):
+            _mss.clumpGaps(spheres, raw[:-3], pair, pair)
 
     def test_the_assemblys_pairs_slab_by_slab_are_every_near_pair_once(self):
         # the candidates are found a slab of clumps at a time along x (all at once, 10^5 clumps' were 200 MB):
