@@ -217,7 +217,7 @@ class MssResult(object):
 
     def _sphereFile(self, ext):
         """The bytes :meth:`save` writes to a sphere file of extension *ext* (.csv, .txt, .vtk)."""
-        # the arrays themselves (the core reads their buffers): lists of their numbers cost a grain 50 us
+        # the arrays themselves (the core reads their buffers), not lists of their numbers made and read back
         return _mss.formatSpheres(np.ascontiguousarray(self.centers, dtype=np.float64).ravel(),
                                   np.ascontiguousarray(self.radii, dtype=np.float64), 'spheres' + ext)
 
@@ -289,6 +289,8 @@ def storedNpz(arrays):
     at = 0
     for name, a in arrays.items():
         a = np.asarray(a)
+        if a.dtype.hasobject:  # its bytes would be pointers: np.save pickles these, a result has none
+            raise ValueError('storedNpz: %s holds Python objects (%s): only numbers and text' % (name, a.dtype))
         header = repr({'descr': np.lib.format.dtype_to_descr(a.dtype), 'fortran_order': False,
                        'shape': a.shape}).encode('latin1')
         pad = -(10 + len(header) + 1) % 64  # the data starts on 64 bytes, as numpy aligns it

@@ -698,9 +698,9 @@ def _shared(row):
 
 class _InOrder(object):
     """Hands the grains' results on (*keep*(key, result)) in the order their tasks were handed out, holding
-    those that come early: local workers finish a few grains out of order, and packed as they came, 10^5
-    grains' spheres were copied once more at the end to be put in key order (70 MB on top of the batch's
-    peak). Past HELD held (Dask's order is its own), the rest are handed on as they come."""
+    those that come early: local workers finish a few grains out of order, and packed as they came, every
+    sphere was copied once more at the end to be put in key order (10^5 grains' spheres are 70 MB). Past HELD
+    held (Dask's order is its own), the rest are handed on as they come."""
 
     HELD = 256
 

@@ -147,8 +147,8 @@ class _LocalPool(object):
     (GNU OpenMP hangs in a forked child that asks for the parent's thread pool).
 
     Each worker has AHEAD grains in flight: the next is in its pipe while the batch stores the last one's
-    result, so that a worker never waits for the batch (with one in flight the two workers of a 2-core machine
-    idled about a fifth of the time)."""
+    result, so that a worker never waits for the batch (with one in flight, two workers on 2 cores took 35 s
+    over 10^4 grains of a scan, 24.5 s with two)."""
 
     AHEAD = 2
 

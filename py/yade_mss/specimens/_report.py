@@ -365,7 +365,7 @@ def writeOutputs(outdir, b, density, young):
                     'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
             spheres, offsets = b.packed()
             # volume, centroid, then the inertia's xx yy zz xy xz yz, of each clump's row of masses()
-            heads = _masses(b.clumps)[:, [0, 1, 2, 3, 4, 8, 12, 5, 6, 9]].tolist()
+            heads = b.clumps.masses()[:, [0, 1, 2, 3, 4, 8, 12, 5, 6, 9]].tolist()  # packed: an output folder
             for x, (k, head) in enumerate(zip(b.clumps, heads)):
                 cid, lo, hi = int(ids[k]), int(offsets[x]), int(offsets[x + 1])
                 # '%r' is repr: a float's shortest text that reads back the same
@@ -390,16 +390,6 @@ def writeOutputs(outdir, b, density, young):
                     f.write(('%d,%d,%d,%r,%r,%r,%r,%r,%r,%r\r\n' * len(rows)) % tuple(rows.ravel().tolist()))
         _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
     _report(outdir, b, density, young)
-
-
-def _masses(clumps):
-    """Each clump's mass properties at unit density, a row each in the clumps' order: volume, centroid (3),
-    inertia (9, row by row); packed clumps give their own array."""
-    if hasattr(clumps, 'masses'):
-        return clumps.masses()
-    rows = [[m.volume] + m.centroid.tolist() + m.inertia.ravel().tolist()
-            for m in (c.targetMass for c in clumps.values())]
-    return np.array(rows, dtype=float).reshape(-1, 13)
 
 
 def writeVtk(path, b, ids):

@@ -193,6 +193,8 @@ class Files(unittest.TestCase):
                 self.assertEqual(f[k].dtype, np.asarray(a).dtype, k)
                 np.testing.assert_array_equal(f[k], a)
         self.assertEqual(storedNpz(arrays), data)  # no date in it: the same arrays, the same bytes
+        with self.assertRaisesRegex(ValueError, 'storedNpz: odd holds Python objects'):
+            storedNpz({'odd': np.array([{'a': 1}], dtype=object)})  # its bytes would be pointers
         r = generate(ELL, nSpheres=4)
         with tempfile.TemporaryDirectory() as d:
             p = os.path.join(d, 'r.npz')
