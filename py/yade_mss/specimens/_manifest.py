@@ -13,10 +13,11 @@ import hashlib
 import json
 import os
 import stat
+from json.encoder import encode_basestring_ascii as _quoted
 
 import numpy as np
 
-VERSION = 3  # 3: the outputs as a count and a digest
+VERSION = 4  # 3: the outputs as a count and a digest; 4: each output's line not JSON (a tenth of the time)
 NAME = 'batch.json'
 MAX_BYTES = 1 << 30  # a manifest is mostly rows: 10^5 grains take tens of MB
 
@@ -42,21 +43,20 @@ def outputs(outdir):
     stack = ['']
     while stack:
         rel = stack.pop()
-        top = os.path.join(outdir, rel)
-        with os.scandir(top) as it:
-            names = sorted(e.name for e in it)
-        below = []
-        for name in names:
-            if rel == '' and name == NAME:
+        with os.scandir(os.path.join(outdir, rel)) as it:
+            entries = sorted(it, key=lambda e: e.name)
+        below, prefix = [], os.path.join(rel, '')
+        for e in entries:
+            if rel == '' and e.name == NAME:
                 continue
-            p = os.path.join(top, name)
-            st = os.lstat(p)
+            st = e.stat(follow_symlinks=False)
             if stat.S_ISDIR(st.st_mode):  # a link to a folder is not walked
-                below.append(os.path.join(rel, name))
-            elif stat.S_ISREG(st.st_mode) and not name.startswith('.'):  # a lock, a temporary file: not outputs
+                below.append(prefix + e.name)
+            elif stat.S_ISREG(st.st_mode) and not e.name.startswith('.'):  # a lock, a temporary file: not outputs
                 n += 1
-                h.update(json.dumps([os.path.join(rel, name), st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns,
-                                     st.st_ctime_ns]).encode() + b'\n')
+                # the path quoted as JSON quotes it (no name can end its line early), then the identity
+                h.update(b'%s %d %d %d %d %d\n' % (_quoted(prefix + e.name).encode(), st.st_dev,
+                                                    st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns))
         stack.extend(reversed(below))
     return {'files': n, 'digest': h.hexdigest()}
 
@@ -71,14 +71,22 @@ def forget(outdir):
 
 def write(outdir, key, state, atomic):
     """Writes the manifest of a finished batch: its *key* (inputs and options), the files in *outdir* now and
-    *state* (what the summary and the Python API give back)."""
+    *state* (what the summary and the Python API give back), then the digest of that content (:func:`read`
+    checks it). The text is made once, digested and written piece by piece: the manifest of 10^5 grains is
+    tens of MB of text, and making it twice cost a third of this."""
     body = {'version': VERSION, 'key': key, 'outputs': outputs(outdir), 'state': state}
-    body['sum'] = contentDigest(body)
 
-    def put(p):  # piece by piece: the manifest of 10^5 grains is tens of MB of text
+    def put(p):
+        h = hashlib.sha256()
         with open(p, 'w') as f:
+            last = None
             for chunk in _chunks(body):
-                f.write(chunk)
+                if last is not None:
+                    h.update(last.encode())
+                    f.write(last)
+                last = chunk
+            h.update(last.encode())  # the content's closing brace: the sum goes before it, digested without it
+            f.write(last[:-1] + ', "sum": "%s"}' % h.hexdigest())
     atomic(os.path.join(outdir, NAME), put)
 
 

@@ -11,7 +11,7 @@ import urllib.parse
 import numpy as np
 
 from .. import _mss
-from ..base import atomicWrite
+from ..base import alongside, atomicWrite
 from ..grains import NEARBY_GAP, SPECK_VOXELS
 from ..pictures import preview
 
@@ -347,7 +347,9 @@ def _s(n):
 
 
 def writeOutputs(outdir, b, density, young):
-    """grains.csv (label order), assembly.txt, assembly.vtk and report.html, each atomically."""
+    """grains.csv (label order), assembly.txt, assembly.vtk, contacts.csv (a scan's) and report.html, each
+    atomically; the last two in a child process at the same time as the first three (:func:`alongside`: the
+    workers are gone, their cores free)."""
     rows = list(b.rows.values())
 
     def table(p):  # a file name's bytes that are not UTF-8 are written as their escapes, never lost
@@ -355,41 +357,47 @@ def writeOutputs(outdir, b, density, young):
             w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction='ignore')
             w.writeheader()
             w.writerows(rows)
-    _atomic(os.path.join(outdir, 'grains.csv'), table)
     ids = {k: (b.rows[k]['label'] if b.rows[k]['label'] != '' else i) for i, k in enumerate(b.clumps, 1)}
 
-    def assembly(p):
-        with open(p, 'w') as f:
-            f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
-                    '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
-                    'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
-            spheres, offsets = b.packed()
-            # volume, centroid, then the inertia's xx yy zz xy xz yz, of each clump's row of masses()
-            heads = b.clumps.masses()[:, [0, 1, 2, 3, 4, 8, 12, 5, 6, 9]].tolist()  # packed: an output folder
-            for x, (k, head) in enumerate(zip(b.clumps, heads)):
-                cid, lo, hi = int(ids[k]), int(offsets[x]), int(offsets[x + 1])
-                # '%r' is repr: a float's shortest text that reads back the same
-                f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
-                        % ((cid,) + tuple(head)))
-                f.write(('%%r %%r %%r %%r %d\n' % cid) * (hi - lo) % tuple(spheres[lo:hi].ravel().tolist()))
-    _atomic(os.path.join(outdir, 'assembly.txt'), assembly)
-    _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
-    if getattr(b, 'scanContacts', None) is not None:
-        def contacts(p):
-            with open(p, 'w', newline='') as f:
-                w = csv.writer(f)
-                w.writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
-                c = b.scanContacts
-                for x in range(0, len(c), CHUNK):  # a chunk at a time: 10^6 contacts as lists are 300 MB
-                    part = slice(x, x + CHUNK)
-                    # the csv module's text, a chunk formatted at once
-                    rows = np.empty((len(c.a[part]), 10), dtype=object)
-                    for col, v in enumerate((c.a[part], c.b[part], c.faces[part], c.gaps[part])):
-                        rows[:, col] = v.tolist()
-                    rows[:, 4:7], rows[:, 7:] = c.points[part].tolist(), c.normals[part].tolist()
-                    f.write(('%d,%d,%d,%r,%r,%r,%r,%r,%r,%r\r\n' * len(rows)) % tuple(rows.ravel().tolist()))
-        _atomic(os.path.join(outdir, 'contacts.csv'), contacts)
-    _report(outdir, b, density, young)
+    def child():
+        if getattr(b, 'scanContacts', None) is not None:
+            _atomic(os.path.join(outdir, 'contacts.csv'), lambda p: _writeContacts(p, b.scanContacts))
+        _report(outdir, b, density, young)
+    with alongside(child, 'batch: %s' % os.path.join(outdir, 'contacts.csv, report.html')):
+        _atomic(os.path.join(outdir, 'grains.csv'), table)
+        _atomic(os.path.join(outdir, 'assembly.txt'), lambda p: _writeAssembly(p, b, ids))
+        _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
+
+
+def _writeAssembly(path, b, ids):
+    """assembly.txt: each clump's exact mass properties (a #mss line), then its spheres, a line each."""
+    with open(path, 'w') as f:
+        f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
+                '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
+                'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
+        spheres, offsets = b.packed()
+        # volume, centroid, then the inertia's xx yy zz xy xz yz, of each clump's row of masses()
+        heads = b.clumps.masses()[:, [0, 1, 2, 3, 4, 8, 12, 5, 6, 9]].tolist()  # packed: an output folder
+        for x, (k, head) in enumerate(zip(b.clumps, heads)):
+            cid, lo, hi = int(ids[k]), int(offsets[x]), int(offsets[x + 1])
+            # '%r' is repr: a float's shortest text that reads back the same
+            f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
+                    % ((cid,) + tuple(head)))
+            f.write(('%%r %%r %%r %%r %d\n' % cid) * (hi - lo) % tuple(spheres[lo:hi].ravel().tolist()))
+
+
+def _writeContacts(path, c):
+    """contacts.csv: the scan's contacts (:class:`yade_mss.grains.ScanContacts`), a row each, as the csv module
+    writes them."""
+    with open(path, 'w', newline='') as f:
+        csv.writer(f).writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
+        for x in range(0, len(c), CHUNK):  # a chunk at a time: 10^6 contacts as lists are 300 MB
+            part = slice(x, x + CHUNK)
+            rows = np.empty((len(c.a[part]), 10), dtype=object)  # the chunk formatted at once
+            for col, v in enumerate((c.a[part], c.b[part], c.faces[part], c.gaps[part])):
+                rows[:, col] = v.tolist()
+            rows[:, 4:7], rows[:, 7:] = c.points[part].tolist(), c.normals[part].tolist()
+            f.write(('%d,%d,%d,%r,%r,%r,%r,%r,%r,%r\r\n' * len(rows)) % tuple(rows.ravel().tolist()))
 
 
 def writeVtk(path, b, ids):

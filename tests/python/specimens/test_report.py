@@ -97,6 +97,43 @@ class Report(unittest.TestCase):
         self.assertIn('1 of 4 grains are cut by the volume', page)
         self.assertIn('set by label_', page)
 
+    def test_the_outputs_written_alongside_are_those_written_in_one_process(self):
+        """report.html and contacts.csv are written in a forked child while the batch writes the rest: the
+        files are byte for byte those that one process writes."""
+        from yade_mss.base import _alongside
+        from yade_mss.specimens import _report
+        with tempfile.TemporaryDirectory() as d:
+            pids, report = os.path.join(d, 'pids'), _report._report
+
+            def recorded(*a):  # where the report was written
+                with open(pids, 'a') as f:
+                    f.write('%d\n' % os.getpid())
+                return report(*a)
+            written = {}
+            for how in ('alongside', 'one process'):
+                out = os.path.join(d, how.replace(' ', '_'))
+                os.makedirs(out)
+                can = _alongside.canFork
+                _report._report = recorded
+                if how == 'one process':
+                    _alongside.canFork = lambda: False
+                try:
+                    _report.writeOutputs(out, self.b, 2650, 7e10)
+                finally:
+                    _alongside.canFork, _report._report = can, report
+                written[how] = {}
+                for name in sorted(os.listdir(out)):
+                    with open(os.path.join(out, name), 'rb') as f:
+                        written[how][name] = f.read()
+            with open(pids) as f:
+                child, here = [int(x) for x in f.read().split()]
+            self.assertNotEqual(child, os.getpid())
+            self.assertEqual(here, os.getpid())
+        self.assertEqual(sorted(written['alongside']), ['assembly.txt', 'assembly.vtk', 'contacts.csv', 'grains.csv',
+                                                        'report.html', 'report_distributions.png'])
+        for name, data in written['alongside'].items():
+            self.assertEqual(data, written['one process'][name], name)
+
     def test_the_time_step_and_who_sets_it(self):
         b = self.b
         steps = {k: float(r.radii.min()) * np.sqrt(2650 / 7e10) for k, r in b.results.items()}

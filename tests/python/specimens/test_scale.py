@@ -160,6 +160,30 @@ class Manifest(unittest.TestCase):
         self.assertEqual(_manifest.contentDigest(data), hashlib.sha256(whole.encode()).hexdigest())
         self.assertEqual(json.loads(''.join(_manifest._chunks(data))), json.loads(whole))
 
+    def test_the_manifest_made_once_holds_the_digest_of_its_own_content(self):
+        """write() digests the text as it writes it, the sum last: read() takes it (the digest of what it reads
+        back) and an edit to any row makes it stale."""
+        rows = {'label_%d' % i: {'dice': 0.1 * i, 'spheres': i, 'problems': 'thin; "q"'} for i in range(700)}
+        with tempfile.TemporaryDirectory() as d:
+            with open(os.path.join(d, 'grains.csv'), 'w') as f:
+                f.write('x')
+            _manifest.write(d, {'inputs': ['a']}, {'rows': rows}, lambda p, put: put(p))
+            meta = _manifest.read(d)
+            self.assertIsNotNone(meta)
+            self.assertEqual(meta['sum'], _manifest.contentDigest({k: meta[k] for k in ('version', 'key', 'outputs',
+                                                                                        'state')}))
+            self.assertEqual(meta['state']['rows'], rows)
+            self.assertEqual(meta['outputs']['files'], 1)
+            self.assertIsNotNone(_manifest.finished(d, {'inputs': ['a']}))
+            path = os.path.join(d, _manifest.NAME)
+            with open(path) as f:
+                text = f.read()
+            edited = text.replace('"spheres": 5}', '"spheres": 6}')
+            self.assertNotEqual(edited, text)
+            with open(path, 'w') as f:
+                f.write(edited)
+            self.assertTrue(_manifest.read(d) is None)
+
 
 class FileThread(unittest.TestCase):
     def test_files_are_written_in_order_and_an_error_reaches_the_batch(self):
