@@ -138,36 +138,57 @@ int ContactFinder::margin() const {
 
 namespace {
 
-/// The boundary voxels of the slab (a face neighbour of another value: the least gap between two grains is
-/// always between two such voxels), where the slab knows their neighbours (the caller gives margin() layers
-/// on each side of those it owns).
-std::vector<char> edgesOf(const LabelGrid& slab) {
+/// The labels of the slab's boundary voxels (a face neighbour of another value: the least gap between two
+/// grains is always between two such voxels), 0 elsewhere, where the slab knows their neighbours (the caller
+/// gives margin() layers on each side of those it owns). Labels, not flags: eachPair compares 64-bit lanes
+/// only.
+std::vector<std::int64_t> edgesOf(const LabelGrid& slab) {
     const GridSpec& g = slab.spec;
     const long long nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
     const auto at = [&](long long i, long long j, long long k) -> std::int64_t {
         if (i < 0 || j < 0 || k < 0 || i >= nx || j >= ny || k >= nz) return 0;
         return slab.labels[std::size_t(i + nx * (j + ny * k))];
     };
-    std::vector<char> edge(slab.labels.size(), 0);
+    std::vector<std::int64_t> edge(slab.labels.size(), 0);
 #pragma omp parallel for schedule(static)
     for (long long k = 0; k < nz; ++k)
         for (long long j = 0; j < ny; ++j)
             for (long long i = 0; i < nx; ++i) {
                 const std::int64_t l = at(i, j, k);
                 if (l == 0) continue;
-                edge[std::size_t(i + nx * (j + ny * k))] = at(i - 1, j, k) != l || at(i + 1, j, k) != l ||
-                                                           at(i, j - 1, k) != l || at(i, j + 1, k) != l ||
-                                                           at(i, j, k - 1) != l || at(i, j, k + 1) != l;
+                if (at(i - 1, j, k) != l || at(i + 1, j, k) != l || at(i, j - 1, k) != l ||
+                    at(i, j + 1, k) != l || at(i, j, k - 1) != l || at(i, j, k + 1) != l)
+                    edge[std::size_t(i + nx * (j + ny * k))] = l;
             }
     return edge;
 }
 
+// The hot loop below in AVX2 where the processor has it (chosen when the library loads): the baseline x86-64
+// has no 64-bit compare in its vector registers (SSE4.1's), so there the loop runs a voxel at a time
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define MSS_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define MSS_CLONES
+#endif
+
+/// Sets @p bit of M[i * words] for every i in [lo, hi) where A[i] and B[i] are both non-zero and apart.
+MSS_CLONES void markHits(const std::int64_t* __restrict A, const std::int64_t* __restrict B,
+                         std::uint64_t* __restrict M, std::size_t words, long long lo, long long hi,
+                         unsigned bit) {
+    if (words == 1)
+        for (long long i = lo; i < hi; ++i)
+            M[i] |= std::uint64_t((A[i] != 0) & (B[i] != 0) & (A[i] != B[i])) << bit;
+    else
+        for (long long i = lo; i < hi; ++i)
+            M[std::size_t(i) * words] |= std::uint64_t((A[i] != 0) & (B[i] != 0) & (A[i] != B[i])) << bit;
+}
+
 /// Calls @p f(a, b, midpoint, offset a to b, sign, squared gap) for every pair of voxels of two different
-/// non-zero labels within the stencil, both on their grain's boundary (@p edge; none for shared faces), the
-/// first in the slab's layers first .. first + own - 1 and in its planes k0 .. k1 - 1. The slab's layer 0 is
-/// the volume's layer @p x0.
+/// non-zero labels within the stencil, both on their grain's boundary (@p edge, edgesOf's labels; for shared
+/// faces the slab's own), the first in the slab's layers first .. first + own - 1 and in its planes
+/// k0 .. k1 - 1. The slab's layer 0 is the volume's layer @p x0.
 template <class F>
-void eachPair(const LabelGrid& slab, const std::vector<char>& edge, long long x0, int first, int own,
+void eachPair(const LabelGrid& slab, const std::vector<std::int64_t>& edge, long long x0, int first, int own,
               const Stencil& st, long long k0, long long k1, F&& f) {
     const GridSpec& g = slab.spec;
     const long long nx = g.dims[0], ny = g.dims[1], nz = g.dims[2];
@@ -176,9 +197,9 @@ void eachPair(const LabelGrid& slab, const std::vector<char>& edge, long long x0
     // that hit; then the hits voxel by voxel, so that a voxel's partners (mostly one grain across the line)
     // come one after another and the callers' last-pair caches answer (offset by offset, the pair changed at
     // nearly every hit: hashed lookups were most of the time). The callers' sums and least-of choices do not
-    // depend on the order the pairs come in.
-    const std::int64_t* L = slab.labels.data();
-    const char* E = st.faces ? nullptr : edge.data();
+    // depend on the order the pairs come in. The labels compared are those of the voxels that can have a
+    // partner (edges, which are never background; every voxel for shared faces).
+    const std::int64_t* L = st.faces ? slab.labels.data() : edge.data();
     const std::size_t width = std::size_t(std::max<long long>(nx, 1));
     const std::size_t offsets = st.offsets.size(), words = (offsets + 63) / 64;
     std::vector<std::uint64_t> mask(words * width);
@@ -198,25 +219,10 @@ void eachPair(const LabelGrid& slab, const std::vector<char>& edge, long long x0
                 const long long lo = std::max<long long>(first, -o.d[0]);
                 const long long hi = std::min<long long>(first + own, nx - o.d[0]);
                 if (J < 0 || K < 0 || J >= ny || K >= nz || hi <= lo) continue;
-                const std::int64_t* A = L + row;
-                const std::int64_t* B = A + steps[oi];
                 // straight into the masks (a voxel's word of them: the stencil of a gap under 2 voxels has 62
-                // offsets, one word; larger ones several), 64-bit lanes throughout: the loops vectorise
-                std::uint64_t* M = mask.data() + oi / 64;
-                const unsigned bit = unsigned(oi % 64);
-                if (E != nullptr) { // an edge voxel is never background: both on edges and the labels apart
-                    const char* EA = E + row;
-                    const char* EB = EA + steps[oi];
-                    if (words == 1)
-                        for (long long i = lo; i < hi; ++i)
-                            M[i] |= std::uint64_t(EA[i] & EB[i] & (A[i] != B[i])) << bit;
-                    else
-                        for (long long i = lo; i < hi; ++i)
-                            M[std::size_t(i) * words] |= std::uint64_t(EA[i] & EB[i] & (A[i] != B[i])) << bit;
-                } else {
-                    for (long long i = lo; i < hi; ++i) // shared faces: three offsets, one word
-                        M[i] |= std::uint64_t((A[i] != 0) & (B[i] != 0) & (A[i] != B[i])) << bit;
-                }
+                // offsets, one word; larger ones several)
+                markHits(L + row, L + row + steps[oi], mask.data() + oi / 64, words, lo, hi,
+                         unsigned(oi % 64));
                 from = std::min(from, lo);
                 to = std::max(to, hi);
             }
@@ -261,7 +267,7 @@ void ContactFinder::count(const LabelGrid& slab, long long x0, int first, int ow
     if (slab.labels.size() != slab.spec.size())
         throw std::invalid_argument("findContacts: the labels do not fill the grid");
     const Stencil& st = pairs_->stencil;
-    const std::vector<char> edge = st.faces ? std::vector<char>() : edgesOf(slab);
+    const std::vector<std::int64_t> edge = st.faces ? std::vector<std::int64_t>() : edgesOf(slab);
     const int n = partsOf(slab.spec.dims[2]);
     std::vector<PairMap<Pairs::Pair>> parts(static_cast<std::size_t>(n));
     byPlanes(slab.spec.dims[2], n, [&](int t, long long k0, long long k1) {
@@ -289,7 +295,7 @@ void ContactFinder::locate(const LabelGrid& slab, long long x0, int first, int o
     // line's middle); on a tie the least (x, y, z), so that the choice is the volume's alone, whatever the
     // slabs and threads
     const Stencil& st = pairs_->stencil;
-    const std::vector<char> edge = st.faces ? std::vector<char>() : edgesOf(slab);
+    const std::vector<std::int64_t> edge = st.faces ? std::vector<std::int64_t>() : edgesOf(slab);
     const auto& pairs = pairs_->pairs; // read only here: every pair was counted
     const int n = partsOf(slab.spec.dims[2]);
     std::vector<PairMap<Spot>> parts(static_cast<std::size_t>(n));

@@ -123,7 +123,8 @@ SLAB_VOXELS = 1 << 23  # findContacts reads the volume in slabs of about this ma
 def slabVoxels(memoryLimit=None):
     """How many voxels a slab of the volume holds when read a slab at a time: SLAB_VOXELS, or less where
     *memoryLimit* (GiB, generate's option) is lower: a slab costs about 24 bytes a voxel as it is read and
-    converted, up to 48 for the sparse boxes, so a 128th of the limit keeps the batch well under it."""
+    converted (32 in the contact search, with its edges' labels), up to 48 for the sparse boxes, so a 128th of
+    the limit keeps the batch well under it."""
     if memoryLimit is None:
         return SLAB_VOXELS
     return int(max(1 << 12, min(SLAB_VOXELS, float(memoryLimit) * (1 << 30) / 128)))
