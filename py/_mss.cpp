@@ -634,6 +634,61 @@ py::object clumpGaps(const py::object& spheres, const py::object& offsets, const
     return bytesOf(out);
 }
 
+/// The bytes of a text: a batch's table, tens of MB at 10^5 grains, made without the GIL.
+py::object textBytes(const std::string& text) {
+    return py::object(py::handle<>(PyBytes_FromStringAndSize(text.data(), Py_ssize_t(text.size()))));
+}
+
+/// mss::formatRows of @p ints (the bytes of int64, @p intCols a row) and @p values (of float64, @p cols a
+/// row), as the bytes of the text; @p style "shortest" (Python's repr) or "g17" (printf's %.17g).
+py::object formatRows(const py::object& ints, int intCols, const py::object& values, int cols,
+                      const std::string& style, const std::string& sep, const std::string& end) {
+    if (intCols < 0 || cols < 0 || intCols + cols == 0)
+        throw std::invalid_argument("formatRows: give at least one column, got " + std::to_string(intCols) +
+                                    " integer and " + std::to_string(cols) + " number columns");
+    if (style != "shortest" && style != "g17")
+        throw std::invalid_argument("formatRows: style must be 'shortest' or 'g17', got '" + style + "'");
+    if (sep.size() != 1) throw std::invalid_argument("formatRows: the separator must be one character");
+    const std::vector<std::int64_t> i = numbersOf<std::int64_t>(ints, "formatRows", "the integers");
+    const std::vector<double> v = numbersOf<double>(values, "formatRows", "the numbers");
+    const std::size_t rows = intCols > 0 ? i.size() / std::size_t(intCols) : v.size() / std::size_t(cols);
+    if (i.size() != rows * std::size_t(intCols) || v.size() != rows * std::size_t(cols))
+        throw std::invalid_argument("formatRows: " + std::to_string(i.size()) + " integers and " +
+                                    std::to_string(v.size()) + " numbers are not rows of " +
+                                    std::to_string(intCols) + " and " + std::to_string(cols));
+    std::string text;
+    {
+        WithoutGil unlocked;
+        text = mss::formatRows(i.data(), std::size_t(intCols), v.data(), std::size_t(cols), rows,
+                               style == "g17" ? mss::NumberText::Precision17 : mss::NumberText::Shortest,
+                               sep[0], end);
+    }
+    return textBytes(text);
+}
+
+/// mss::formatClumpAssembly of packed clumps: @p spheres the bytes of float64 rows x y z r, @p offsets of
+/// int64 (clumps + 1), @p ids of int64 (clumps), @p heads of float64 (10 a clump).
+py::object formatClumpAssembly(const py::object& spheres, const py::object& offsets, const py::object& ids,
+                               const py::object& heads) {
+    const std::vector<double> s = numbersOf<double>(spheres, "formatClumpAssembly", "the spheres");
+    const std::vector<std::int64_t> o =
+        numbersOf<std::int64_t>(offsets, "formatClumpAssembly", "the offsets");
+    const std::vector<std::int64_t> d = numbersOf<std::int64_t>(ids, "formatClumpAssembly", "the ids");
+    const std::vector<double> h = numbersOf<double>(heads, "formatClumpAssembly", "the mass rows");
+    if (s.size() % 4 != 0 || o.size() != d.size() + 1 || h.size() != 10 * d.size())
+        throw std::invalid_argument(
+            "formatClumpAssembly: " + std::to_string(d.size()) + " clumps need " +
+            std::to_string(d.size() + 1) + " offsets and " + std::to_string(10 * d.size()) +
+            " mass numbers, and the spheres rows of 4; got " + std::to_string(o.size()) + ", " +
+            std::to_string(h.size()) + " and " + std::to_string(s.size()));
+    std::string text;
+    {
+        WithoutGil unlocked;
+        text = mss::formatClumpAssembly(s.data(), s.size() / 4, o.data(), d.data(), h.data(), d.size());
+    }
+    return textBytes(text);
+}
+
 // with planes: the part of the solid on their allowed side (a fragment)
 const char* const kNothingLeft =
     "massProperties: no part of the solid lies on the allowed side of the planes";
@@ -1035,4 +1090,12 @@ BOOST_PYTHON_MODULE(_mss) {
     py::def("clumpGaps", clumpGaps, (py::arg("spheres"), py::arg("offsets"), py::arg("i"), py::arg("j")),
             "The least gap between packed clumps i[n] and j[n] (bytes in and out).");
     py::def("formatSpheres", formatSpheres, (py::arg("centers"), py::arg("radii"), py::arg("path")));
+    py::def(
+        "formatRows", formatRows,
+        (py::arg("ints"), py::arg("intCols"), py::arg("values"), py::arg("cols"), py::arg("style"),
+         py::arg("sep"), py::arg("end")),
+        "Rows of numbers as text (bytes in and out): integers, then numbers, as repr or %.17g writes them.");
+    py::def("formatClumpAssembly", formatClumpAssembly,
+            (py::arg("spheres"), py::arg("offsets"), py::arg("ids"), py::arg("heads")),
+            "A batch's assembly.txt body of packed clumps (bytes in and out).");
 }

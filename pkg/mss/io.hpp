@@ -7,6 +7,7 @@
 #include "mss/spheres.hpp"
 #include "mss/voxelize.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,31 @@ void writeSpheres(const SphereSet& s, const std::string& path);
 /// The text writeSpheres writes to @p path (by its extension), for a caller that writes it itself (a batch
 /// digests each grain's file as it makes it). @throws std::invalid_argument as writeSpheres.
 std::string formatSpheres(const SphereSet& s, const std::string& path);
+
+/// How formatRows writes a number.
+enum class NumberText {
+    Shortest,   ///< as Python's repr(float): the shortest digits that read back the same ("0.1", "100.0",
+                ///< "1e-05")
+    Precision17 ///< as printf's "%.17g"
+};
+
+/// Appends @p v to @p out as @p style writes it (NaN as "nan", infinities as "inf" and "-inf").
+void appendNumber(std::string& out, double v, NumberText style);
+
+/// The text of @p rows rows: each row's @p intCols integers (row-major in @p ints), then its @p cols numbers
+/// (row-major in @p values), separated by @p sep, the row ended by @p end. A batch's tables (assembly.vtk,
+/// contacts.csv). @throws std::invalid_argument for columns asked without their array.
+std::string formatRows(const std::int64_t* ints, std::size_t intCols, const double* values, std::size_t cols,
+                       std::size_t rows, NumberText style, char sep, const std::string& end);
+
+/// A batch's assembly.txt body: for each of @p clumps clumps c, the line "#mss clump ID density 1 mass M
+/// centroid X Y Z inertia XX YY ZZ XY XZ YZ" (@p heads: 10 numbers a clump, its mass properties at unit
+/// density) and then a line "x y z r ID" for each sphere s of offsets[c] .. offsets[c + 1] - 1 of @p spheres
+/// (@p count rows x y z r), numbers as NumberText::Shortest writes them (read back by yade_mss.readClumps,
+/// and by YADE's ymport.textClumps, which skips the # lines). @throws std::invalid_argument for offsets past
+/// the spheres or decreasing.
+std::string formatClumpAssembly(const double* spheres, std::size_t count, const std::int64_t* offsets,
+                                const std::int64_t* ids, const double* heads, std::size_t clumps);
 
 /// Writes a mesh by extension: .stl (binary), .obj (full precision), .ply (binary little-endian, doubles),
 /// atomically. @throws std::invalid_argument on a mesh validateMesh refuses, an unknown extension or an

@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include <cstdio>
@@ -780,4 +782,58 @@ TEST(SphereIo, PfcAndYadeTemplatesReadBack) {
     expectError([&] { readSpheres(txt); }, "must be x y z r clumpId");
     std::remove(pfc.c_str());
     std::remove(txt.c_str());
+}
+
+// The batch's tables (io/number_rows.cpp): numbers as Python's repr and printf's "%.17g" write them.
+TEST(NumberText, ShortestIsPythonsReprAndPrecision17IsPrintfs) {
+    const std::pair<double, const char*> shortest[] = {{0.0, "0.0"},
+                                                       {-0.0, "-0.0"},
+                                                       {0.1, "0.1"},
+                                                       {100.0, "100.0"},
+                                                       {1e15, "1000000000000000.0"},
+                                                       {1e16, "1e+16"},
+                                                       {1e-4, "0.0001"},
+                                                       {1e-5, "1e-05"},
+                                                       {-2.5, "-2.5"},
+                                                       {1e22, "1e+22"},
+                                                       {5e-324, "5e-324"},
+                                                       {123456789012345678.0, "1.2345678901234568e+17"},
+                                                       {1.7976931348623157e308, "1.7976931348623157e+308"},
+                                                       {std::numeric_limits<double>::infinity(), "inf"},
+                                                       {-std::numeric_limits<double>::infinity(), "-inf"},
+                                                       {std::nan(""), "nan"}};
+    for (const auto& [v, text] : shortest) {
+        std::string out;
+        mss::appendNumber(out, v, mss::NumberText::Shortest);
+        EXPECT_EQ(out, text) << v;
+    }
+    for (double v : {0.1, 100.0, 1e-5, 123456789012345678.0, -0.0}) {
+        char want[64];
+        std::snprintf(want, sizeof want, "%.17g", v);
+        std::string out;
+        mss::appendNumber(out, v, mss::NumberText::Precision17);
+        EXPECT_EQ(out, want);
+    }
+}
+
+TEST(NumberText, RowsAndTheAssemblyRefuseWhatDoesNotAddUp) {
+    const std::int64_t ints[] = {1, 2};
+    const double values[] = {0.5, 2.0};
+    EXPECT_EQ(mss::formatRows(ints, 1, values, 1, 2, mss::NumberText::Shortest, ',', "\r\n"),
+              "1,0.5\r\n2,2.0\r\n");
+    EXPECT_THROW(mss::formatRows(nullptr, 1, values, 1, 2, mss::NumberText::Shortest, ',', "\n"),
+                 std::invalid_argument);
+    const double spheres[8] = {0, 0, 0, 1, 1, 0, 0, 1};
+    const double heads[20] = {};
+    const std::int64_t ids[2] = {7, 8};
+    const std::int64_t down[3] = {0, 2, 1};
+    EXPECT_THROW(mss::formatClumpAssembly(spheres, 2, down, ids, heads, 2), std::invalid_argument);
+    const std::int64_t past[3] = {0, 1, 3};
+    EXPECT_THROW(mss::formatClumpAssembly(spheres, 2, past, ids, heads, 2), std::invalid_argument);
+    const std::int64_t ok[3] = {0, 1, 2};
+    const std::string text = mss::formatClumpAssembly(spheres, 2, ok, ids, heads, 2);
+    EXPECT_EQ(text.substr(0, text.find('\n') + 1),
+              "#mss clump 7 density 1 mass 0.0 centroid 0.0 0.0 0.0 inertia 0.0 0.0 0.0 0.0 0.0 0.0\n");
+    EXPECT_NE(text.find("\n0.0 0.0 0.0 1.0 7\n#mss clump 8"), std::string::npos);
+    EXPECT_EQ(text.substr(text.size() - 18), "1.0 0.0 0.0 1.0 8\n");
 }

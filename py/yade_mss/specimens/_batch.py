@@ -22,8 +22,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from ..base import (atomicWrite, flag, folderLock, integer, number, refuseLinkedFolders, refuseOverInputs,
-                    releaseFreed, requireRegularFile, slowPhase, split, vector3)
+from ..base import (alongside, atomicWrite, flag, folderLock, integer, number, refuseLinkedFolders,
+                    refuseOverInputs, releaseFreed, requireRegularFile, slowPhase, split, vector3)
 from ..exports import MAX_TEMPLATES, writeTemplates
 from ..grains import (GENERATE_OPTIONS, MESH_EXT, VOLUME_EXT, ContactIndex, MassProperties, MssResult,
                       ScanContacts, binaryValue, generateWith,
@@ -956,19 +956,25 @@ def batch(inputs, outdir=None, workers=None, scheduler=None, minVoxels=0, exclud
         if found is not None:  # a labelled volume: its voxel edge, said in the summary with its unit
             out.voxelSize, out.voxelSizeGiven = h, voxelSize is not None or gen.get('scale') not in (None, 1.0)
         out.scanBox = scan.get('box')
-        with slowPhase('batch: the contacts of %d grains in the assembly' % len(out.results), progress):
-            _report.keptContacts(out, found, h)
-            _report.annotate(out, gen, density, young)
-        releaseFreed()  # the grains' results as they came, the pairs' arrays
-        if outdir is not None:
-            if previews:
-                with slowPhase('batch: drawing the previews', progress):
-                    _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
-            out.seconds = time.perf_counter() - t0
-            with slowPhase('batch: writing the assembly, grains.csv and the report', progress):
-                _report.writeOutputs(outdir, out, density, young)
-                if format is not None:
-                    writeTemplates(outdir, out, format, density)
+        out.flagAt = _report.flagLine(gen)
+        # the report's pictures need only the rows: drawn in a child meanwhile, on the core the workers left
+        drawing = (alongside(lambda: _report.drawPictures(outdir, out),
+                             'batch: %s' % os.path.join(outdir, 'report_*.png'))
+                   if outdir is not None else contextlib.nullcontext())
+        with drawing:
+            with slowPhase('batch: the contacts of %d grains in the assembly' % len(out.results), progress):
+                _report.keptContacts(out, found, h)
+                _report.annotate(out, gen, density, young)
+            releaseFreed()  # the grains' results as they came, the pairs' arrays
+            if outdir is not None:
+                if previews:
+                    with slowPhase('batch: drawing the previews', progress):
+                        _report.drawPreviews(outdir, out, {t.key: t for t in tasks})
+                out.seconds = time.perf_counter() - t0
+                with slowPhase('batch: writing the assembly, grains.csv and the report', progress):
+                    _report.writeOutputs(outdir, out, density, young)
+                    if format is not None:
+                        writeTemplates(outdir, out, format, density)
         out.seconds = time.perf_counter() - t0
         if outdir is not None and not out.failed:
             _manifest.write(outdir, runKey, _state(out), _atomic)

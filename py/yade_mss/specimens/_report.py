@@ -11,7 +11,7 @@ import urllib.parse
 import numpy as np
 
 from .. import _mss
-from ..base import alongside, atomicWrite
+from ..base import atomicWrite
 from ..grains import NEARBY_GAP, SPECK_VOXELS
 from ..pictures import preview
 
@@ -222,6 +222,12 @@ def gapsText(c):
                                                        ', '.join(parts), min(near)))
 
 
+def flagLine(options):
+    """The D above which a grain is flagged: the target asked (dice), else DICE_FLAG."""
+    target = options.get('dice') or 0.0
+    return target if target > 0 else DICE_FLAG
+
+
 def annotate(b, options, density, young):
     """Fills each row's ``time_step`` and ``problems``, and the batch's ``timeStep``, ``setBy`` and ``ranked`` (keys,
     worst first)."""
@@ -238,7 +244,7 @@ def annotate(b, options, density, young):
     b.timeStep = min(steps.values()) if steps else None
     b.setBy = sorted((k for k, t in steps.items() if t <= STEP_MARGIN * b.timeStep), key=lambda k: steps[k])
     target = options.get('dice') or 0.0
-    flagAt = b.flagAt = target if target > 0 else DICE_FLAG
+    flagAt = b.flagAt = flagLine(options)
     asked = options.get('nSpheres')
     kinds = {}
     for k, row in b.rows.items():
@@ -348,8 +354,7 @@ def _s(n):
 
 def writeOutputs(outdir, b, density, young):
     """grains.csv (label order), assembly.txt, assembly.vtk, contacts.csv (a scan's) and report.html, each
-    atomically; the last two in a child process at the same time as the first three (:func:`alongside`: the
-    workers are gone, their cores free)."""
+    atomically (the report's pictures are :func:`drawPictures`')."""
     rows = list(b.rows.values())
 
     def table(p):  # a file name's bytes that are not UTF-8 are written as their escapes, never lost
@@ -357,47 +362,48 @@ def writeOutputs(outdir, b, density, young):
             w = csv.DictWriter(f, fieldnames=COLUMNS, extrasaction='ignore')
             w.writeheader()
             w.writerows(rows)
+    _atomic(os.path.join(outdir, 'grains.csv'), table)
     ids = {k: (b.rows[k]['label'] if b.rows[k]['label'] != '' else i) for i, k in enumerate(b.clumps, 1)}
-
-    def child():
-        if getattr(b, 'scanContacts', None) is not None:
-            _atomic(os.path.join(outdir, 'contacts.csv'), lambda p: _writeContacts(p, b.scanContacts))
-        _report(outdir, b, density, young)
-    with alongside(child, 'batch: %s' % os.path.join(outdir, 'contacts.csv, report.html')):
-        _atomic(os.path.join(outdir, 'grains.csv'), table)
-        _atomic(os.path.join(outdir, 'assembly.txt'), lambda p: _writeAssembly(p, b, ids))
-        _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
+    _atomic(os.path.join(outdir, 'assembly.txt'), lambda p: _writeAssembly(p, b, ids))
+    _atomic(os.path.join(outdir, 'assembly.vtk'), lambda p: writeVtk(p, b, ids))
+    if getattr(b, 'scanContacts', None) is not None:
+        _atomic(os.path.join(outdir, 'contacts.csv'), lambda p: _writeContacts(p, b.scanContacts))
+    _report(outdir, b, density, young)
 
 
 def _writeAssembly(path, b, ids):
-    """assembly.txt: each clump's exact mass properties (a #mss line), then its spheres, a line each."""
-    with open(path, 'w') as f:
-        f.write('# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
-                '(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
-                'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
-        spheres, offsets = b.packed()
-        # volume, centroid, then the inertia's xx yy zz xy xz yz, of each clump's row of masses()
-        heads = b.clumps.masses()[:, [0, 1, 2, 3, 4, 8, 12, 5, 6, 9]].tolist()  # packed: an output folder
-        for x, (k, head) in enumerate(zip(b.clumps, heads)):
-            cid, lo, hi = int(ids[k]), int(offsets[x]), int(offsets[x + 1])
-            # '%r' is repr: a float's shortest text that reads back the same
-            f.write('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
-                    % ((cid,) + tuple(head)))
-            f.write(('%%r %%r %%r %%r %d\n' % cid) * (hi - lo) % tuple(spheres[lo:hi].ravel().tolist()))
+    """assembly.txt: each clump's exact mass properties (a #mss line), then its spheres, a line each; the
+    numbers as repr writes them (the shortest text that reads back the same), formatted by the core a chunk of
+    clumps at a time."""
+    spheres, offsets = b.packed()
+    # volume, centroid, then the inertia's xx yy zz xy xz yz, of each clump's row of masses()
+    heads = np.ascontiguousarray(b.clumps.masses()[:, [0, 1, 2, 3, 4, 8, 12, 5, 6, 9]], dtype=np.float64)
+    cids = np.array([int(ids[k]) for k in b.clumps], dtype=np.int64)
+    with open(path, 'wb') as f:
+        f.write(b'# yade-mss assembly: x y z r clumpId, one line per sphere, world units; each grain one clump '
+                b'(clumpId = its label, or its place in the batch); #mss lines: exact mass properties at unit '
+                b'density (yade_mss.readClumps, mssAssembly); ymport.textClumps reads the spheres.\n')
+        for c0 in range(0, len(cids), CHUNK_CLUMPS):
+            c1 = min(len(cids), c0 + CHUNK_CLUMPS)
+            lo, hi = int(offsets[c0]), int(offsets[c1])
+            f.write(_mss.formatClumpAssembly(np.ascontiguousarray(spheres[lo:hi], dtype=np.float64).tobytes(),
+                                             (offsets[c0:c1 + 1] - lo).astype(np.int64).tobytes(),
+                                             cids[c0:c1].tobytes(), heads[c0:c1].tobytes()))
+
+
+CHUNK_CLUMPS = 1 << 14  # clumps formatted at once: their text is a few MB
 
 
 def _writeContacts(path, c):
     """contacts.csv: the scan's contacts (:class:`yade_mss.grains.ScanContacts`), a row each, as the csv module
-    writes them."""
-    with open(path, 'w', newline='') as f:
-        csv.writer(f).writerow(['a', 'b', 'faces', 'gap', 'x', 'y', 'z', 'nx', 'ny', 'nz'])
-        for x in range(0, len(c), CHUNK):  # a chunk at a time: 10^6 contacts as lists are 300 MB
+    writes them (numbers as repr writes them, rows ended by CR LF)."""
+    with open(path, 'wb') as f:
+        f.write(b'a,b,faces,gap,x,y,z,nx,ny,nz\r\n')
+        for x in range(0, len(c), CHUNK):  # a chunk at a time: 10^6 contacts' text is tens of MB
             part = slice(x, x + CHUNK)
-            rows = np.empty((len(c.a[part]), 10), dtype=object)  # the chunk formatted at once
-            for col, v in enumerate((c.a[part], c.b[part], c.faces[part], c.gaps[part])):
-                rows[:, col] = v.tolist()
-            rows[:, 4:7], rows[:, 7:] = c.points[part].tolist(), c.normals[part].tolist()
-            f.write(('%d,%d,%d,%r,%r,%r,%r,%r,%r,%r\r\n' * len(rows)) % tuple(rows.ravel().tolist()))
+            ints = np.column_stack([c.a[part], c.b[part], c.faces[part]]).astype(np.int64)
+            numbers = np.column_stack([c.gaps[part], c.points[part], c.normals[part]]).astype(np.float64)
+            f.write(_mss.formatRows(ints.tobytes(), 3, numbers.tobytes(), 7, 'shortest', ',', '\r\n'))
 
 
 def writeVtk(path, b, ids):
@@ -412,26 +418,33 @@ def writeVtk(path, b, ids):
            'dice': np.repeat(np.array([_number(b.rows[k]['dice']) or 0.0 for k in keys]), counts),
            'grain_r_min_voxels': np.repeat(np.array([_number(b.rows[k].get('r_min_voxels')) or 0.0 for k in keys]),
                                            counts)}
-    with open(path, 'w') as f:
-        f.write('# vtk DataFile Version 3.0\nyade-mss assembly: spheres (radius, clump_id, dice)\nASCII\n'
-                'DATASET POLYDATA\nPOINTS %d double\n' % n)
-        _rows(f, spheres[:, :3], '%.17g %.17g %.17g\n')
-        f.write('VERTICES %d %d\n' % (n, 2 * n))
-        _rows(f, np.arange(n)[:, None], '1 %d\n')
+    with open(path, 'wb') as f:
+        f.write(b'# vtk DataFile Version 3.0\nyade-mss assembly: spheres (radius, clump_id, dice)\nASCII\n'
+                b'DATASET POLYDATA\nPOINTS %d double\n' % n)
+        _rows(f, None, spheres[:, :3])
+        f.write(b'VERTICES %d %d\n' % (n, 2 * n))
+        _rows(f, np.column_stack([np.ones(n, dtype=np.int64), np.arange(n, dtype=np.int64)]), None)
         # a FIELD: every array is read (a reader takes only the first of several SCALARS by default)
-        f.write('POINT_DATA %d\nFIELD spheres %d\n' % (n, len(per)))
+        f.write(b'POINT_DATA %d\nFIELD spheres %d\n' % (n, len(per)))
         for name, values in per.items():
             kind = 'int' if name == 'clump_id' else 'double'
-            f.write('%s 1 %d %s\n' % (name, n, kind))
-            _rows(f, values[:, None], '%d\n' if kind == 'int' else '%.17g\n')
+            f.write(b'%s 1 %d %s\n' % (name.encode(), n, kind.encode()))
+            if kind == 'int':
+                _rows(f, values[:, None], None)
+            else:
+                _rows(f, None, values[:, None])
 
 
-def _rows(f, a, line, chunk=1 << 16):
-    """Writes the rows of the 2-D array *a*, each as *line* formats it (np.savetxt's text, formatted a chunk of
-    rows at a time: savetxt formats row by row)."""
-    for x in range(0, len(a), chunk):
-        part = a[x:x + chunk]
-        f.write((line * len(part)) % tuple(part.ravel().tolist()))
+def _rows(f, ints, values, chunk=1 << 18):
+    """Writes rows of *ints* (a 2-D integer array, or None) then *values* (2-D, or None), separated by spaces, as
+    np.savetxt's '%d' and '%.17g' write them, formatted by the core a chunk of rows at a time."""
+    n = len(ints) if ints is not None else len(values)
+    for x in range(0, n, chunk):
+        i = np.ascontiguousarray(ints[x:x + chunk], dtype=np.int64) if ints is not None else None
+        v = np.ascontiguousarray(values[x:x + chunk], dtype=np.float64) if values is not None else None
+        f.write(_mss.formatRows(i.tobytes() if i is not None else b'', i.shape[1] if i is not None else 0,
+                                v.tobytes() if v is not None else b'', v.shape[1] if v is not None else 0, 'g17',
+                                ' ', '\n'))
 
 
 def _atomic(path, write):
@@ -443,12 +456,27 @@ def _write(path, data):
         f.write(data)
 
 
+def drawPictures(outdir, b):
+    """The report's pictures: the histograms (where a grain is ok; D's flag line at ``b.flagAt``) and a segmented
+    scan's section. They need only the rows: a batch draws them in a child while it counts the contacts and
+    writes the other outputs (:func:`yade_mss.base.alongside`; importing matplotlib alone takes a few tenths of a
+    second)."""
+    if b.results:
+        _charts(outdir, b)
+    if getattr(b, 'segmented', None) is not None:
+        _segmentationPicture(outdir, b.segmented)
+
+
+CHARTS_TAG = ('<img src="report_distributions.png" alt="histograms of D, of the sphere counts and of the '
+              'smallest radii">')
+SEGMENTATION_TAG = ('<br><img src="report_segmentation.png" alt="a section of the binary scan and of its '
+                    'grains">')
+
+
 def _charts(outdir, b):
     """Three histograms that show something: D (the flag line drawn), spheres per grain (integer bins; one
     value is said, not drawn as one bar) and the smallest radius in voxels (what sets the time step)."""
     ok = [b.rows[k] for k in b.results]
-    if not ok:
-        return ''
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
@@ -479,8 +507,6 @@ def _charts(outdir, b):
     fig.tight_layout()
     _atomic(os.path.join(outdir, 'report_distributions.png'), fig.savefig)
     plt.close(fig)
-    return ('<img src="report_distributions.png" alt="histograms of D, of the sphere counts and of the smallest '
-            'radii">')
 
 
 def _segmentationPicture(outdir, seg):
@@ -513,7 +539,6 @@ def _segmentationPicture(outdir, seg):
     fig.tight_layout()
     _atomic(os.path.join(outdir, 'report_segmentation.png'), fig.savefig)
     plt.close(fig)
-    return ('<br><img src="report_segmentation.png" alt="a section of the binary scan and of its grains">')
 
 
 _SHOWN = ['label', 'file', 'status', 'problems', 'voxels', 'spheres', 'dice', 'eta', 'protrusion', 'r_min_voxels',
@@ -566,7 +591,7 @@ def _report(outdir, b, density, young):
                      'give markers of your own: --segment-markers). Below, the section z = %d and the grains\' '
                      'sizes.%s' % (grains(seg['grains']), _html(i.get('method', '')), i.get('specks', 0),
                                    i.get('speckVoxels', 0), SPECK_VOXELS, i.get('small', 0), i.get('smallVoxels', 0),
-                                   i.get('poreVoxels', 0), seg['z'], _segmentationPicture(outdir, seg)))
+                                   i.get('poreVoxels', 0), seg['z'], SEGMENTATION_TAG))
     generated = sum(_number(r['seconds']) or 0.0 for r in rows)
     previewed = set(getattr(b, 'previewed', []))
 
@@ -594,7 +619,7 @@ def _report(outdir, b, density, young):
             % (grains(len(rows)), counts['ok'], counts['skipped'], counts['failed'], b.seconds, grains(b.generated),
                ', %s reused from an earlier run with the same input and options' % grains(b.reused)
                if getattr(b, 'reused', 0) else '', generated,
-               ''.join('<p class="note">%s</p>' % n for n in notes), _charts(outdir, b),
+               ''.join('<p class="note">%s</p>' % n for n in notes), CHARTS_TAG if b.results else '',
                ''.join('<th>%s</th>' % c for c in _SHOWN)))
 
     def page(p):  # a row at a time: the table of 10^5 grains is tens of MB

@@ -185,6 +185,65 @@ class Manifest(unittest.TestCase):
             self.assertTrue(_manifest.read(d) is None)
 
 
+class TablesAsText(unittest.TestCase):
+    """The batch's tables are formatted by the core (_mss.formatRows, formatClumpAssembly): the text is the one
+    Python's formatting wrote before, number for number."""
+
+    NUMBERS = np.concatenate([
+        np.random.default_rng(1).integers(0, 2 ** 63, 200000, dtype=np.int64).view(np.float64),  # any bits
+        np.random.default_rng(2).normal(0, 1, 100000), np.random.default_rng(3).uniform(-1e3, 1e3, 100000),
+        [0.0, -0.0, 0.1, 100.0, 1e15, 1e16, 9999999999999998.0, 1e-4, 1e-5, 1.5e-5, 5e-324, 1.7976931348623157e308,
+         123456789012345678.0, 1e22, -2.5, np.inf, -np.inf, np.nan]])
+
+    def test_numbers_as_repr_and_as_printf_write_them(self):
+        from yade_mss import _mss
+        for style, text in (('shortest', repr), ('g17', lambda v: '%.17g' % v)):
+            got = _mss.formatRows(b'', 0, self.NUMBERS.tobytes(), 1, style, ' ', '\n').decode().split('\n')[:-1]
+            want = [text(float(v)) for v in self.NUMBERS]
+            self.assertEqual(len(got), len(want))
+            bad = [(w, g) for w, g in zip(want, got) if w != g]
+            self.assertEqual(bad, [], style)
+
+    def test_contacts_rows_and_the_assembly_as_python_wrote_them(self):
+        from yade_mss import _mss
+        rng = np.random.default_rng(4)
+        ints = rng.integers(-2 ** 40, 2 ** 40, (500, 3))
+        floats = rng.normal(0, 10, (500, 7))
+        self.assertEqual(_mss.formatRows(ints.tobytes(), 3, floats.tobytes(), 7, 'shortest', ',', '\r\n'),
+                         ''.join(('%d,%d,%d,%r,%r,%r,%r,%r,%r,%r\r\n' % tuple(i + f))
+                                 for i, f in zip(ints.tolist(), floats.tolist())).encode())
+        spheres = rng.normal(0, 1e-3, (40, 4))
+        offsets = np.array([0, 5, 5, 17, 40], dtype=np.int64)
+        ids, heads = np.array([3, 9, 12, 1 << 40], dtype=np.int64), rng.normal(0, 1e-9, (4, 10))
+        want = ''
+        for c in range(4):
+            want += ('#mss clump %d density 1 mass %r centroid %r %r %r inertia %r %r %r %r %r %r\n'
+                     % ((int(ids[c]),) + tuple(heads[c].tolist())))
+            want += ''.join('%r %r %r %r %d\n' % (tuple(s) + (int(ids[c]),))
+                            for s in spheres[offsets[c]:offsets[c + 1]].tolist())
+        self.assertEqual(_mss.formatClumpAssembly(spheres.tobytes(), offsets.tobytes(), ids.tobytes(),
+                                                  heads.tobytes()), want.encode())
+
+    def test_bad_tables_are_refused_with_what_is_wrong(self):
+        from yade_mss import _mss
+        one = np.zeros(4).tobytes()
+        for args, message in (((b'', 0, one, 3, 'shortest', ' ', '\n'), 'are not rows of 0 and 3'),
+                              ((b'', 0, one, 1, 'pretty', ' ', '\n'), "style must be 'shortest' or 'g17'"),
+                              ((b'', 0, one, 0, 'g17', ' ', '\n'), 'give at least one column'),
+                              ((b'', 0, one, 1, 'g17', ', ', '\n'), 'the separator must be one character'),
+                              ((b'', 0, b'abc', 1, 'g17', ' ', '\n'), 'the bytes of an array of 8-byte numbers')):
+            with self.assertRaises(ValueError) as e:
+                _mss.formatRows(*args)
+            self.assertIn(message, str(e.exception))
+        o = np.array([0, 2], dtype=np.int64).tobytes()
+        with self.assertRaises(ValueError) as e:  # one sphere given, the offsets say two
+            _mss.formatClumpAssembly(one, o, np.array([1], dtype=np.int64).tobytes(), np.zeros(10).tobytes())
+        self.assertIn('the offsets run past the 1 spheres given', str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            _mss.formatClumpAssembly(one, o, np.array([1, 2], dtype=np.int64).tobytes(), np.zeros(10).tobytes())
+        self.assertIn('2 clumps need 3 offsets and 20 mass numbers', str(e.exception))
+
+
 class FileThread(unittest.TestCase):
     def test_files_are_written_in_order_and_an_error_reaches_the_batch(self):
         with tempfile.TemporaryDirectory() as d:
