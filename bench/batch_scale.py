@@ -9,7 +9,8 @@ second, the cost per grain against the smallest count's, the batch's overhead ov
 times, the peak memory (the batch process, and of it the anonymous memory: the rest is the mapped volume's
 pages; its local workers), the contacts kept, and appends a row per run to bench/results/batch_scale.csv.
 Run on a quiet machine: /usr/bin/python3 bench/batch_scale.py (MSS_RUNS='one process' to run one way only,
-MSS_ASSEMBLY=0 to leave YADE out)."""
+MSS_ASSEMBLY=0 to leave YADE out). It measures this checkout's build (build/py: rows.useBuild), never a
+yade_mss installed elsewhere."""
 import csv
 import json
 import os
@@ -21,6 +22,10 @@ import time
 
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import rows as _rows  # noqa: E402 (bench/rows.py)
+
+BUILD = _rows.useBuild()
 COUNTS = [int(x) for x in os.environ.get('MSS_GRAINS', '1000,10000,100000').split(',')]
 VOXELS = int(os.environ.get('MSS_VOXELS', '1000'))
 SPHERES = int(os.environ.get('MSS_SPHERES', '8'))
@@ -109,6 +114,9 @@ def assembly(outdir):
 
 def meta():
     commit = subprocess.run(['git', 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True).stdout.strip()
+    if commit and subprocess.run(['git', 'status', '--porcelain', '--', 'py', 'pkg'], capture_output=True,
+                                 text=True).stdout.strip():
+        commit += '+dirty'  # the build measured holds changes the commit does not
     model = next((l.split(':', 1)[1].strip() for l in open('/proc/cpuinfo') if l.startswith('model name')), '?')
     return [time.strftime('%Y-%m-%dT%H:%M:%S', time.gmtime()), commit or 'unknown', '%d cores %s'
             % (os.cpu_count(), model), open('/proc/loadavg').read().split()[0]]
@@ -163,6 +171,8 @@ def runs(path, d):
 
 
 def main():
+    import yade_mss
+    print('measuring %s (commit %s)' % (os.path.dirname(yade_mss.__file__), meta()[1]))
     print('%-8s %-17s %8s %10s %12s %9s %14s %14s %16s %14s' % (
         'grains', 'run', 'wall s', 'grains/s', 'ms a grain', 'vs first', 'peak MiB batch', 'of it anon.',
         'peak MiB workers', 'contacts kept'))
