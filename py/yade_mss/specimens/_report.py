@@ -391,7 +391,8 @@ def _writeAssembly(path, b, ids):
                                              cids[c0:c1].tobytes(), heads[c0:c1].tobytes()))
 
 
-CHUNK_CLUMPS = 1 << 14  # clumps formatted at once: their text is a few MB
+CHUNK_CLUMPS = 1 << 12  # clumps formatted at once: a few MB of text (numbers and text are copied on the way)
+FORMAT_ROWS = 1 << 15  # rows of a table formatted at once, likewise: 10^5 grains' tables are tens of MB of text
 
 
 def _writeContacts(path, c):
@@ -399,8 +400,8 @@ def _writeContacts(path, c):
     writes them (numbers as repr writes them, rows ended by CR LF)."""
     with open(path, 'wb') as f:
         f.write(b'a,b,faces,gap,x,y,z,nx,ny,nz\r\n')
-        for x in range(0, len(c), CHUNK):  # a chunk at a time: 10^6 contacts' text is tens of MB
-            part = slice(x, x + CHUNK)
+        for x in range(0, len(c), FORMAT_ROWS):  # a chunk at a time: 10^6 contacts' text is tens of MB
+            part = slice(x, x + FORMAT_ROWS)
             ints = np.column_stack([c.a[part], c.b[part], c.faces[part]]).astype(np.int64)
             numbers = np.column_stack([c.gaps[part], c.points[part], c.normals[part]]).astype(np.float64)
             f.write(_mss.formatRows(ints.tobytes(), 3, numbers.tobytes(), 7, 'shortest', ',', '\r\n'))
@@ -435,7 +436,7 @@ def writeVtk(path, b, ids):
                 _rows(f, None, values[:, None])
 
 
-def _rows(f, ints, values, chunk=1 << 18):
+def _rows(f, ints, values, chunk=FORMAT_ROWS):
     """Writes rows of *ints* (a 2-D integer array, or None) then *values* (2-D, or None), separated by spaces, as
     np.savetxt's '%d' and '%.17g' write them, formatted by the core a chunk of rows at a time."""
     n = len(ints) if ints is not None else len(values)
