@@ -29,7 +29,7 @@ class alongside(object):
     RuntimeError with the child's message; another exception as RuntimeError naming its type). If the block
     raises (a Ctrl-C included), the child is stopped (SIGTERM, which it turns into KeyboardInterrupt: its
     temporary files are removed), reaped, and the block's exception goes on. Where no child can be forked safely
-    (:func:`canFork`), ``job()`` runs in the caller on entering the block.
+    (:func:`canFork`), or the fork fails, ``job()`` runs in the caller on entering the block.
 
     The child leaves with ``os._exit``: never through the caller's ``finally`` clauses, exit handlers or
     buffered output. *job* must not use OpenMP (libgomp's threads are not there after a fork).
@@ -49,12 +49,15 @@ class alongside(object):
         gc.freeze()  # the child's collections do not touch the caller's objects: their pages stay shared
         try:
             pid = os.fork()
-        except BaseException:
+        except BaseException as e:
             gc.unfreeze()
             signal.pthread_sigmask(signal.SIG_SETMASK, mask)
             os.close(r)
             os.close(w)
-            raise
+            if not isinstance(e, OSError):
+                raise
+            self.job()  # no process to spare (EAGAIN, ENOMEM): the work is done here, as without a fork
+            return self
         if pid == 0:
             self._child(r, w, mask, stops)
         self.pid, self.pipe = pid, r

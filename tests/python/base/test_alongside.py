@@ -116,6 +116,19 @@ class Alongside(unittest.TestCase):
             t.join()
         self.assertTrue(canFork())
 
+    def test_a_fork_that_fails_does_the_work_here(self):
+        real = os.fork
+
+        def refused():
+            raise BlockingIOError(11, 'Resource temporarily unavailable')
+        ran = []
+        os.fork = refused
+        try:
+            with alongside(lambda: ran.append(os.getpid()), 'test'):
+                self.assertEqual(ran, [os.getpid()])
+        finally:
+            os.fork = real
+
     def test_ctrl_c_to_the_whole_group_stops_both_and_leaves_nothing(self):
         """A terminal's Ctrl-C reaches the batch and its child at once: the command ends with 130, the child is
         reaped, and neither leaves a temporary file."""
