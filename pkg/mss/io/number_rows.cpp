@@ -106,16 +106,16 @@ std::string formatClumpAssembly(const double* spheres, std::size_t count, const 
                                 const std::int64_t* ids, const double* heads, std::size_t clumps) {
     if (clumps > 0 && (offsets == nullptr || ids == nullptr || heads == nullptr))
         throw std::invalid_argument("formatClumpAssembly: no offsets, ids or mass rows for the clumps");
-    if (clumps > 0 && (offsets[0] < 0 || std::size_t(offsets[clumps]) > count))
-        throw std::invalid_argument("formatClumpAssembly: the offsets run past the " + std::to_string(count) +
-                                    " spheres given");
+    for (std::size_t c = 0; c < clumps; ++c) // every clump's spheres within those given, in order
+        if (offsets[c] < 0 || offsets[c + 1] < offsets[c] || std::size_t(offsets[c + 1]) > count)
+            throw std::invalid_argument("formatClumpAssembly: clump " + std::to_string(c) + "'s spheres " +
+                                        std::to_string(offsets[c]) + " .. " + std::to_string(offsets[c + 1]) +
+                                        " are not within the " + std::to_string(count) + " given, in order");
     static const char* const kWords[10] = {" mass ", " centroid ", " ", " ", " inertia ",
                                            " ",      " ",          " ", " ", " "};
     std::string out;
     out.reserve(std::size_t(clumps > 0 ? offsets[clumps] - offsets[0] : 0) * 100 + clumps * 260);
     for (std::size_t c = 0; c < clumps; ++c) {
-        if (offsets[c + 1] < offsets[c])
-            throw std::invalid_argument("formatClumpAssembly: the offsets must not decrease");
         out += "#mss clump ";
         appendInteger(out, ids[c]);
         out += " density 1";

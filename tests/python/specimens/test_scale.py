@@ -238,7 +238,7 @@ class TablesAsText(unittest.TestCase):
         o = np.array([0, 2], dtype=np.int64).tobytes()
         with self.assertRaises(ValueError) as e:  # one sphere given, the offsets say two
             _mss.formatClumpAssembly(one, o, np.array([1], dtype=np.int64).tobytes(), np.zeros(10).tobytes())
-        self.assertIn('the offsets run past the 1 spheres given', str(e.exception))
+        self.assertIn("clump 0's spheres 0 .. 2 are not within the 1 given, in order", str(e.exception))
         with self.assertRaises(ValueError) as e:
             _mss.formatClumpAssembly(one, o, np.array([1, 2], dtype=np.int64).tobytes(), np.zeros(10).tobytes())
         self.assertIn('2 clumps need 3 offsets and 20 mass numbers', str(e.exception))
