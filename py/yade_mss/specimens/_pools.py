@@ -4,12 +4,14 @@ is deterministic, one thread per grain. The grain's own work comes in as functio
 and so does the row of a grain whose worker died (``failed``), so that this module knows nothing of grains.
 """
 
+import itertools
 import os
 import signal
 
 from .. import _mss
 
 WORKER_DIED = ('a worker process died', 'every worker process died')  # how a dead worker's rows begin
+AHEAD_CHUNKS = 4  # Dask: chunks of grains submitted ahead per worker thread
 
 
 def freeCores():
@@ -113,9 +115,16 @@ def executor(workers, scheduler, runOne, runMany, failed, security=None, connect
             # several tasks per worker, so that a lost worker costs little and the load stays even
             slots = max(1, sum(client.nthreads().values()))
             size = max(1, min(16, len(tasks) // (8 * slots)))
-            chunks = [tasks[i:i + size] for i in range(0, len(tasks), size)]
-            futures = client.map(runMany, chunks, pure=False, retries=3)
-            for fut in as_completed(futures):
+            chunks = (tasks[i:i + size] for i in range(0, len(tasks), size))
+            # submitted a few ahead of the workers, not all at once: each chunk's crops are cut and packed here as
+            # it is sent, and the whole list at once kept the workers waiting (2.9 s of 10^4 grains' 37 s)
+            done = as_completed()
+            for chunk in itertools.islice(chunks, AHEAD_CHUNKS * slots):
+                done.add(client.submit(runMany, chunk, pure=False, retries=3))
+            for fut in done:
+                chunk = next(chunks, None)
+                if chunk is not None:
+                    done.add(client.submit(runMany, chunk, pure=False, retries=3))
                 for result in fut.result():
                     yield result
         return run, client.close
