@@ -113,13 +113,9 @@ def assembly(outdir):
 
 
 def meta():
-    commit = subprocess.run(['git', 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True).stdout.strip()
-    if commit and subprocess.run(['git', 'status', '--porcelain', '--', 'py', 'pkg'], capture_output=True,
-                                 text=True).stdout.strip():
-        commit += '+dirty'  # the build measured holds changes the commit does not
-    model = next((l.split(':', 1)[1].strip() for l in open('/proc/cpuinfo') if l.startswith('model name')), '?')
-    return [time.strftime('%Y-%m-%dT%H:%M:%S', time.gmtime()), commit or 'unknown', '%d cores %s'
-            % (os.cpu_count(), model), open('/proc/loadavg').read().split()[0]]
+    """The row's date (UTC), commit (bench/rows.py: '+dirty' for changes under py/ or pkg/), machine and load."""
+    return [time.strftime('%Y-%m-%dT%H:%M:%S', time.gmtime()), _rows.commit(), _rows.machine(),
+            open('/proc/loadavg').read().split()[0]]
 
 
 def appendRows(name, columns, rows, fmt='%.4g'):

@@ -8,10 +8,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 def commit():
-    """The checked-out commit, short."""
+    """The checked-out commit, short; '+dirty' where py/ or pkg/ hold changes it does not (what a bench
+    measured is then not that commit)."""
     try:
-        return subprocess.run(['git', '-C', HERE, 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True,
+        head = subprocess.run(['git', '-C', HERE, 'rev-parse', '--short', 'HEAD'], capture_output=True, text=True,
                               check=True).stdout.strip()
+        changed = subprocess.run(['git', '-C', os.path.dirname(HERE), 'status', '--porcelain', '--', 'py', 'pkg'],
+                                 capture_output=True, text=True, check=True).stdout.strip()
+        return head + ('+dirty' if changed else '')
     except (OSError, subprocess.CalledProcessError):
         return 'unknown'
 

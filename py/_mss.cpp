@@ -634,7 +634,7 @@ py::object clumpGaps(const py::object& spheres, const py::object& offsets, const
     return bytesOf(out);
 }
 
-/// The bytes of a text: a batch's table, tens of MB at 10^5 grains, made without the GIL.
+/// The bytes of a text (a sphere file, a batch's table).
 py::object textBytes(const std::string& text) {
     return py::object(py::handle<>(PyBytes_FromStringAndSize(text.data(), Py_ssize_t(text.size()))));
 }
@@ -952,8 +952,7 @@ void writeSpheres(const py::object& centers, const py::object& radii, const std:
 
 /// writeSpheres' text for @p path's extension, as bytes (written and digested by the caller).
 py::object formatSpheres(const py::object& centers, const py::object& radii, const std::string& path) {
-    const std::string text = mss::formatSpheres(spheres(centers, radii), path);
-    return py::object(py::handle<>(PyBytes_FromStringAndSize(text.data(), Py_ssize_t(text.size()))));
+    return textBytes(mss::formatSpheres(spheres(centers, radii), path));
 }
 
 // A message may quote bytes of a file that are not UTF-8 (0xB5...): decode with backslash escapes, so that

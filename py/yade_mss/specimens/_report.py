@@ -422,30 +422,25 @@ def writeVtk(path, b, ids):
     with open(path, 'wb') as f:
         f.write(b'# vtk DataFile Version 3.0\nyade-mss assembly: spheres (radius, clump_id, dice)\nASCII\n'
                 b'DATASET POLYDATA\nPOINTS %d double\n' % n)
-        _rows(f, None, spheres[:, :3])
+        _rows(f, spheres[:, :3])
         f.write(b'VERTICES %d %d\n' % (n, 2 * n))
-        _rows(f, np.column_stack([np.ones(n, dtype=np.int64), np.arange(n, dtype=np.int64)]), None)
+        _rows(f, np.column_stack([np.ones(n, dtype=np.int64), np.arange(n, dtype=np.int64)]))
         # a FIELD: every array is read (a reader takes only the first of several SCALARS by default)
         f.write(b'POINT_DATA %d\nFIELD spheres %d\n' % (n, len(per)))
         for name, values in per.items():
             kind = 'int' if name == 'clump_id' else 'double'
             f.write(b'%s 1 %d %s\n' % (name.encode(), n, kind.encode()))
-            if kind == 'int':
-                _rows(f, values[:, None], None)
-            else:
-                _rows(f, None, values[:, None])
+            _rows(f, values[:, None])
 
 
-def _rows(f, ints, values, chunk=FORMAT_ROWS):
-    """Writes rows of *ints* (a 2-D integer array, or None) then *values* (2-D, or None), separated by spaces, as
-    np.savetxt's '%d' and '%.17g' write them, formatted by the core a chunk of rows at a time."""
-    n = len(ints) if ints is not None else len(values)
-    for x in range(0, n, chunk):
-        i = np.ascontiguousarray(ints[x:x + chunk], dtype=np.int64) if ints is not None else None
-        v = np.ascontiguousarray(values[x:x + chunk], dtype=np.float64) if values is not None else None
-        f.write(_mss.formatRows(i.tobytes() if i is not None else b'', i.shape[1] if i is not None else 0,
-                                v.tobytes() if v is not None else b'', v.shape[1] if v is not None else 0, 'g17',
-                                ' ', '\n'))
+def _rows(f, a, chunk=FORMAT_ROWS):
+    """Writes the rows of the 2-D array *a*, separated by spaces, as np.savetxt's '%d' (an integer array) or
+    '%.17g' writes them, formatted by the core a chunk of rows at a time."""
+    whole = np.issubdtype(a.dtype, np.integer)
+    for x in range(0, len(a), chunk):
+        part = np.ascontiguousarray(a[x:x + chunk], dtype=np.int64 if whole else np.float64).tobytes()
+        f.write(_mss.formatRows(part, a.shape[1], b'', 0, 'g17', ' ', '\n') if whole else
+                _mss.formatRows(b'', 0, part, a.shape[1], 'g17', ' ', '\n'))
 
 
 def _atomic(path, write):
